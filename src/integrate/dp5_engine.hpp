@@ -70,6 +70,17 @@ class Dp5Dense final : public DenseOutput {
     const double th1 = 1.0 - th;
     return r1_ + th * (r2_ + th1 * (r3_ + th * (r4_ + th1 * r5_)));
   }
+  // Whether z may reach 0 within the step when it starts on the side of `mode` (z > 0 in
+  // contact, z < 0 in free flight). In the form z(theta) = r1 + theta r2 + theta(1-theta) r3
+  // + theta^2(1-theta) r4 + theta^2(1-theta)^2 r5 each basis function lies in [0, m] on
+  // [0, 1], m = 1, 1/4, 4/27, 1/16, which bounds z over the step; false is certain (no
+  // event in the step), true sends the step to the event locator.
+  bool z_may_reach_zero(ContactMode mode) const {
+    const double s = mode == ContactMode::contact ? 1.0 : -1.0;  // s z > 0 away from the surface
+    const double lower = std::min(s * r1_[1], s * (r1_[1] + r2_[1])) + std::min(0.0, s * r3_[1]) / 4.0 +
+                         std::min(0.0, s * r4_[1]) * (4.0 / 27.0) + std::min(0.0, s * r5_[1]) / 16.0;
+    return !(lower > 0.0);
+  }
 
  private:
   double tau0_ = 0.0, h_ = 1.0;
@@ -92,6 +103,7 @@ class Dp5Engine {
   void restart() {
     fsal_valid_ = false;
     err_old_ = 1e-4;
+    after_reject_ = false;
   }
   ContactMode mode() const { return mode_; }
   void set_mode(ContactMode m) {
@@ -131,12 +143,15 @@ class Dp5Engine {
         const double fac =
             std::isfinite(err) ? std::min(1.0 / dp5::kFacMin, std::pow(err, dp5::kExpo1) / dp5::kSafety) : 10.0;
         h_ = h / fac;
+        after_reject_ = true;
         if (h_ < h_min_) return std::isfinite(err) ? IntegrationStatus::step_underflow : IntegrationStatus::non_finite;
         continue;
       }
       dense_.prepare(tau, h, y, y_new, k_.data());
       const double step_end = last ? tau_end : tau + h;
-      const auto found = locate_events ? locate_contact_event(dense_, tau, step_end, mode_, 4e-16 * T_) : std::nullopt;
+      const auto found = locate_events && dense_.z_may_reach_zero(mode_)
+                             ? locate_contact_event(dense_, tau, step_end, mode_, 4e-16 * T_)
+                             : std::nullopt;
       if (found) {
         const IntegrationStatus to_event = finish_at_event(tau, found->tau, y, period, obs);
         if (to_event != IntegrationStatus::ok) return to_event;
@@ -156,9 +171,10 @@ class Dp5Engine {
     return IntegrationStatus::ok;
   }
 
-  void rhs(double tau, const Y& y, Y& dy) {
+  void rhs(double tau, const Y& y, Y& dy) { rhs_forced(model_.forcing(tau), y, dy); }
+  void rhs_forced(double F, const Y& y, Y& dy) {
     State f;
-    model_.rhs(tau, y.col(0), mode_, f);
+    model_.rhs_forced(F, y.col(0), mode_, f);
     dy.col(0) = f;
     if constexpr (Cols > 1) dy.template rightCols<Cols - 1>() = model_.jacobian(y.col(0), mode_) * y.template rightCols<Cols - 1>();
     ++counters_.rhs_evals;
@@ -179,9 +195,10 @@ class Dp5Engine {
     s = y + h * (a51 * k[0] + a52 * k[1] + a53 * k[2] + a54 * k[3]);
     rhs(tau + c5 * h, s, k[4]);
     s = y + h * (a61 * k[0] + a62 * k[1] + a63 * k[2] + a64 * k[3] + a65 * k[4]);
-    rhs(tau + h, s, k[5]);
+    const double F_end = model_.forcing(tau + h);  // stages 6 and 7 are both at tau + h
+    rhs_forced(F_end, s, k[5]);
     y_new = y + h * (a71 * k[0] + a73 * k[2] + a74 * k[3] + a75 * k[4] + a76 * k[5]);
-    rhs(tau + h, y_new, k[6]);
+    rhs_forced(F_end, y_new, k[6]);
     const Y err = h * (e1 * k[0] + e3 * k[2] + e4 * k[3] + e5 * k[4] + e6 * k[5] + e7 * k[6]);
     const Eigen::Array4d scale = atol_ + opt_.rtol * y.col(0).array().abs().max(y_new.col(0).array().abs());
     const double state_err = std::sqrt((err.col(0).array() / scale).square().mean());
@@ -207,7 +224,9 @@ class Dp5Engine {
   void control(double err, double h, bool last) {
     using namespace dp5;
     const double fac11 = std::pow(err, kExpo1);
-    const double fac = std::clamp(fac11 / std::pow(err_old_, kBeta) / kSafety, 1.0 / kFacMax, 1.0 / kFacMin);
+    double fac = std::clamp(fac11 / std::pow(err_old_, kBeta) / kSafety, 1.0 / kFacMax, 1.0 / kFacMin);
+    if (after_reject_) fac = std::max(fac, 1.0);  // no growth right after a rejection (Hairer's DOPRI5)
+    after_reject_ = false;
     err_old_ = std::max(err, 1e-4);
     // Keep the controller's proposal when the step was cut to land on the interval's end.
     h_ = last ? std::max(h_, h / fac) : h / fac;
@@ -254,6 +273,7 @@ class Dp5Engine {
   ContactMode mode_ = ContactMode::free;
   double h_ = 0.0;           // proposed next step, s
   double err_old_ = 1e-4;    // previous accepted error (PI control)
+  bool after_reject_ = false;  // the last trial was rejected
   bool fsal_valid_ = false;  // k_[0] holds f(tau, y) for the current point and mode
   std::array<Y, 7> k_;
   Dp5Dense<Cols> dense_;

@@ -20,7 +20,7 @@ class FreeFlightDense final : public DenseOutput {
 }  // namespace
 
 template <int Cols>
-Hybrid<Cols>::Hybrid(const Model& model, const IntegratorOptions& options, FreeFlight flight)
+Hybrid<Cols>::Hybrid(const Model& model, const IntegratorOptions& options, std::shared_ptr<const FreeFlight> flight)
     : flight_(std::move(flight)), engine_(model, options, counters_), opt_(options), T_(model.period()) {}
 
 template <int Cols>
@@ -45,13 +45,13 @@ IntegrationStatus Hybrid<Cols>::advance_period(State& u, Observer& obs) {
 // From tau to the next contact entry or the period's end, in closed form.
 template <int Cols>
 IntegrationStatus Hybrid<Cols>::free_phase(State& u, double& tau, Observer& obs) {
-  const auto entry = flight_.find_entry(tau, u, T_);
+  const auto entry = flight_->find_entry(tau, u, T_);
   const double tau1 = entry ? *entry : T_;
-  const FreeFlightDense dense(flight_, tau, u);
+  const FreeFlightDense dense(*flight_, tau, u);
   obs.on_step({period_, tau, tau1, ContactMode::free, &dense});
-  const State u1 = flight_.propagate(tau, u, tau1);
+  const State u1 = flight_->propagate(tau, u, tau1);
   if (!u1.allFinite()) return IntegrationStatus::non_finite;
-  if constexpr (Cols > 1) phi_ = flight_.transition(tau1 - tau) * phi_;
+  if constexpr (Cols > 1) phi_ = flight_->transition(tau1 - tau) * phi_;
   u = u1;
   tau = tau1;
   ++counters_.steps;

@@ -42,20 +42,37 @@ std::string validate(const IntegratorOptions& o) {
   return {};
 }
 
+namespace {
+
+// The free-flight decomposition (an eigen-decomposition and two complex LU factorisations,
+// ~4 us) costs as much as a forcing period of a rigid contact, and shooting makes a fresh
+// integrator for every Newton evaluation of the same model. The last one made is therefore
+// kept, per thread (no locks, no sharing across threads), and reused while the model's
+// linear part, forcing and tolerance are the same (FreeFlight::describes): a sweep moves
+// to the next cell by simply asking for another model.
+std::shared_ptr<const FreeFlight> free_flight_of(const Model& model) {
+  thread_local std::shared_ptr<const FreeFlight> last;
+  if (!last || !last->describes(model)) last = std::make_shared<const FreeFlight>(model);
+  return last;
+}
+
+}  // namespace
+
 std::unique_ptr<Integrator> make_integrator(const Model& model, const IntegratorOptions& options) {
   if (options.method == Method::rk4) return std::make_unique<detail::ClassicalRk4>(model, options);
   if (options.method == Method::hybrid) {
-    FreeFlight flight(model);
-    if (flight.valid()) return std::make_unique<detail::Hybrid<1>>(model, options, std::move(flight));
+    auto flight = free_flight_of(model);
+    if (flight->valid()) return std::make_unique<detail::Hybrid<1>>(model, options, std::move(flight));
   }
   return std::make_unique<detail::DormandPrince>(model, options);
 }
 
 std::unique_ptr<VariationalIntegrator> make_variational_integrator(const Model& model,
                                                                    const IntegratorOptions& options) {
-  FreeFlight flight(model);
-  if (options.method != Method::dopri5 && flight.valid())
-    return std::make_unique<detail::Hybrid<5>>(model, options, std::move(flight));
+  if (options.method != Method::dopri5) {
+    auto flight = free_flight_of(model);
+    if (flight->valid()) return std::make_unique<detail::Hybrid<5>>(model, options, std::move(flight));
+  }
   return std::make_unique<detail::DormandPrinceVariational>(model, options);
 }
 

@@ -2,6 +2,7 @@
 // Internal: the concrete integrators behind make_integrator().
 
 #include <array>
+#include <memory>
 
 #include "dp5_engine.hpp"
 #include "vibromap/integrate/free_flight.hpp"
@@ -41,7 +42,7 @@ class DormandPrinceVariational final : public VariationalIntegrator {
 template <int Cols>
 class Hybrid final : public VariationalIntegrator {
  public:
-  Hybrid(const Model& model, const IntegratorOptions& options, FreeFlight flight);
+  Hybrid(const Model& model, const IntegratorOptions& options, std::shared_ptr<const FreeFlight> flight);
   IntegrationStatus advance_period(State& u, Observer& obs) override;
   const Eigen::Matrix4d& jacobian() const override { return phi_; }
   void reset_jacobian() override { phi_.setIdentity(); }
@@ -50,7 +51,7 @@ class Hybrid final : public VariationalIntegrator {
   void restart() override;
   IntegrationStatus free_phase(State& u, double& tau, Observer& obs);
   IntegrationStatus contact_phase(State& u, double& tau, Observer& obs);
-  FreeFlight flight_;
+  std::shared_ptr<const FreeFlight> flight_;  // shared by every integrator of the model
   Dp5Engine<Cols> engine_;
   IntegratorOptions opt_;
   double T_;

@@ -30,7 +30,7 @@ class FreeFlight {
   explicit FreeFlight(const Model& model);
 
   bool valid() const { return valid_; }
-  const Eigen::Matrix4d& matrix() const { return A_; }
+  const Eigen::Matrix4d& matrix() const { return sys_.A; }
 
   // The state at tau1 of the contact-free motion through (tau0, u0).
   State propagate(double tau0, const State& u0, double tau1) const;
@@ -38,22 +38,32 @@ class FreeFlight {
   Eigen::Matrix4d transition(double dt) const;
   // First contact entry (z rising through 0) in (tau0, tau1], or nullopt.
   std::optional<double> find_entry(double tau0, const State& u0, double tau1) const;
-  // Steps that find_entry took so far (for counters).
-  long search_steps() const { return search_steps_; }
+  // Whether this is the free flight of `model`: the same linear part, forcing and entry
+  // tolerance (so it can be shared by every integrator of that model).
+  bool describes(const Model& model) const;
 
  private:
   using Vec4c = Eigen::Matrix<std::complex<double>, 4, 1>;
+  // What the decomposition is computed from: u' = A u + b cos(omega tau + phi0) + c.
+  struct System {
+    Eigen::Matrix4d A;
+    State b, c;
+    double omega, phi0, z_tol;
+    explicit System(const Model& model);
+    bool operator==(const System& o) const {
+      return A == o.A && b == o.b && c == o.c && omega == o.omega && phi0 == o.phi0 && z_tol == o.z_tol;
+    }
+  };
   State particular(double tau) const;
+  Vec4c modal_exp(double dt) const;  // e^{lambda_j dt} for every mode
   double particular_z_dd_bound() const;
 
-  double omega_, phi0_, z_tol_;
-  Eigen::Matrix4d A_;
+  System sys_;
   Eigen::Matrix4cd V_, V_inv_;
   Vec4c lambda_;
   Vec4c amp_;          // (i omega I - A)^{-1} b
   State constant_;     // -A^{-1} c
   bool valid_ = false;
-  mutable long search_steps_ = 0;
 };
 
 }  // namespace vibromap

@@ -50,10 +50,13 @@ class Model {
   double forcing(double tau) const { return F_amp_ * std::cos(p_.omega * tau + p_.phi0); }
 
   // du/dt at time tau (since the start of the forcing period) in the given mode.
-  void rhs(double tau, const State& u, ContactMode mode, State& dudt) const {
+  void rhs(double tau, const State& u, ContactMode mode, State& dudt) const { rhs_forced(forcing(tau), u, mode, dudt); }
+  // The same with the external force F = forcing(tau) given (integrators evaluate several
+  // stages at one time and spare the cosine).
+  void rhs_forced(double F, const State& u, ContactMode mode, State& dudt) const {
     const double fc = mode == ContactMode::contact ? contact_.force(u[1]) : 0.0;
     const double spring = k2_ * (u[1] + p_.D) + c2_ * u[3];
-    const double a1 = (-c1_ * u[2] - k1_ * u[0] - spring + forcing(tau) - fc) * inv_m1_;
+    const double a1 = (-c1_ * u[2] - k1_ * u[0] - spring + F - fc) * inv_m1_;
     const double a2 = (spring + fc) * inv_m2_;
     dudt << u[2], u[3], a1, a1 - a2;
   }
