@@ -74,3 +74,27 @@ TEST(FreeFlight, ErrorFollowsToleranceAndDenseOutputIsAccurate) {
     previous = err;
   }
 }
+
+// Hybrid integrators of one model share its free-flight decomposition; integrators of
+// models made one after another (a sweep's cells) must each follow their own closed form.
+TEST(FreeFlight, HybridIntegratorsOfAlternatingModelsFollowTheirOwnClosedForm) {
+  Parameters pa = no_contact_point(), pb = no_contact_point();
+  pb.m2 = 250.0;
+  pb.D = 12.0;
+  const Model ma(pa), mb(pb);
+  const test::LinearOscillator exact_a(ma), exact_b(mb);
+  IntegratorOptions o;  // hybrid
+  Observer none;
+  for (int round = 0; round < 2; ++round) {
+    for (const auto* m : {&ma, &mb}) {
+      const Parameters& p = m->parameters();
+      auto integ = make_integrator(*m, o);
+      State u = Model::to_internal(p.initial_state());
+      const State u0 = u;
+      integ->reset(u);
+      ASSERT_EQ(integ->advance_period(u, none), IntegrationStatus::ok);
+      const auto& exact = m == &ma ? exact_a : exact_b;
+      EXPECT_LT(max_relative_error(u, exact.solution(u0, m->period())), 1e-12) << "round " << round << ", m2 " << p.m2;
+    }
+  }
+}
