@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <cmath>
 
 #include "vibromap/analysis/lyapunov.hpp"
+#include "vibromap/analysis/section.hpp"
 #include "vibromap/analysis/shooting.hpp"
 #include "vibromap/analysis/steady_state.hpp"
 
@@ -46,6 +48,10 @@ constexpr std::size_t kExtrapolationIterates = 7;  // samples used to extrapolat
 constexpr double kShorterPeriodFactor = 100;  // P^d(y) = y within this many Newton tolerances
 constexpr int kCheckPeriods = 20;             // periods per round of the check that the transient heads for the orbit
 constexpr int kCheckRounds = 6;               // rounds before an undecided check refuses the orbit
+// The check compares with the orbit's linearisation, which says nothing about offsets
+// beyond the motion's scale: a transient passing the orbit from farther off is not taken as
+// following it (with a large basin Newton also finds orbits the transient only passes by).
+constexpr double kLinearOffset = 1.0;
 
 // Keeps uniform samples of each period plus extra samples inside contact steps (a rigid
 // contact lasts ~1e-3 T and would fall between uniform samples) and the event points.
@@ -216,11 +222,11 @@ ShootingOptions shooting_options(const PointOptions& o, int n) {
 }
 
 // Newton for period n may converge to an orbit of a shorter period d | n: the least such d.
-int least_period(Run& r, const State& y, int n, double tol) {
-  const StateScale scale(r.model);
+int least_period(Run& r, const Model& model, const State& y, int n, double tol) {
+  const StateScale scale(model);
   for (int d = 1; d < n; ++d) {
     if (n % d != 0) continue;
-    const auto integ = make_integrator(r.model, r.options.integrator);
+    const auto integ = make_integrator(model, r.options.integrator);
     State u = y;
     integ->reset(u);
     Observer none;
@@ -253,8 +259,8 @@ bool measure_cycle(PointSummary& s, Run& r, const State& y, int n) {
 }
 
 // The n points y, P(y), ..., P^{n-1}(y) of a cycle (fewer when integration fails).
-std::vector<State> cycle_points(Run& r, const State& y, int n) {
-  const auto integ = make_integrator(r.model, r.options.integrator);
+std::vector<State> cycle_points(Run& r, const Model& model, const State& y, int n) {
+  const auto integ = make_integrator(model, r.options.integrator);
   std::vector<State> points{y};
   State u = y;
   integ->reset(u);
@@ -264,6 +270,14 @@ std::vector<State> cycle_points(Run& r, const State& y, int n) {
   return points;
 }
 
+// The Poincare section shooting works on (section.hpp): the system whose forcing periods
+// start at the section's phase, and the transient's end carried there.
+struct ShootingSection {
+  Model model;
+  double phase = 0.0;  // s in [0, T): the section's phase in the forcing period
+  State transient_end;
+};
+
 // Newton may converge to another stable orbit than the one the motion from the initial
 // state is heading for (coexisting attractors). The transient is therefore integrated on in
 // rounds of kCheckPeriods, each compared with the orbit's linearisation: with delta_0 its
@@ -272,17 +286,19 @@ std::vector<State> cycle_points(Run& r, const State& y, int n) {
 // passes: M^J holds the rotation). A round that moves away from the orbit refuses it; a
 // round that neither follows nor moves away (still far, nonlinear) defers to the next, up
 // to kCheckRounds; undecided means refused, and brute force takes over.
-bool transient_approaches(Run& r, const ShootingResult& sh, int n, double tol) {
-  const std::vector<State> cycle = cycle_points(r, sh.y, n);
+bool transient_approaches(Run& r, const ShootingSection& section, const ShootingResult& sh, int n, double tol) {
+  const std::vector<State> cycle = cycle_points(r, section.model, sh.y, n);
   if (static_cast<int>(cycle.size()) != n) return false;
-  const StateScale scale(r.model);
+  const StateScale scale(section.model);
   const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
   auto size = [&](const State& d) { return (d.array() / unit).abs().maxCoeff(); };
   int phase = 0;
   for (int i = 1; i < n; ++i)
-    if (scale.distance(r.u, cycle[static_cast<std::size_t>(i)]) < scale.distance(r.u, cycle[static_cast<std::size_t>(phase)])) phase = i;
-  const auto integ = make_integrator(r.model, r.options.integrator);
-  State u = r.u;
+    if (scale.distance(section.transient_end, cycle[static_cast<std::size_t>(i)]) <
+        scale.distance(section.transient_end, cycle[static_cast<std::size_t>(phase)]))
+      phase = i;
+  const auto integ = make_integrator(section.model, r.options.integrator);
+  State u = section.transient_end;
   integ->reset(u);
   Observer none;
   bool ok = true;
@@ -294,7 +310,8 @@ bool transient_approaches(Run& r, const ShootingResult& sh, int n, double tol) {
   for (int round = 0; round < kCheckRounds && ok && !accepted && !refused; ++round) {
     const State delta0 = u - sh.y;
     for (int i = 0; i < cycles * n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-    accepted = size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
+    accepted = size(delta0) <= kLinearOffset &&
+               size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
     refused = size(u - sh.y) > size(delta0);
   }
   add_counters(r.shooting, integ->counters());
@@ -313,28 +330,63 @@ State initial_guess(const Run& r, int n) {
   return extrapolate_fixed_point(iterates, StateScale(r.model));
 }
 
+// The section shooting works on: the quiet phase of the transient's recent impacts. All the
+// impacts the recorder keeps (the last 2 n_max + 2 periods) count: a single period of a
+// transient may have none, while they cluster around the phases of the orbit's.
+std::optional<ShootingSection> choose_section(Run& r) {
+  const long last = r.integrator.period() - 1;
+  const double phase = section_phase(r.impacts.impacts(), r.impacts.open_impact(), 0, last, r.model.period());
+  if (phase == 0.0) return ShootingSection{r.model, 0.0, r.u};
+  const std::optional<State> end = state_at_phase(r.model, r.options.integrator, r.u, phase, r.shooting);
+  if (!end) return std::nullopt;
+  return ShootingSection{shifted_model(r.model, phase), phase, *end};
+}
+
+// A state at phase 0 carried to the section, and back.
+std::optional<State> to_section(Run& r, const ShootingSection& section, const State& u) {
+  if (section.phase == 0.0) return u;
+  return state_at_phase(r.model, r.options.integrator, u, section.phase, r.shooting);
+}
+std::optional<State> from_section(Run& r, const ShootingSection& section, const State& y) {
+  if (section.phase == 0.0) return y;
+  return state_at_phase(section.model, r.options.integrator, y, r.model.period() - section.phase, r.shooting);
+}
+
+// Newton for period n on the section: from the transient's end, then (when that fails) from
+// the fixed point extrapolated from the transient; the orbit reduced to its least period.
+// Not converged, or unstable, means no orbit.
+ShootingResult find_orbit(PointSummary& s, Run& r, const ShootingSection& section, ShootingOptions& so) {
+  ShootingResult sh = shoot(section.model, r.options.integrator, section.transient_end, so, r.shooting);
+  s.newton_iterations += sh.iterations;
+  if (!sh.converged) {
+    const std::optional<State> guess = to_section(r, section, initial_guess(r, so.n));
+    if (!guess) return sh;
+    sh = shoot(section.model, r.options.integrator, *guess, so, r.shooting);
+    s.newton_iterations += sh.iterations;
+  }
+  if (!sh.converged || !sh.stable()) return sh;
+  if (const int d = least_period(r, section.model, sh.y, so.n, so.tol); d != so.n) {
+    so.n = d;
+    sh = shoot(section.model, r.options.integrator, sh.y, so, r.shooting);
+    s.newton_iterations += sh.iterations;
+  }
+  return sh;
+}
+
 // Shooting from the end of the transient: Newton for the candidate periods, most promising
 // first; the first stable orbit that the transient is heading for is the answer. An
 // unstable orbit is not an attractor, and no accepted orbit means brute-force integration
 // takes over.
 bool solve_by_shooting(PointSummary& s, Run& r) {
+  const std::optional<ShootingSection> section = choose_section(r);
+  if (!section) return false;
   for (int n : r.steady.candidate_periods(kShootingCandidates)) {
     ShootingOptions so = shooting_options(r.options, n);
-    ShootingResult sh = shoot(r.model, r.options.integrator, r.u, so, r.shooting);
-    s.newton_iterations += sh.iterations;
-    if (!sh.converged) {  // a second start: the fixed point extrapolated from the transient
-      sh = shoot(r.model, r.options.integrator, initial_guess(r, n), so, r.shooting);
-      s.newton_iterations += sh.iterations;
-    }
+    const ShootingResult sh = find_orbit(s, r, *section, so);
     if (!sh.converged || !sh.stable()) continue;
-    if (const int d = least_period(r, sh.y, n, so.tol); d != n) {
-      so.n = d;
-      sh = shoot(r.model, r.options.integrator, sh.y, so, r.shooting);
-      s.newton_iterations += sh.iterations;
-      if (!sh.converged || !sh.stable()) continue;
-    }
-    if (r.options.analysis.basin_check && !transient_approaches(r, sh, so.n, so.tol)) continue;
-    if (!measure_cycle(s, r, sh.y, so.n)) return false;
+    if (r.options.analysis.basin_check && !transient_approaches(r, *section, sh, so.n, so.tol)) continue;
+    const std::optional<State> y = from_section(r, *section, sh.y);
+    if (!y || !measure_cycle(s, r, *y, so.n)) return false;
     s.status = SolveStatus::ok;
     s.steady_method = SteadyMethod::shooting;
     s.steady_residual = sh.residual;
