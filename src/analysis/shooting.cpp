@@ -125,8 +125,15 @@ ShootingResult shoot(const Model& model, const IntegratorOptions& integration, c
   double first_residual = 0.0, best_residual = std::numeric_limits<double>::infinity();
   int halvings = 0;
   double last_residual = std::numeric_limits<double>::infinity(), rtol_prev = 0.0;
+  const long steps_before = counters.steps + counters.rejected;
   for (int evaluations = 0; evaluations <= options.max_iterations; ++evaluations) {
-    const IntegratorOptions evaluation = evaluation_options(integration, last_residual);
+    IntegratorOptions evaluation = evaluation_options(integration, last_residual);
+    // integration.max_steps budgets all the evaluations together.
+    evaluation.max_steps = integration.max_steps - (counters.steps + counters.rejected - steps_before);
+    if (evaluation.max_steps < 1) {
+      r.message = "step budget (solver.max_steps) exhausted during Newton";
+      return r;
+    }
     const IntegrationStatus status = map_n(model, evaluation, r.y, options.n, image, r.monodromy, counters);
     if (status != IntegrationStatus::ok) {
       r.message = "integration failed during Newton: " + to_string(status);

@@ -9,6 +9,9 @@ namespace vibromap {
 namespace {
 constexpr double kNearFactor = 1e3;
 constexpr double kCandidateFactor = 10.0;
+// Fewer samples than this cannot tell a slow approach from a non-periodic motion (a shooting
+// transient is 10 periods, integrated loosely).
+constexpr long kMinTrendPeriods = 20;
 }  // namespace
 
 SteadyStateDetector::SteadyStateDetector(const Model& model, int n_max, double tol)
@@ -74,7 +77,7 @@ std::vector<int> SteadyStateDetector::candidate_periods(int count) const {
 bool SteadyStateDetector::still_converging() const {
   const auto total = static_cast<long>(best_log10_.size());
   const long w = std::min<long>(total, std::max<long>(20, 2 * total / 3));
-  if (w < 8) return true;  // too few periods to tell: the budget was the limit
+  if (w < kMinTrendPeriods) return true;  // too few periods to tell: the budget was the limit
   // Least-squares slope of log10(residual) against the period index over the last w samples.
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (long i = 0; i < w; ++i) {

@@ -106,6 +106,8 @@ class Dp5Engine {
     after_reject_ = false;
   }
   ContactMode mode() const { return mode_; }
+  void set_rtol(double rtol) { opt_.rtol = rtol; }
+  void set_max_steps(long max_steps) { opt_.max_steps = max_steps; }
   void set_mode(ContactMode m) {
     if (m != mode_) fsal_valid_ = false;
     mode_ = m;

@@ -35,6 +35,12 @@ FreeFlight::FreeFlight(const Model& m) : sys_(m) {
   if (es.info() != Eigen::Success) return;
   V_ = es.eigenvectors();
   lambda_ = es.eigenvalues();
+  // Eigen gives a complex pair of a real matrix as adjacent, exactly conjugate eigenvalues
+  // and eigenvectors: the second exponential of a pair is the conjugate of the first.
+  for (int j = 1; j < 4; ++j)
+    if (lambda_[j].imag() != 0.0 && lambda_[j] == std::conj(lambda_[j - 1]) && conjugate_of_[j - 1] < 0 &&
+        V_.col(j) == V_.col(j - 1).conjugate())
+      conjugate_of_[j] = j - 1;
   const Eigen::PartialPivLU<Eigen::Matrix4cd> lu(V_);
   V_inv_ = lu.inverse();
   const double cond = V_.cwiseAbs().rowwise().sum().maxCoeff() * V_inv_.cwiseAbs().rowwise().sum().maxCoeff();
@@ -62,7 +68,7 @@ State FreeFlight::particular(double tau) const {
 
 FreeFlight::Vec4c FreeFlight::modal_exp(double dt) const {
   Vec4c e;
-  for (int j = 0; j < 4; ++j) e[j] = std::exp(lambda_[j] * dt);
+  for (int j = 0; j < 4; ++j) e[j] = conjugate_of_[j] >= 0 ? std::conj(e[conjugate_of_[j]]) : std::exp(lambda_[j] * dt);
   return e;
 }
 

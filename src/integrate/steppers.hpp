@@ -15,6 +15,8 @@ class DormandPrince final : public Integrator {
  public:
   DormandPrince(const Model& model, const IntegratorOptions& options);
   IntegrationStatus advance_period(State& u, Observer& obs) override;
+  void set_rtol(double rtol) override { engine_.set_rtol(rtol); }
+  void set_max_steps(long max_steps) override { engine_.set_max_steps(max_steps); }
 
  private:
   void restart() override;
@@ -27,6 +29,8 @@ class DormandPrinceVariational final : public VariationalIntegrator {
  public:
   DormandPrinceVariational(const Model& model, const IntegratorOptions& options);
   IntegrationStatus advance_period(State& u, Observer& obs) override;
+  void set_rtol(double rtol) override { engine_.set_rtol(rtol); }
+  void set_max_steps(long max_steps) override { engine_.set_max_steps(max_steps); }
   const Eigen::Matrix4d& jacobian() const override { return phi_; }
   void reset_jacobian() override { phi_.setIdentity(); engine_.restart(); }
 
@@ -44,6 +48,11 @@ class Hybrid final : public VariationalIntegrator {
  public:
   Hybrid(const Model& model, const IntegratorOptions& options, std::shared_ptr<const FreeFlight> flight);
   IntegrationStatus advance_period(State& u, Observer& obs) override;
+  void set_rtol(double rtol) override { engine_.set_rtol(rtol); }
+  void set_max_steps(long max_steps) override {
+    opt_.max_steps = max_steps;
+    engine_.set_max_steps(max_steps);
+  }
   const Eigen::Matrix4d& jacobian() const override { return phi_; }
   void reset_jacobian() override { phi_.setIdentity(); }
 
@@ -74,6 +83,7 @@ class ClassicalRk4 final : public Integrator {
  public:
   ClassicalRk4(const Model& model, const IntegratorOptions& options);
   IntegrationStatus advance_period(State& u, Observer& obs) override;
+  void set_max_steps(long max_steps) override { opt_.max_steps = max_steps; }
 
  private:
   void restart() override { f_valid_ = false; }

@@ -16,6 +16,7 @@
 // free attached body with k2 = c2 = 0) or the forcing is resonant with an undamped mode;
 // make_integrator() then uses dopri5 for the whole motion.
 
+#include <array>
 #include <complex>
 #include <optional>
 
@@ -55,12 +56,15 @@ class FreeFlight {
     }
   };
   State particular(double tau) const;
-  Vec4c modal_exp(double dt) const;  // e^{lambda_j dt} for every mode
+  // e^{lambda_j dt} for every mode; the second mode of a complex-conjugate pair takes the
+  // conjugate of the first (half the complex exponentials of an underdamped system).
+  Vec4c modal_exp(double dt) const;
   double particular_z_dd_bound() const;
 
   System sys_;
   Eigen::Matrix4cd V_, V_inv_;
   Vec4c lambda_;
+  std::array<int, 4> conjugate_of_{-1, -1, -1, -1};  // the mode this one is the conjugate of, or -1
   Vec4c amp_;          // (i omega I - A)^{-1} b
   State constant_;     // -A^{-1} c
   bool valid_ = false;

@@ -76,6 +76,11 @@ class Integrator {
   // Sets the state's contact mode from u: used at the start and after an external reset.
   void reset(const State& u) { mode_ = u[1] > 0.0 ? ContactMode::contact : ContactMode::free; restart(); }
 
+  // Changes the relative tolerance from the next step on (adaptive methods; rk4 ignores it).
+  virtual void set_rtol(double /*rtol*/) {}
+  // Changes the step budget (IntegratorOptions::max_steps) from the next step on.
+  virtual void set_max_steps(long max_steps) = 0;
+
   ContactMode mode() const { return mode_; }
   long period() const { return period_; }  // forcing periods completed so far
   const IntegrationCounters& counters() const { return counters_; }
