@@ -39,11 +39,7 @@ LyapunovEstimate largest_lyapunov(const Model& model, const IntegratorOptions& o
     v /= norm;
     if (j >= align) growth.push_back(std::log(norm));
   }
-  const IntegrationCounters& c = integ->counters();
-  counters.steps += c.steps;
-  counters.rejected += c.rejected;
-  counters.rhs_evals += c.rhs_evals;
-  counters.events += c.events;
+  counters += integ->counters();
   if (growth.size() < static_cast<std::size_t>(periods)) return e;
   // Standard error from batch means: the log growths of successive periods are correlated,
   // the means of kBatches long batches much less so.

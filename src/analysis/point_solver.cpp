@@ -229,13 +229,6 @@ std::string check_inputs(const Parameters& p, const PointOptions& o) {
   return msg;
 }
 
-void add_counters(IntegrationCounters& total, const IntegrationCounters& c) {
-  total.steps += c.steps;
-  total.rejected += c.rejected;
-  total.rhs_evals += c.rhs_evals;
-  total.events += c.events;
-}
-
 bool shooting_enabled(const PointOptions& o) {
   return o.analysis.steady == SteadyMethod::shooting && o.integrator.method != Method::rk4;
 }
@@ -261,7 +254,7 @@ int least_period(Run& r, const Model& model, const State& y, int n, double tol) 
     Observer none;
     bool ok = true;
     for (int i = 0; i < d && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-    add_counters(r.shooting, integ->counters());
+    r.shooting += integ->counters();
     if (ok && scale.distance(u, y) <= kShorterPeriodFactor * tol) return d;
   }
   return n;
@@ -308,7 +301,7 @@ std::vector<State> cycle_points(Run& r, const Model& model, const State& y, int 
   integ->reset(u);
   Observer none;
   for (int i = 1; i < n && integ->advance_period(u, none) == IntegrationStatus::ok; ++i) points.push_back(u);
-  add_counters(r.shooting, integ->counters());
+  r.shooting += integ->counters();
   return points;
 }
 
@@ -356,7 +349,7 @@ bool transient_approaches(Run& r, const ShootingSection& section, const Shooting
                size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
     refused = size(u - sh.y) > size(delta0);
   }
-  add_counters(r.shooting, integ->counters());
+  r.shooting += integ->counters();
   return ok && accepted;
 }
 
@@ -532,7 +525,7 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
   if (options.analysis.trajectory_periods > 0 && s.status != SolveStatus::failed) record_trajectory(s, r);
   s.periods = integrator->period();
   s.counters = integrator->counters();
-  add_counters(s.counters, r.shooting);
+  s.counters += r.shooting;
   s.final_state = Model::to_physical(r.u);
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;

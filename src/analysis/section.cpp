@@ -103,10 +103,7 @@ std::optional<State> state_at_phase(const Model& model, const IntegratorOptions&
   integ->reset(v);
   PhaseProbe probe(tau);
   const IntegrationStatus status = integ->advance_period(v, probe);
-  counters.steps += integ->counters().steps;
-  counters.rejected += integ->counters().rejected;
-  counters.rhs_evals += integ->counters().rhs_evals;
-  counters.events += integ->counters().events;
+  counters += integ->counters();
   if (status != IntegrationStatus::ok) return std::nullopt;
   if (tau >= model.period()) return v;
   return probe.state();

@@ -67,13 +67,6 @@ IntegratorOptions evaluation_options(const IntegratorOptions& integration, doubl
   return o;
 }
 
-void add(IntegrationCounters& total, const IntegrationCounters& c) {
-  total.steps += c.steps;
-  total.rejected += c.rejected;
-  total.rhs_evals += c.rhs_evals;
-  total.events += c.events;
-}
-
 // P^n(y) and its Jacobian with a fresh variational integrator (so no step-size history
 // carries over between Newton iterates).
 IntegrationStatus map_n(const Model& model, const IntegratorOptions& opt, const State& y, int n, State& out,
@@ -85,7 +78,7 @@ IntegrationStatus map_n(const Model& model, const IntegratorOptions& opt, const 
   Observer none;
   IntegrationStatus status = IntegrationStatus::ok;
   for (int i = 0; i < n && status == IntegrationStatus::ok; ++i) status = integ->advance_period(out, none);
-  add(counters, integ->counters());
+  counters += integ->counters();
   jac = integ->jacobian();
   if (status == IntegrationStatus::ok && !(out.allFinite() && jac.allFinite())) status = IntegrationStatus::non_finite;
   return status;

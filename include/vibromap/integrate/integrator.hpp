@@ -65,6 +65,13 @@ struct IntegrationCounters {
   long rejected = 0;   // rejected steps
   long rhs_evals = 0;  // evaluations of the right-hand side
   long events = 0;     // located contact entries and exits
+  IntegrationCounters& operator+=(const IntegrationCounters& c) {
+    steps += c.steps;
+    rejected += c.rejected;
+    rhs_evals += c.rhs_evals;
+    events += c.events;
+    return *this;
+  }
 };
 
 class Integrator {
