@@ -18,7 +18,7 @@ POSTPROCESS_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 if POSTPROCESS_DIR not in sys.path:
     sys.path.insert(0, POSTPROCESS_DIR)
 
-# The analytic motion of tests/test_trajectory_file.cpp (harmonic_summary): keep them equal, so
+# The analytic motion of tests/io/test_trajectory_file.cpp (harmonic_summary): keep them equal, so
 # that a file written by the C++ writer can be checked against the same formulas.
 OMEGA = 7.23  # forcing frequency, rad/s
 T = 2.0 * math.pi / OMEGA  # forcing period, s

@@ -1,10 +1,10 @@
 """Tests of the regime-map file written by the C++ writer (src/io/map_file.cpp), read the way
 users read it: with h5py, and with xarray through both netCDF-4 engines (netcdf4 and h5netcdf).
 
-ctest writes the file first (tests/test_map_file.cpp, MapFileSample) and names it in
+ctest writes the file first (tests/io/test_map_file.cpp, MapFileSample) and names it in
 VIBROMAP_SAMPLE_MAP; without it (pytest run by hand) these tests are skipped. The sample is a
 3 x 4 map over E1 (log) and R1 (lin) whose cell i (flat, row-major, E1 slowest) follows the
-formulas below: keep them equal to sample_cell / sample_done in tests/test_map_file.cpp."""
+formulas below: keep them equal to sample_cell / sample_done in tests/io/test_map_file.cpp."""
 
 from __future__ import annotations
 

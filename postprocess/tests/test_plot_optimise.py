@@ -1,7 +1,7 @@
 """Tests of postprocess/plot_optimise.py: its reader of optimisation files (the layout of
 include/vibromap/io/optimise_file.hpp, written here with h5py), the running best and the paths
 it draws, and the three figures. The C++ writer's own files are plotted by
-tests/optimise/test_optimise_mpi.py, so reader and writer are also tested against each other.
+tests/campaigns/multistart/test_optimise_mpi.py, so reader and writer are also tested against each other.
 
 The synthetic optimisation: free m2 (lin, [100, 310] kg) and omega2 (lin, [3.606, 5.646] rad/s),
 minimising k_con, keeping (1,1):

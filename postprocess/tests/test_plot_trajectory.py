@@ -62,7 +62,7 @@ def test_reader_rejects_datasets_of_unequal_length(tmp_path):
 
 @pytest.mark.skipif("VIBROMAP_SAMPLE_TRAJECTORY" not in os.environ, reason="no file from the C++ writer (run via ctest)")
 def test_reader_reads_the_cpp_writers_file():
-    """tests/test_trajectory_file.cpp writes the analytic motion of conftest with 64 samples per
+    """tests/io/test_trajectory_file.cpp writes the analytic motion of conftest with 64 samples per
     period over 2 periods; libm and numpy may differ in the last bit of sin/cos."""
     traj = vibromap_h5.read_trajectory(os.environ["VIBROMAP_SAMPLE_TRAJECTORY"])
     expected = conftest.analytic_trajectory(64, 2)

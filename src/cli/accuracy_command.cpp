@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "vibromap/analysis/accuracy.hpp"
+#include "vibromap/core/analysis/accuracy.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene.hpp"

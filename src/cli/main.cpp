@@ -12,7 +12,7 @@
 #include "commands.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/sweep/sweep_runner.hpp"
+#include "vibromap/parallel/sweep_runner.hpp"
 
 namespace {
 

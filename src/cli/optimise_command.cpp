@@ -11,9 +11,9 @@
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/optimise/multistart_runner.hpp"
-#include "vibromap/optimise/point_objective.hpp"
-#include "vibromap/sweep/sweep_runner.hpp"
+#include "vibromap/parallel/multistart_runner.hpp"
+#include "vibromap/core/optimise/point_objective.hpp"
+#include "vibromap/parallel/sweep_runner.hpp"
 
 namespace vibromap::cli {
 namespace {

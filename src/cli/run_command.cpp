@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "vibromap/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene.hpp"
 #include "vibromap/io/summary_output.hpp"

@@ -7,7 +7,7 @@
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/sweep/sweep_runner.hpp"
+#include "vibromap/parallel/sweep_runner.hpp"
 
 namespace vibromap::cli {
 namespace {

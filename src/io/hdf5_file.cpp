@@ -11,6 +11,8 @@
 #include <cstring>
 #include <type_traits>
 
+#include "vibromap/core/text.hpp"
+
 // The public header spells hid_t as detail::Hid so that it need not include <hdf5.h>.
 static_assert(std::is_same_v<hid_t, vibromap::detail::Hid>, "HDF5 >= 1.10 with 64-bit hid_t expected");
 
@@ -50,14 +52,6 @@ std::string innermost_hdf5_reason() {
   return reason;
 }
 
-// Concatenates message parts. (Building messages with `"literal" + std::string&&` trips a
-// false -Wrestrict in GCC 12's libstdc++, bug 105329; appending does not.)
-template <class... Parts>
-std::string cat(const Parts&... parts) {
-  std::string s;
-  (s.append(std::string_view(parts)), ...);
-  return s;
-}
 
 // "attribute 'units'", "dataset '/x1'": how messages name an object.
 std::string describe(std::string_view kind, std::string_view name) { return cat(kind, " '", name, "'"); }
@@ -229,13 +223,13 @@ void Hdf5Object::set_attribute(std::string_view name, std::span<const double> va
 }
 
 void Hdf5Object::set_array_attribute(std::string_view name, const void* values, std::size_t count, bool as_int8) {
-  if (count == 0) fail(file_path_, detail::cat("cannot write ", detail::describe("attribute", name), ": empty array"));
+  if (count == 0) fail(file_path_, cat("cannot write ", detail::describe("attribute", name), ": empty array"));
   detail::write_attribute(id(), name, file_path_, as_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE,
                           as_int8 ? H5T_NATIVE_INT8 : H5T_NATIVE_DOUBLE, values, count);
 }
 
 bool Hdf5Object::has_attribute(std::string_view name) const {
-  return check(H5Aexists(id(), std::string(name).c_str()), file_path_, detail::cat("look up ", detail::describe("attribute", name))) > 0;
+  return check(H5Aexists(id(), std::string(name).c_str()), file_path_, cat("look up ", detail::describe("attribute", name))) > 0;
 }
 
 double Hdf5Object::read_double_attribute(std::string_view name) const {
@@ -355,23 +349,23 @@ std::vector<std::int64_t> Dataset::read_int() const {
 
 void Dataset::make_dimension_scale(std::string_view dimension_name) {
   check(H5DSset_scale(id(), std::string(dimension_name).c_str()), file_path_,
-        detail::cat("make ", detail::describe("dataset", name_), " a dimension scale"));
+        cat("make ", detail::describe("dataset", name_), " a dimension scale"));
 }
 
 void Dataset::attach_dimension_scale(const Dataset& scale, std::size_t dim) {
-  const std::string operation = detail::cat("attach ", detail::describe("dimension scale", scale.name()), " to ",
+  const std::string operation = cat("attach ", detail::describe("dimension scale", scale.name()), " to ",
                                             detail::describe("dataset", name_), " dimension ", std::to_string(dim));
-  if (dim >= shape().size()) fail(file_path_, detail::cat("cannot ", operation, ": no such dimension"));
+  if (dim >= shape().size()) fail(file_path_, cat("cannot ", operation, ": no such dimension"));
   check(H5DSattach_scale(id(), scale.id(), static_cast<unsigned>(dim)), file_path_, operation);
 }
 
 bool Dataset::is_dimension_scale() const {
-  return check(H5DSis_scale(id()), file_path_, detail::cat("inspect ", detail::describe("dataset", name_))) > 0;
+  return check(H5DSis_scale(id()), file_path_, cat("inspect ", detail::describe("dataset", name_))) > 0;
 }
 
 std::string Dataset::dimension_scale_name() const {
   if (!is_dimension_scale()) return {};
-  const std::string operation = detail::cat("get the dimension name of ", detail::describe("dataset", name_));
+  const std::string operation = cat("get the dimension name of ", detail::describe("dataset", name_));
   const auto length = check(H5DSget_scale_name(id(), nullptr, 0), file_path_, operation);
   if (length == 0) return {};
   std::vector<char> buffer(static_cast<std::size_t>(length) + 1, '\0');
@@ -380,9 +374,9 @@ std::string Dataset::dimension_scale_name() const {
 }
 
 std::vector<std::string> Dataset::attached_scales(std::size_t dim) const {
-  const std::string operation = detail::cat("list the dimension scales of ", detail::describe("dataset", name_),
+  const std::string operation = cat("list the dimension scales of ", detail::describe("dataset", name_),
                                             " dimension ", std::to_string(dim));
-  if (dim >= shape().size()) fail(file_path_, detail::cat("cannot ", operation, ": no such dimension"));
+  if (dim >= shape().size()) fail(file_path_, cat("cannot ", operation, ": no such dimension"));
   // H5DSiterate_scales calls back with each attached scale; its path comes from H5Iget_name.
   const auto visit = [](hid_t, unsigned, hid_t scale, void* data) -> herr_t {
     const ssize_t length = H5Iget_name(scale, nullptr, 0);
@@ -455,7 +449,7 @@ Dataset Group::write_numbers(std::string_view name, const void* data, std::size_
       product *= d;
     }
     if (product != count)
-      fail(file_path_, detail::cat("cannot write ", what, ": shape holds ", std::to_string(product),
+      fail(file_path_, cat("cannot write ", what, ": shape holds ", std::to_string(product),
                                    " values, data has ", std::to_string(count)));
   }
   const auto [file_type, mem_type] = element_types(element);
@@ -502,7 +496,7 @@ Dataset Group::write_dataset(std::string_view name, std::span<const std::uint8_t
 Dataset Group::open_dataset(std::string_view name) const {
   const std::string full_name = child_name(name);
   Handle dataset = detail::make_handle(H5Dopen2(id(), std::string(name).c_str(), H5P_DEFAULT), HandleKind::dataset,
-                                       file_path_, detail::cat("open ", detail::describe("dataset", full_name)));
+                                       file_path_, cat("open ", detail::describe("dataset", full_name)));
   return Dataset(std::move(dataset), file_path_, full_name);
 }
 
@@ -513,20 +507,20 @@ Group Group::create_group(std::string_view name) {
                                           "create property list");
   detail::track_creation_order(gcpl.get(), true, file_path_);
   Handle group = detail::make_handle(H5Gcreate2(id(), std::string(name).c_str(), lcpl.get(), gcpl.get(), H5P_DEFAULT),
-                                     HandleKind::group, file_path_, detail::cat("create ", detail::describe("group", full_name)));
+                                     HandleKind::group, file_path_, cat("create ", detail::describe("group", full_name)));
   return Group(std::move(group), file_path_, full_name);
 }
 
 Group Group::open_group(std::string_view name) const {
   const std::string full_name = child_name(name);
   Handle group = detail::make_handle(H5Gopen2(id(), std::string(name).c_str(), H5P_DEFAULT), HandleKind::group,
-                                     file_path_, detail::cat("open ", detail::describe("group", full_name)));
+                                     file_path_, cat("open ", detail::describe("group", full_name)));
   return Group(std::move(group), file_path_, full_name);
 }
 
 void Group::remove(std::string_view name) {
   check(H5Ldelete(id(), std::string(name).c_str(), H5P_DEFAULT), file_path_,
-        detail::cat("remove ", detail::describe("link", child_name(name))));
+        cat("remove ", detail::describe("link", child_name(name))));
 }
 
 bool Group::exists(std::string_view name) const {
@@ -543,7 +537,7 @@ bool Group::exists(std::string_view name) const {
       prefix.append(name.substr(begin, end - begin));
       any = true;
       if (check(H5Lexists(id(), prefix.c_str(), H5P_DEFAULT), file_path_,
-                detail::cat("look up ", detail::describe("link", child_name(prefix)))) <= 0)
+                cat("look up ", detail::describe("link", child_name(prefix)))) <= 0)
         return false;
     }
     begin = end + 1;
@@ -598,7 +592,7 @@ void write_hdf5_atomically(const std::string& path, const std::function<void(Hdf
     }
     detail::sync_to_disk(tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      fail(path, detail::cat("cannot rename ", detail::describe("file", tmp), " to it (", std::strerror(errno), ")"));
+      fail(path, cat("cannot rename ", detail::describe("file", tmp), " to it (", std::strerror(errno), ")"));
   } catch (...) {
     std::remove(tmp.c_str());
     throw;
@@ -606,3 +600,4 @@ void write_hdf5_atomically(const std::string& path, const std::function<void(Hdf
 }
 
 }  // namespace vibromap
+

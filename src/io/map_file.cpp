@@ -7,6 +7,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
 // The layout is documented in map_file.hpp. CF conventions (cfconventions.org, 1.8): a
@@ -22,13 +23,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::string_view kStableLongName =
     "stability of the periodic orbit from its Floquet multipliers (unknown where not computed)";
 
-// Concatenates message parts (appending avoids GCC 12's false -Wrestrict, bug 105329).
-template <class... Parts>
-std::string cat(const Parts&... parts) {
-  std::string s;
-  (s.append(std::string_view(parts)), ...);
-  return s;
-}
 
 std::string_view axis_long_name(std::string_view axis) {
   if (axis == "E1") return "Young's modulus of body 1";

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/optimise/point_objective.hpp"
+#include "vibromap/core/optimise/point_objective.hpp"
 
 // The layout is documented in optimise_file.hpp.
 

@@ -19,6 +19,8 @@
 
 #include <toml++/toml.h>
 
+#include "vibromap/core/text.hpp"
+
 namespace vibromap {
 namespace detail {
 
@@ -447,15 +449,6 @@ std::string_view partner_of(std::string_view section, std::string_view key) {
 // ---------------------------------------------------------------------------------------
 // Text helpers.
 
-// Concatenates string-like parts (one allocation; also avoids GCC 12's false -Wrestrict
-// warning on "literal" + std::string).
-template <class... Parts>
-std::string cat(const Parts&... parts) {
-  std::string out;
-  out.reserve((std::string_view(parts).size() + ...));
-  (out.append(std::string_view(parts)), ...);
-  return out;
-}
 
 // Shortest text that reads back to the same double ("0.1", "1e-10", "1000").
 std::string shortest(double v) {
@@ -1607,3 +1600,4 @@ void write_reference_scene(std::ostream& os) {
 }
 
 }  // namespace vibromap
+

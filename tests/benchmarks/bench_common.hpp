@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "vibromap/analysis/steady_state.hpp"
+#include "vibromap/core/analysis/steady_state.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/model/system.hpp"
+#include "vibromap/core/model/system.hpp"
 
 namespace vibromap::bench {
 

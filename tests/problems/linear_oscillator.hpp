@@ -12,7 +12,7 @@
 #include <Eigen/Dense>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "vibromap/model/system.hpp"
+#include "vibromap/core/model/system.hpp"
 
 namespace vibromap::test {
 

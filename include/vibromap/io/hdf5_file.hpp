@@ -132,7 +132,6 @@ class Hdf5Object {
   std::vector<std::int64_t> read_int_array_attribute(std::string_view name) const;
   std::vector<double> read_double_array_attribute(std::string_view name) const;
 
-  const std::string& file_path() const { return file_path_; }
   const std::string& name() const { return name_; }  // path inside the file, "/" for the root
   detail::Hid id() const { return handle_.get(); }
 

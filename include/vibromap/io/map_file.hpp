@@ -36,8 +36,8 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/sweep/cell_result.hpp"
-#include "vibromap/sweep/grid.hpp"
+#include "vibromap/core/quantities.hpp"
+#include "vibromap/core/grid.hpp"
 
 namespace vibromap {
 

@@ -39,7 +39,7 @@
 
 #include <string>
 
-#include "vibromap/optimise/multistart.hpp"
+#include "vibromap/core/optimise/multistart.hpp"
 
 namespace vibromap {
 

@@ -60,10 +60,10 @@
 #include <string_view>
 #include <vector>
 
-#include "vibromap/analysis/point_solver.hpp"
-#include "vibromap/model/parameters.hpp"
-#include "vibromap/optimise/optimise_options.hpp"
-#include "vibromap/sweep/sweep_options.hpp"
+#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/model/parameters.hpp"
+#include "vibromap/core/optimise/optimise_options.hpp"
+#include "vibromap/io/sweep_options.hpp"
 
 namespace vibromap {
 

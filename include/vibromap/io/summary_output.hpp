@@ -19,7 +19,7 @@
 
 #include <iosfwd>
 
-#include "vibromap/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/io/scene.hpp"
 
 namespace vibromap {

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "vibromap/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point_solver.hpp"
 
 namespace vibromap {
 

@@ -1,0 +1,64 @@
+#pragma once
+// Periodic orbits by shooting: Newton's method on G(y) = P^n(y) - y, P the stroboscopic
+// (period-T) map, with the Jacobian M - I from the monodromy matrix M = dP^n/dy of the
+// variational equations (VariationalIntegrator). At convergence the eigenvalues of M are the
+// orbit's Floquet multipliers: the orbit is stable when all |mu| < 1.
+//
+// Newton steps are limited in length (a fraction of the motion's scale) so an iterate cannot
+// jump across the state space; the residual is the steady-state detector's scaled max-norm.
+
+#include <complex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vibromap/core/integrate/integrator.hpp"
+
+namespace vibromap {
+
+struct ShootingOptions {
+  int n = 1;                  // period of the orbit looked for, in forcing periods
+  double tol = 1e-10;         // scaled residual ||P^n(y) - y|| to stop at
+  int max_iterations = 30;    // Newton iterations
+  double max_step = 2.0;      // longest Newton step, in units of the motion's scale
+};
+
+struct ShootingResult {
+  bool converged = false;
+  std::string message;            // why not, when not converged
+  State y = State::Zero();        // a point of the orbit at a period start (internal coordinates)
+  Eigen::Matrix4d monodromy = Eigen::Matrix4d::Identity();
+  std::vector<std::complex<double>> multipliers;  // eigenvalues of the monodromy, largest |mu| first
+  double residual = 0.0;          // scaled ||P^n(y) - y|| at the end
+  int iterations = 0;
+  bool stable() const { return !multipliers.empty() && std::abs(multipliers.front()) < 1.0; }
+};
+
+// Newton from y0. counters accumulates the integration work.
+ShootingResult shoot(const Model& model, const IntegratorOptions& integration, const State& y0,
+                     const ShootingOptions& options, IntegrationCounters& counters);
+
+// The scaled max-norm distance of two states used for steady states and shooting
+// (positions over L + |x|, velocities over omega L + |v|, L = max(D, lambda F0 / k1)).
+class StateScale {
+ public:
+  explicit StateScale(const Model& model);
+  double distance(const State& a, const State& b) const;
+  double length() const { return length_; }
+  double speed() const { return speed_; }
+
+ private:
+  double length_, speed_;
+};
+
+// A guess of the fixed point of a contracting map from its iterates x_0, x_1, ... (oldest
+// first) by reduced rank extrapolation (RRE; Sidi, "Vector Extrapolation Methods", 2017,
+// ch. 1): with differences u_j = x_{j+1} - x_j, find gamma minimising |sum gamma_j u_j| with
+// sum gamma_j = 1 and return sum gamma_j x_j. Exact for a linear map when there are
+// dim + 2 iterates; a transient that spirals in (complex Floquet multipliers) is seen from
+// the side, and its centre is found where the last iterate alone is far off. Returns the
+// last iterate when there are fewer than 3 or the least-squares problem is degenerate.
+State extrapolate_fixed_point(const std::vector<State>& iterates, const StateScale& scale);
+
+}  // namespace vibromap

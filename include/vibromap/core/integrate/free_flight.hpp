@@ -1,0 +1,72 @@
+#pragma once
+// Closed-form free flight: between impacts the system is linear with harmonic forcing,
+//   u' = A u + b cos(omega tau + phi0) + c      (internal coordinates, system.hpp),
+// so u(tau) = V e^{Lambda (tau - tau0)} V^{-1} (u(tau0) - u_p(tau0)) + u_p(tau), with
+// A = V Lambda V^{-1} decomposed once per parameter point and the particular solution
+//   u_p(tau) = Re[(i omega I - A)^{-1} b e^{i (omega tau + phi0)}] - A^{-1} c.
+//
+// Contact entry is the first root of z on this closed form, found with steps that cannot
+// pass a root: with M >= |z''| over the whole free flight (a bound from the modal
+// amplitudes, since every mode decays: Re(lambda) <= 0), z(tau + h) <= z + w h + M h^2 / 2,
+// and the step h is the positive root of that quadratic, so z stays negative up to tau + h.
+// The steps shrink quadratically towards a crossing and are refined by Newton's method on
+// the closed form; a graze that stays below 0 is stepped past.
+//
+// valid() is false when the decomposition is ill-conditioned (nearly defective A, e.g. a
+// free attached body with k2 = c2 = 0) or the forcing is resonant with an undamped mode;
+// make_integrator() then uses dopri5 for the whole motion.
+
+#include <array>
+#include <complex>
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "vibromap/core/model/system.hpp"
+
+namespace vibromap {
+
+class FreeFlight {
+ public:
+  explicit FreeFlight(const Model& model);
+
+  bool valid() const { return valid_; }
+  const Eigen::Matrix4d& matrix() const { return sys_.A; }
+
+  // The state at tau1 of the contact-free motion through (tau0, u0).
+  State propagate(double tau0, const State& u0, double tau1) const;
+  // e^{A dt}: the derivative of propagate() with respect to u0.
+  Eigen::Matrix4d transition(double dt) const;
+  // First contact entry (z rising through 0) in (tau0, tau1], or nullopt.
+  std::optional<double> find_entry(double tau0, const State& u0, double tau1) const;
+  // Whether this is the free flight of `model`: the same linear part, forcing and entry
+  // tolerance (so it can be shared by every integrator of that model).
+  bool describes(const Model& model) const;
+
+ private:
+  using Vec4c = Eigen::Matrix<std::complex<double>, 4, 1>;
+  // What the decomposition is computed from: u' = A u + b cos(omega tau + phi0) + c.
+  struct System {
+    Eigen::Matrix4d A;
+    State b, c;
+    double omega, phi0, z_tol;
+    explicit System(const Model& model);
+    bool operator==(const System& o) const {
+      return A == o.A && b == o.b && c == o.c && omega == o.omega && phi0 == o.phi0 && z_tol == o.z_tol;
+    }
+  };
+  State particular(double tau) const;
+  // e^{lambda_j dt} for every mode; the second mode of a complex-conjugate pair takes the
+  // conjugate of the first (half the complex exponentials of an underdamped system).
+  Vec4c modal_exp(double dt) const;
+
+  System sys_;
+  Eigen::Matrix4cd V_, V_inv_;
+  Vec4c lambda_;
+  std::array<int, 4> conjugate_of_{-1, -1, -1, -1};  // the mode this one is the conjugate of, or -1
+  Vec4c amp_;          // (i omega I - A)^{-1} b
+  State constant_;     // -A^{-1} c
+  bool valid_ = false;
+};
+
+}  // namespace vibromap

@@ -1,0 +1,108 @@
+#pragma once
+// Multistart: seeds from the best cells of a regime map, the plan of starts (every seed with
+// every algorithm), one start end to end, and the overall best points re-solved from scratch.
+// The MPI distribution of the starts is multistart_runner.hpp's; everything here is serial
+// and deterministic, so a start's result depends only on its seed and the options, never on
+// the rank that runs it (except through LocalOptions::max_time, a wall-clock limit).
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/model/parameters.hpp"
+#include "vibromap/core/optimise/local_optimiser.hpp"
+#include "vibromap/core/optimise/optimise_options.hpp"
+#include "vibromap/core/quantities.hpp"
+#include "vibromap/core/grid.hpp"
+
+namespace vibromap {
+
+// A starting point: the free parameters' values (OptimiseOptions::variables order, SI).
+struct Seed {
+  std::vector<double> x;
+  long cell = -1;      // flat index of the map cell it came from; -1: the scene's point
+  double value = 0.0;  // the objective as the map stores it (minimised sense); 0 for the scene's point
+};
+
+// The best `o.seeds` cells of a map for starting local optimisations: done, status ok, in the
+// kept regime with its stability rule (map column `stable`), inside the box, with the value
+// the objective ranks by stored (k_con; T_con for max_T_con, the longest impact standing in
+// for impact `o.impact`; F_max), best first, ties by cell index. A map axis must be a free
+// parameter or the other form of a free spring (omega2 for k2, k2 for omega2): the seed takes
+// the free values from the cell (get_parameter). With o.hertz_valid, only cells where Hertz
+// theory holds qualify: the map's hertz_valid when stored, else z_ratio <= hertz_limit. Throws
+// std::invalid_argument with a one-line reason when the map lacks a quantity it needs, an axis
+// is not free, or no cell qualifies.
+std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& cells,
+                               const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
+                               const Parameters& base, const OptimiseOptions& o,
+                               double hertz_limit = AnalysisOptions{}.hertz_limit);
+
+// The scene's own point as the one seed (clamped into the box).
+Seed scene_seed(const Parameters& base, const OptimiseOptions& o);
+
+// One start: seed `seed` (index into the seeds) run with `algorithm`.
+struct StartSpec {
+  int index = 0;  // start number, 0-based
+  int seed = 0;   // index into the seeds
+  Algorithm algorithm = Algorithm::bobyqa;
+};
+
+// Every seed with every algorithm, seed-major: start i is seed i / A with algorithm i % A.
+std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms);
+
+// Runs one start with the physics objective (point_objective.hpp) on the scene's point and
+// options.
+LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
+                      const Seed& seed, Algorithm algorithm);
+
+// A start and its result, as gathered on rank 0.
+struct StartRecord {
+  StartSpec spec;
+  LocalResult result;
+  int rank = 0;  // MPI rank that ran it
+};
+
+// A best point: where a start found it, and its re-solves from scratch.
+struct VerifiedPoint {
+  int start = 0;                   // the start that found it
+  std::size_t evaluation = 0;      // its index among that start's evaluations
+  std::vector<double> x;           // free parameters, SI
+  Parameters params;               // the full parameter set
+  double value = 0.0;              // the objective (minimised sense) as the optimiser saw it
+  PointSummary integrate;          // brute force from rest, rtol verify_rtol
+  PointSummary shooting;           // shooting, rtol verify_rtol
+};
+
+// The best feasible evaluation of each start, best first (ties: start index), keeping one of
+// points closer than `merge` (scaled max-norm) to a better one, at most `count`: pairs
+// (start position in `starts`, evaluation index).
+std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<StartRecord>& starts, const Box& box,
+                                                             int count, double merge);
+
+// Re-solves a best point twice from scratch (integrate and shooting, rtol o.verify_rtol),
+// the first with `trajectory_periods` periods of trajectory.
+VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
+                           const StartRecord& start, std::size_t evaluation, int trajectory_periods);
+
+// Everything `vibromap optimise` found, gathered on rank 0 (multistart_runner.hpp).
+struct OptimiseReport {
+  std::vector<std::string> variables;     // free parameter names, in order
+  std::vector<std::string> measures;      // names of Evaluation::measures
+  std::string seeds_from;                 // the seeding map's path, or "scene"
+  std::vector<Seed> seeds;
+  std::vector<StartRecord> starts;        // in start order
+  std::vector<VerifiedPoint> best;        // best first
+  std::string trajectory_file;            // the best point's trajectory (HDF5), "" when none
+  int ranks = 1;
+  double sweep_wall_s = 0.0;              // the seeding sweep's time, s (0: no sweep run)
+  double optimise_wall_s = 0.0;           // the starts' time, s
+  double verify_wall_s = 0.0;             // the re-solves' time, s
+  double wall_s = 0.0;                    // the whole command, s
+  bool interrupted = false;               // the seeding sweep was stopped by a signal
+  long evaluations() const;               // over all starts
+};
+
+}  // namespace vibromap

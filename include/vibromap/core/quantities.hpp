@@ -1,0 +1,73 @@
+#pragma once
+// What a sweep keeps of one solved cell: a fixed-size record (trivially copyable, so ranks
+// exchange arrays of it as bytes), and the optional quantities a scene may ask a map to store.
+//
+// Always kept (SPEC.md, issues #3, #4): status, regime with n and k, stability, wall time
+// and the steady-state residual. Stored on request only: the Quantity values.
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vibromap/core/analysis/point_solver.hpp"
+
+namespace vibromap {
+
+// Optional per-cell quantities a map may store ([sweep] store = [...]).
+enum class Quantity {
+  T_con,        // duration of the longest impact, s
+  k_con,        // T / T_con, 1
+  F_max,        // largest peak contact force, N
+  z_max,        // largest peak penetration, m
+  z_ratio,      // largest z_max / R*, 1
+  v_in,         // entry velocity of the longest impact, m/s
+  impulse,      // impulse of the longest impact, N s
+  hertz_valid,  // 1 when z_ratio <= hertz_limit, else 0
+  periods,      // forcing periods integrated
+  rhs_evals,    // right-hand side evaluations
+  max_multiplier,  // largest |Floquet multiplier| of the periodic orbit (NaN where none), 1
+  lyapunov,     // largest Lyapunov exponent (NaN where not computed), 1/s
+};
+// One table in cell_result.cpp holds, per Quantity, its name, units, description and the
+// CellResult member it lives in; everything below (and the map file) reads that table, so
+// adding a quantity means one enum value, one CellResult member and one table row.
+const std::vector<Quantity>& all_quantities();  // in enum order
+std::string to_string(Quantity q);              // the dataset name, e.g. "T_con"
+Quantity parse_quantity(std::string_view s);    // throws std::invalid_argument
+std::string_view quantity_units(Quantity q);    // "s", "1", "N", "m", "m/s", "N s", "1/s"
+std::string_view quantity_description(Quantity q);  // one line, the map's long_name
+bool quantity_is_integer(Quantity q);           // hertz_valid, periods, rhs_evals (int64 in maps)
+std::int64_t quantity_max(Quantity q);          // largest valid value of an integer quantity (least: 0)
+
+// Codes of the regime dataset (CF flag_values); -1 marks a cell not computed yet.
+constexpr std::int8_t kNotComputed = -1;
+std::int8_t regime_code(RegimeKind k);  // periodic 0, chatter 1, ..., failed 8 (enum order)
+std::int8_t status_code(SolveStatus s); // ok 0, budget 1, failed 2, invalid_input 3
+
+struct CellResult {
+  std::int8_t status = kNotComputed;
+  std::int8_t regime = kNotComputed;
+  std::int8_t hertz_valid = 0;
+  std::int8_t stable = -1;  // 1 stable, 0 unstable, -1 unknown (not computed or not periodic)
+  std::int32_t n = 0, k = 0;
+  std::int64_t periods = 0, rhs_evals = 0;
+  double wall_s = 0.0, steady_residual = 0.0;
+  double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_max = 0.0, z_ratio = 0.0, v_in = 0.0, impulse = 0.0;
+  double max_multiplier = std::numeric_limits<double>::quiet_NaN();
+  double lyapunov = std::numeric_limits<double>::quiet_NaN();
+
+  double value(Quantity q) const;  // the quantity as a double (integers exactly up to 2^53)
+};
+
+// Sets quantity q of c. An integer quantity takes v converted toward zero, and throws
+// std::invalid_argument unless 0 <= that <= quantity_max(q). quantity_int/set_quantity_int
+// carry all 64 bits of an integer quantity and throw std::logic_error for a float one.
+void set_quantity(CellResult& c, Quantity q, double v);
+std::int64_t quantity_int(const CellResult& c, Quantity q);
+void set_quantity_int(CellResult& c, Quantity q, std::int64_t v);
+
+CellResult summarize(const PointSummary& s);
+
+}  // namespace vibromap

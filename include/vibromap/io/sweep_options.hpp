@@ -1,0 +1,19 @@
+#pragma once
+// The [sweep] section of a scene: the grid's axes, what to store, and how often to
+// checkpoint and report.
+
+#include <vector>
+
+#include "vibromap/core/quantities.hpp"
+#include "vibromap/core/grid.hpp"
+
+namespace vibromap {
+
+struct SweepOptions {
+  std::vector<Axis> axes;  // the swept parameters (order: first axis slowest in the flat index)
+  std::vector<Quantity> store = {Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max};  // optional quantities to store
+  double checkpoint_interval = 60.0;  // seconds between checkpoints of the map file, s
+  double progress_interval = 10.0;    // seconds between progress lines when stderr is not a terminal, s
+};
+
+}  // namespace vibromap

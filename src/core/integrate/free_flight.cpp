@@ -1,0 +1,126 @@
+#include "vibromap/core/integrate/free_flight.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace vibromap {
+
+namespace {
+constexpr double kMaxCondition = 1e8;  // of the eigenvector matrix V
+constexpr int kNewtonIterations = 4;   // refinement of a bracketed entry
+using cd = std::complex<double>;
+}  // namespace
+
+FreeFlight::System::System(const Model& m) : omega(m.parameters().omega), phi0(m.parameters().phi0) {
+  const Parameters& p = m.parameters();
+  const double m1 = p.m1, m2 = p.m2;
+  // The rows of system.hpp's rhs without the contact force.
+  A << 0, 0, 1, 0,                                                         //
+      0, 0, 0, 1,                                                          //
+      -m.k1() / m1, -m.k2() / m1, -m.c1() / m1, -m.c2() / m1,              //
+      -m.k1() / m1, -m.k2() / m1 - m.k2() / m2, -m.c1() / m1, -m.c2() / m1 - m.c2() / m2;
+  b = State(0, 0, p.lambda * p.F0 / m1, p.lambda * p.F0 / m1);
+  c = State(0, 0, -m.k2() * p.D / m1, -m.k2() * p.D / m1 - m.k2() * p.D / m2);
+  // Entry tolerance on z: a few ulps of the motion's length scale.
+  z_tol = 1e-13 * std::max({p.D, p.lambda * p.F0 / m.k1(), 1e-9});
+}
+
+bool FreeFlight::describes(const Model& model) const { return System(model) == sys_; }
+
+FreeFlight::FreeFlight(const Model& m) : sys_(m) {
+  const State& b = sys_.b;
+  const State& c = sys_.c;
+  const Eigen::EigenSolver<Eigen::Matrix4d> es(sys_.A);
+  if (es.info() != Eigen::Success) return;
+  V_ = es.eigenvectors();
+  lambda_ = es.eigenvalues();
+  // Eigen gives a complex pair of a real matrix as adjacent, exactly conjugate eigenvalues
+  // and eigenvectors: the second exponential of a pair is the conjugate of the first.
+  for (int j = 1; j < 4; ++j)
+    if (lambda_[j].imag() != 0.0 && lambda_[j] == std::conj(lambda_[j - 1]) && conjugate_of_[j - 1] < 0 &&
+        V_.col(j) == V_.col(j - 1).conjugate())
+      conjugate_of_[j] = j - 1;
+  const Eigen::PartialPivLU<Eigen::Matrix4cd> lu(V_);
+  V_inv_ = lu.inverse();
+  const double cond = V_.cwiseAbs().rowwise().sum().maxCoeff() * V_inv_.cwiseAbs().rowwise().sum().maxCoeff();
+  if (!(cond < kMaxCondition)) return;
+  for (int j = 0; j < 4; ++j)
+    if (lambda_[j].real() > 1e-12 * std::abs(lambda_[j])) return;  // a growing mode: no bound on z''
+  const Eigen::Matrix4cd M = cd(0, sys_.omega) * Eigen::Matrix4cd::Identity() - sys_.A.cast<cd>();
+  const Eigen::FullPivLU<Eigen::Matrix4cd> lu_m(M);
+  if (!lu_m.isInvertible() || lu_m.rcond() < 1e-12) return;  // resonant forcing of an undamped mode
+  amp_ = lu_m.solve(b.cast<cd>());
+  if (c.isZero()) {
+    constant_.setZero();
+  } else {
+    const Eigen::FullPivLU<Eigen::Matrix4d> lu_a(sys_.A);
+    if (!lu_a.isInvertible()) return;
+    constant_ = -lu_a.solve(c);
+  }
+  valid_ = amp_.allFinite() && constant_.allFinite() && V_inv_.allFinite();
+}
+
+State FreeFlight::particular(double tau) const {
+  const cd e = std::exp(cd(0, sys_.omega * tau + sys_.phi0));
+  return (amp_ * e).real() + constant_;
+}
+
+FreeFlight::Vec4c FreeFlight::modal_exp(double dt) const {
+  Vec4c e;
+  for (int j = 0; j < 4; ++j) e[j] = conjugate_of_[j] >= 0 ? std::conj(e[conjugate_of_[j]]) : std::exp(lambda_[j] * dt);
+  return e;
+}
+
+State FreeFlight::propagate(double tau0, const State& u0, double tau1) const {
+  const Vec4c alpha = V_inv_ * (u0 - particular(tau0)).cast<cd>();
+  const Vec4c modal = modal_exp(tau1 - tau0).cwiseProduct(alpha);
+  return (V_ * modal).real() + particular(tau1);
+}
+
+Eigen::Matrix4d FreeFlight::transition(double dt) const {
+  return (V_ * modal_exp(dt).asDiagonal() * V_inv_).real();
+}
+
+std::optional<double> FreeFlight::find_entry(double tau0, const State& u0, double tau1) const {
+  const Vec4c alpha = V_inv_ * (u0 - particular(tau0)).cast<cd>();
+  // z, w = z' and the bound M >= |z''| from the modal amplitudes (|e^{lambda s}| <= 1).
+  Vec4c cz, cw;
+  double M = sys_.omega * sys_.omega * std::abs(amp_[1]);
+  for (int j = 0; j < 4; ++j) {
+    cz[j] = V_(1, j) * alpha[j];
+    cw[j] = cz[j] * lambda_[j];
+    M += std::abs(cw[j] * lambda_[j]);
+  }
+  const cd amp_z = amp_[1];
+  auto zw = [&](double s, double& z, double& w) {
+    const Vec4c e = modal_exp(s);
+    const cd zs = (cz.array() * e.array()).sum(), ws = (cw.array() * e.array()).sum();
+    const cd ef = amp_z * std::exp(cd(0, sys_.omega * (tau0 + s) + sys_.phi0));
+    z = zs.real() + ef.real() + constant_[1];
+    w = ws.real() + (cd(0, sys_.omega) * ef).real();
+  };
+  const double s_end = tau1 - tau0;
+  double s = 0.0, z = 0.0, w = 0.0;
+  zw(s, z, w);
+  for (;;) {
+    if (z >= -sys_.z_tol && w > 0.0) {
+      // At or within tolerance below a crossing: Newton on the closed form.
+      for (int i = 0; i < kNewtonIterations && w > 0.0; ++i) {
+        s = std::max(s, s - z / w);
+        zw(s, z, w);
+      }
+      return s <= s_end ? std::optional<double>(tau0 + s) : std::nullopt;
+    }
+    // The largest step over which z + w h + M h^2 / 2 stays <= 0 (z < 0 here, or a graze
+    // that is leaving: then the step only has to clear the tolerance band).
+    const double zz = std::min(z, -sys_.z_tol);
+    const double h = M > 0.0 ? (-w + std::sqrt(w * w - 2.0 * M * zz)) / M : (w > 0.0 ? -zz / w : s_end);
+    if (s >= s_end) return std::nullopt;
+    s = std::min(s_end, s + std::max(h, 1e-15 * (std::abs(tau0) + s_end)));
+    zw(s, z, w);
+    if (s >= s_end && !(z >= -sys_.z_tol && w > 0.0)) return std::nullopt;
+  }
+}
+
+}  // namespace vibromap

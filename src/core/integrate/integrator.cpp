@@ -1,0 +1,95 @@
+#include "vibromap/core/integrate/integrator.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "steppers.hpp"
+#include "vibromap/core/integrate/free_flight.hpp"
+
+namespace vibromap {
+
+std::string to_string(Method m) {
+  switch (m) {
+    case Method::hybrid: return "hybrid";
+    case Method::dopri5: return "dopri5";
+    case Method::rk4: return "rk4";
+  }
+  return "unknown";
+}
+
+std::string to_string(IntegrationStatus s) {
+  switch (s) {
+    case IntegrationStatus::ok: return "ok";
+    case IntegrationStatus::step_limit: return "step budget exhausted";
+    case IntegrationStatus::step_underflow: return "step size underflow";
+    case IntegrationStatus::non_finite: return "non-finite state";
+  }
+  return "unknown";
+}
+
+std::string validate(const IntegratorOptions& o) {
+  if (!(o.rtol > 0.0 && o.rtol < 0.1)) return "rtol must be in (0, 0.1)";
+  if (!(o.atol > 0.0 && std::isfinite(o.atol))) return "atol must be > 0";
+  if (!(o.max_step > 0.0 && o.max_step <= 1.0)) return "max_step must be in (0, 1]";
+  if (o.rk4_steps < 1) return "rk4_steps must be >= 1";
+  if (o.max_steps < 1) return "max_steps must be >= 1";
+  return {};
+}
+
+namespace {
+
+// The free-flight decomposition (an eigen-decomposition and two complex LU factorisations,
+// ~4 us) costs as much as a forcing period of a rigid contact, and shooting makes a fresh
+// integrator for every Newton evaluation of the same model. The last one made is therefore
+// kept, per thread (no locks, no sharing across threads), and reused while the model's
+// linear part, forcing and tolerance are the same (FreeFlight::describes): a sweep moves
+// to the next cell by simply asking for another model.
+std::shared_ptr<const FreeFlight> free_flight_of(const Model& model) {
+  thread_local std::shared_ptr<const FreeFlight> last;
+  if (!last || !last->describes(model)) last = std::make_shared<const FreeFlight>(model);
+  return last;
+}
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_integrator(const Model& model, const IntegratorOptions& options) {
+  if (options.method == Method::rk4) return std::make_unique<detail::ClassicalRk4>(model, options);
+  if (options.method == Method::hybrid) {
+    auto flight = free_flight_of(model);
+    if (flight->valid()) return std::make_unique<detail::Hybrid<1>>(model, options, std::move(flight));
+  }
+  return std::make_unique<detail::DormandPrince>(model, options);
+}
+
+std::unique_ptr<VariationalIntegrator> make_variational_integrator(const Model& model,
+                                                                   const IntegratorOptions& options) {
+  if (options.method != Method::dopri5) {
+    auto flight = free_flight_of(model);
+    if (flight->valid()) return std::make_unique<detail::Hybrid<5>>(model, options, std::move(flight));
+  }
+  return std::make_unique<detail::DormandPrinceVariational>(model, options);
+}
+
+}  // namespace vibromap
+
+namespace vibromap {
+
+PeriodRun integrate_periods(Integrator& integrator, State& u, long max_periods, Observer& obs) {
+  PeriodRun run;
+  while (run.periods < max_periods) {
+    run.status = integrator.advance_period(u, obs);
+    if (run.status != IntegrationStatus::ok) break;
+    ++run.periods;
+    if (!u.allFinite()) {
+      run.status = IntegrationStatus::non_finite;
+      break;
+    }
+    if (obs.on_period_end(integrator.period() - 1, u)) {
+      run.stopped = true;
+      break;
+    }
+  }
+  return run;
+}
+
+}  // namespace vibromap

@@ -1,0 +1,126 @@
+#include "vibromap/core/model/parameters.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace vibromap {
+
+double Damper::coefficient(double mass, double stiffness) const {
+  return form == Form::coefficient ? value : 2.0 * value * std::sqrt(mass * stiffness);
+}
+
+Eigen::Vector4d Parameters::initial_state() const {
+  return initial ? *initial : Eigen::Vector4d(0.0, D, 0.0, 0.0);
+}
+
+double Parameters::period() const { return 2.0 * std::numbers::pi / omega; }
+
+const std::vector<std::string_view>& variable_parameter_names() {
+  static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2",
+                                                      "m1", "k1", "omega1", "nu1", "nu2", "D", "F0",
+                                                      "omega", "xi1", "xi2", "c1", "c2"};
+  return names;
+}
+
+namespace {
+double* plain_field(Parameters& p, std::string_view name) {
+  if (name == "E1") return &p.E1;
+  if (name == "E2") return &p.E2;
+  if (name == "R1") return &p.R1;
+  if (name == "R2") return &p.R2;
+  if (name == "m1") return &p.m1;
+  if (name == "m2") return &p.m2;
+  if (name == "nu1") return &p.nu1;
+  if (name == "nu2") return &p.nu2;
+  if (name == "D") return &p.D;
+  if (name == "F0") return &p.F0;
+  if (name == "omega") return &p.omega;
+  return nullptr;
+}
+
+// Spring/damper pair fields: which spring or damper, and the form the name stands for.
+struct PairField {
+  bool is_spring;
+  int body;  // 1 or 2
+  bool first_form;  // k / c (true) or omega / xi (false)
+};
+std::optional<PairField> pair_field(std::string_view name) {
+  if (name == "k1") return PairField{true, 1, true};
+  if (name == "k2") return PairField{true, 2, true};
+  if (name == "omega1") return PairField{true, 1, false};
+  if (name == "omega2") return PairField{true, 2, false};
+  if (name == "c1") return PairField{false, 1, true};
+  if (name == "c2") return PairField{false, 2, true};
+  if (name == "xi1") return PairField{false, 1, false};
+  if (name == "xi2") return PairField{false, 2, false};
+  return std::nullopt;
+}
+}  // namespace
+
+void set_parameter(Parameters& p, std::string_view name, double value) {
+  if (double* f = plain_field(p, name)) {
+    *f = value;
+    return;
+  }
+  const auto pf = pair_field(name);
+  if (!pf) throw std::invalid_argument("unknown parameter '" + std::string(name) + "'");
+  if (pf->is_spring) {
+    Spring& s = pf->body == 1 ? p.spring1 : p.spring2;
+    s = {pf->first_form ? Spring::Form::stiffness : Spring::Form::frequency, value};
+  } else {
+    Damper& d = pf->body == 1 ? p.damper1 : p.damper2;
+    d = {pf->first_form ? Damper::Form::coefficient : Damper::Form::ratio, value};
+  }
+}
+
+double get_parameter(const Parameters& p, std::string_view name) {
+  if (double* f = plain_field(const_cast<Parameters&>(p), name)) return *f;
+  const auto pf = pair_field(name);
+  if (!pf) throw std::invalid_argument("unknown parameter '" + std::string(name) + "'");
+  const double m = pf->body == 1 ? p.m1 : p.m2;
+  const Spring& s = pf->body == 1 ? p.spring1 : p.spring2;
+  const double k = s.stiffness(m);
+  if (pf->is_spring) return pf->first_form ? k : std::sqrt(k / m);
+  const double c = (pf->body == 1 ? p.damper1 : p.damper2).coefficient(m, k);
+  return pf->first_form ? c : c / (2.0 * std::sqrt(m * k));
+}
+
+std::vector<std::string> validate(const Parameters& p) {
+  std::vector<std::string> errors;
+  auto need = [&](bool ok, const char* name, double v, const char* allowed) {
+    if (ok) return;
+    std::ostringstream os;
+    os << name << " = " << v << ": must be " << allowed;
+    errors.push_back(os.str());
+  };
+  auto positive = [&](const char* name, double v) { need(std::isfinite(v) && v > 0.0, name, v, "> 0"); };
+  auto non_negative = [&](const char* name, double v) { need(std::isfinite(v) && v >= 0.0, name, v, ">= 0"); };
+  auto finite = [&](const char* name, double v) { need(std::isfinite(v), name, v, "finite"); };
+
+  positive("m1", p.m1);
+  positive("m2", p.m2);
+  positive(p.spring1.form == Spring::Form::stiffness ? "k1" : "omega1", p.spring1.value);
+  non_negative(p.spring2.form == Spring::Form::stiffness ? "k2" : "omega2", p.spring2.value);
+  non_negative(p.damper1.form == Damper::Form::coefficient ? "c1" : "xi1", p.damper1.value);
+  non_negative(p.damper2.form == Damper::Form::coefficient ? "c2" : "xi2", p.damper2.value);
+  non_negative("D", p.D);
+  positive("E1", p.E1);
+  positive("E2", p.E2);
+  need(std::isfinite(p.nu1) && p.nu1 > -1.0 && p.nu1 < 0.5, "nu1", p.nu1, "in (-1, 0.5)");
+  need(std::isfinite(p.nu2) && p.nu2 > -1.0 && p.nu2 < 0.5, "nu2", p.nu2, "in (-1, 0.5)");
+  positive("R1", p.R1);
+  positive("R2", p.R2);
+  positive("q", p.q);
+  non_negative("F0", p.F0);
+  positive("omega", p.omega);
+  non_negative("lambda", p.lambda);
+  finite("phi0", p.phi0);
+  if (p.initial) {
+    for (int i = 0; i < 4; ++i) finite("initial state", (*p.initial)[i]);
+  }
+  return errors;
+}
+
+}  // namespace vibromap

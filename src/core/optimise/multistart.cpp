@@ -1,0 +1,159 @@
+#include "vibromap/core/optimise/multistart.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "vibromap/core/text.hpp"
+#include "vibromap/core/optimise/point_objective.hpp"
+
+namespace vibromap {
+namespace {
+
+
+bool is_free(const OptimiseOptions& o, std::string_view name) {
+  return std::any_of(o.variables.begin(), o.variables.end(), [&](const FreeVariable& v) { return v.name == name; });
+}
+
+// Every map axis is free, or the other form of a free spring.
+void check_axes(const Grid& grid, const OptimiseOptions& o) {
+  for (const Axis& a : grid.axes()) {
+    const bool spring_pair = (a.name == "k2" && is_free(o, "omega2")) || (a.name == "omega2" && is_free(o, "k2"));
+    if (!is_free(o, a.name) && !spring_pair)
+      throw std::invalid_argument(cat("map axis ", a.name, " is not a free parameter of [optimise]: free it (",
+                                      a.name, " = { min, max }) or seed from a map without it"));
+  }
+}
+
+Quantity ranking_quantity(ObjectiveKind k) {
+  switch (k) {
+    case ObjectiveKind::min_k_con: return Quantity::k_con;
+    case ObjectiveKind::max_T_con: return Quantity::T_con;
+    case ObjectiveKind::min_F_max: return Quantity::F_max;
+  }
+  return Quantity::k_con;
+}
+
+bool is_stored(const std::vector<Quantity>& stored, Quantity q) {
+  return std::find(stored.begin(), stored.end(), q) != stored.end();
+}
+
+// Whether a cell's impact satisfies Hertz theory, from what the map stores.
+bool cell_hertz_valid(const CellResult& c, const std::vector<Quantity>& stored, double hertz_limit) {
+  return is_stored(stored, Quantity::hertz_valid) ? c.hertz_valid == 1 : c.z_ratio <= hertz_limit;
+}
+
+// A map cell that keeps the regime with the stability rule.
+bool cell_qualifies(const CellResult& c, const OptimiseOptions& o) {
+  if (c.status != status_code(SolveStatus::ok) || !(c.T_con > 0.0)) return false;
+  if (o.regime) {
+    if (c.regime != regime_code(o.regime->kind)) return false;
+    if (o.regime->kind == RegimeKind::periodic && (c.n != o.regime->n || c.k != o.regime->k)) return false;
+  }
+  if (o.stability == StabilityRule::required) return c.stable == 1;
+  if (o.stability == StabilityRule::if_known) return c.stable != 0;
+  return true;
+}
+
+}  // namespace
+
+std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& cells,
+                               const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
+                               const Parameters& base, const OptimiseOptions& o, double hertz_limit) {
+  const Quantity q = ranking_quantity(o.objective);
+  if (!is_stored(stored, q))
+    throw std::invalid_argument(cat("the map does not store ", to_string(q), ", which ranks the cells for ",
+                                    to_string(o.objective), ": add it to [sweep] store"));
+  if (o.hertz_valid && !is_stored(stored, Quantity::hertz_valid) && !is_stored(stored, Quantity::z_ratio))
+    throw std::invalid_argument("the map stores neither hertz_valid nor z_ratio, which hertz_valid = true needs: "
+                                "add one to [sweep] store");
+  check_axes(grid, o);
+  const Box box(o.variables);
+  std::vector<Seed> candidates;
+  for (std::size_t i = 0; i < grid.size() && i < cells.size() && i < done.size(); ++i) {
+    if (!done[i] || !cell_qualifies(cells[i], o)) continue;
+    if (o.hertz_valid && !cell_hertz_valid(cells[i], stored, hertz_limit)) continue;
+    const Parameters p = grid.cell(base, i);
+    Seed s{{}, static_cast<long>(i), objective_sense(o.objective) * cells[i].value(q)};
+    for (const FreeVariable& v : o.variables) s.x.push_back(get_parameter(p, v.name));
+    if (!std::isfinite(s.value) || !box.contains(s.x)) continue;
+    s.x = box.to_physical(box.to_scaled(s.x));  // a hair outside the box (rounding) comes inside
+    candidates.push_back(std::move(s));
+  }
+  if (candidates.empty())
+    throw std::invalid_argument(cat("no cell of the map keeps the regime ", o.regime ? o.regime->label() : "(any)",
+                                    " (stability ", to_string(o.stability), o.hertz_valid ? ", Hertz theory valid" : "",
+                                    ") inside the box: nothing to seed from"));
+  std::stable_sort(candidates.begin(), candidates.end(), [](const Seed& a, const Seed& b) { return a.value < b.value; });
+  candidates.resize(std::min(candidates.size(), static_cast<std::size_t>(o.seeds)));
+  return candidates;
+}
+
+Seed scene_seed(const Parameters& base, const OptimiseOptions& o) {
+  const Box box(o.variables);
+  Seed s;
+  for (const FreeVariable& v : o.variables) s.x.push_back(get_parameter(base, v.name));
+  s.x = box.to_physical(box.to_scaled(s.x));
+  return s;
+}
+
+std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms) {
+  std::vector<StartSpec> plan;
+  for (std::size_t s = 0; s < seeds; ++s)
+    for (const Algorithm a : algorithms) plan.push_back({static_cast<int>(plan.size()), static_cast<int>(s), a});
+  return plan;
+}
+
+LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
+                      const Seed& seed, Algorithm algorithm) {
+  PointObjective f(base, options, o);
+  return minimise(f, Box(o.variables), seed.x, algorithm, o.local);
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<StartRecord>& starts, const Box& box,
+                                                             int count, double merge) {
+  std::vector<std::pair<std::size_t, std::size_t>> found;
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    if (starts[i].result.best) found.emplace_back(i, *starts[i].result.best);
+  const auto value = [&](const std::pair<std::size_t, std::size_t>& p) {
+    return starts[p.first].result.evaluations[p.second].result.value;
+  };
+  std::stable_sort(found.begin(), found.end(), [&](const auto& a, const auto& b) { return value(a) < value(b); });
+  std::vector<std::pair<std::size_t, std::size_t>> kept;
+  std::vector<std::vector<double>> kept_u;
+  for (const auto& p : found) {
+    if (static_cast<int>(kept.size()) >= count) break;
+    const std::vector<double> u = box.to_scaled(starts[p.first].result.evaluations[p.second].x);
+    const auto close = [&](const std::vector<double>& w) {
+      for (std::size_t i = 0; i < u.size(); ++i)
+        if (std::abs(u[i] - w[i]) > merge) return false;
+      return true;
+    };
+    if (std::any_of(kept_u.begin(), kept_u.end(), close)) continue;
+    kept.push_back(p);
+    kept_u.push_back(u);
+  }
+  return kept;
+}
+
+VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
+                           const StartRecord& start, std::size_t evaluation, int trajectory_periods) {
+  const EvaluationRecord& rec = start.result.evaluations.at(evaluation);
+  VerifiedPoint v;
+  v.start = start.spec.index;
+  v.evaluation = evaluation;
+  v.x = rec.x;
+  v.params = PointObjective(base, options, o).parameters_at(rec.x);
+  v.value = rec.result.value;
+  v.integrate = resolve_point(v.params, options, SteadyMethod::integrate, o.verify_rtol, trajectory_periods);
+  v.shooting = resolve_point(v.params, options, SteadyMethod::shooting, o.verify_rtol);
+  return v;
+}
+
+long OptimiseReport::evaluations() const {
+  return std::accumulate(starts.begin(), starts.end(), 0L,
+                         [](long n, const StartRecord& s) { return n + static_cast<long>(s.result.evaluations.size()); });
+}
+
+}  // namespace vibromap

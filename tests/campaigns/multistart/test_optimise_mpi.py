@@ -1,0 +1,199 @@
+"""End-to-end optimisations of the vibromap executable under mpiexec.
+
+- a tiny scene (a 2 x 2 seeding [sweep] of m2 x omega2, 2 seeds x 2 algorithms) gives the same
+  `best` list and the same evaluations on 1 and 2 ranks (wall times aside), and the starts
+  really were spread over both ranks;
+- the JSON `best` list: params in SI (k2 = m2 omega2^2 in N/m), k_con = T / T_con, a stable
+  (1,1) no worse than the best seed, and `vibromap run` on the point alone confirms it;
+- the HDF5 output: one group per start with every evaluation inside the box, the best one
+  feasible, and the best point's trajectory file; postprocess/plot_optimise.py draws them;
+- bad optimisations end with one line and the documented exit code.
+
+Run by ctest (tests/optimise_tests.cmake), which sets VIBROMAP_EXE and VIBROMAP_MPIEXEC.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+EXE = os.environ.get("VIBROMAP_EXE", "build/vibromap")
+MPIEXEC = os.environ.get("VIBROMAP_MPIEXEC", "mpiexec")
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+PLOT = os.path.join(REPO, "postprocess", "plot_optimise.py")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+OMEGA = 7.23  # forcing frequency of the scene defaults, rad/s
+T = 2.0 * math.pi / OMEGA
+AGREE_RTOL = 1e-6  # run at rtol 1e-10 against the re-solve at 1e-12
+
+SCENE = """
+[system]
+m2 = 310.0
+omega2 = 4.6
+
+[contact]
+E1 = 1e5
+E2 = 1e5
+R1 = 0.5
+R2 = 0.5
+
+[sweep]
+m2 = { from = 200.0, to = 310.0, n = 2 }
+omega2 = { from = 4.2, to = 5.0, n = 2 }
+store = ["k_con", "T_con", "F_max"]
+
+[optimise]
+m2 = { min = 100.0, max = 310.0 }
+omega2 = { min = 3.606, max = 5.646 }
+algorithm = ["bobyqa", "gradient_projection"]
+seeds = 2
+max_evaluations = 60
+best = 2
+"""
+
+
+def write_scene(tmp_path, text=SCENE, name="scene.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def optimise(ranks, scene, out, *extra, check=True):
+    cmd = [MPIEXEC, "-n", str(ranks), EXE, "optimise", str(scene), "-o", str(out), "-q", "--format", "json", *extra]
+    proc = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=600)
+    if check:
+        assert proc.returncode == 0, proc.stderr
+    return proc
+
+
+def without_times(value):
+    """The value with every wall-time entry removed (they differ from run to run)."""
+    if isinstance(value, dict):
+        return {k: without_times(v) for k, v in value.items() if not k.endswith("wall_s")}
+    if isinstance(value, list):
+        return [without_times(v) for v in value]
+    return value
+
+
+def test_best_point_does_not_depend_on_rank_count(tmp_path):
+    scene = write_scene(tmp_path)
+    one = json.loads(optimise(1, scene, tmp_path / "one.h5").stdout)
+    two = json.loads(optimise(2, scene, tmp_path / "two.h5").stdout)
+    assert one["ranks"] == 1 and two["ranks"] == 2
+    assert len(one["best"]) >= 1
+    assert without_times(one["best"]) == without_times(two["best"])
+    starts_one = [without_times(s) for s in one["starts"]]
+    starts_two = [without_times(s) for s in two["starts"]]
+    for a, b in zip(starts_one, starts_two):
+        a.pop("rank"), b.pop("rank")
+    assert starts_one == starts_two
+    assert {s["rank"] for s in two["starts"]} == {0, 1}  # both ranks ran starts
+    with h5py.File(tmp_path / "one.h5", "r") as f1, h5py.File(tmp_path / "two.h5", "r") as f2:
+        for name in f1["starts"]:
+            for column in ("x", "objective", "violation", "feasible", "regime", "n", "k", "stable"):
+                np.testing.assert_array_equal(f1["starts"][name][column][()], f2["starts"][name][column][()],
+                                              err_msg=f"{name}/{column}")
+
+
+def test_json_best_is_a_stable_one_one_that_run_confirms(tmp_path):
+    scene = write_scene(tmp_path)
+    report = json.loads(optimise(2, scene, tmp_path / "out.h5").stdout)
+    assert report["objective"] == "min_k_con" and report["regime"] == "(1,1)"
+    best = report["best"]
+    k_cons = [b["k_con"] for b in best]
+    assert k_cons == sorted(k_cons)  # best first
+    top = best[0]
+    assert set(top["params"]) >= {"m2", "k2", "E1", "E2", "R1", "R2", "omega2"}
+    p = top["params"]
+    assert 100.0 <= p["m2"] <= 310.0 and 3.606 <= p["omega2"] <= 5.646
+    assert math.isclose(p["k2"], p["m2"] * p["omega2"] ** 2, rel_tol=1e-12)  # N/m
+    assert (p["E1"], p["E2"], p["R1"], p["R2"]) == (1e5, 1e5, 0.5, 0.5)  # not free: the scene's
+    assert top["regime"] == "(1,1)" and top["stable"] is True
+    assert math.isclose(top["k_con"] * top["T_con"], T, rel_tol=1e-12)
+    assert top["agree"] and top["shooting"]["regime"] == "(1,1)"
+    assert math.isclose(top["k_con"], top["objective_found"], rel_tol=AGREE_RTOL)
+    with h5py.File(tmp_path / "out_map.h5", "r") as f:  # the seeding sweep's map
+        seed_best = np.nanmin(np.where(f["regime"][()] == 0, f["k_con"][()], np.nan))
+    assert top["k_con"] < seed_best - 1e-3  # the optimiser improved on the best cell
+
+    sets = [arg for s in top["set"] for arg in ("--set", s)]
+    run = subprocess.run([EXE, "run", str(scene), *sets, "--format", "json"], env=ENV, capture_output=True,
+                         text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    alone = json.loads(run.stdout)
+    assert alone["regime"] == "(1,1)" and alone["stable"] is True
+    assert math.isclose(alone["k_con"], top["k_con"], rel_tol=AGREE_RTOL)
+
+
+def test_output_file_holds_every_start_and_evaluation(tmp_path):
+    scene = write_scene(tmp_path)
+    report = json.loads(optimise(2, scene, tmp_path / "out.h5").stdout)
+    with h5py.File(tmp_path / "out.h5", "r") as f:
+        assert f.attrs["variables"] == "m2 omega2"
+        assert f.attrs["quantity"] == "k_con"
+        bounds = f["bounds"][()]
+        np.testing.assert_array_equal(bounds, [[100.0, 310.0], [3.606, 5.646]])
+        assert sorted(f["starts"]) == ["000", "001", "002", "003"]
+        for name, start in zip(sorted(f["starts"]), report["starts"]):
+            g = f["starts"][name]
+            x = g["x"][()]
+            assert x.shape == (start["evaluations"], 2)
+            assert ((x >= bounds[:, 0]) & (x <= bounds[:, 1])).all()
+            best = int(g.attrs["best"])
+            assert g["feasible"][best] == 1
+            assert g["objective"][best] == start["best_objective"]
+            feasible = g["feasible"][()] == 1
+            assert g["objective"][()][feasible].min() == start["best_objective"]  # the best feasible, no other
+            assert g.attrs["stop"] == start["stop"]
+        assert f["best/00"].attrs["m2"] == report["best"][0]["params"]["m2"]
+        assert f["best/00/integrate"].attrs["regime"] == "(1,1)"
+        assert f["best/00/shooting"].attrs["k_con"] == report["best"][0]["shooting"]["k_con"]
+        assert f.attrs["trajectory"] == "out_trajectory.h5"
+    with h5py.File(tmp_path / "out_trajectory.h5", "r") as f:
+        assert f.attrs["regime"] == "(1,1)"
+        assert math.isclose(float(f.attrs["k_con"]), report["best"][0]["k_con"], rel_tol=1e-12)
+        assert f["Fc"][()].max() > 0.0
+
+    # The Python reader and figures on the C++ writer's files.
+    env = dict(os.environ, MPLCONFIGDIR=str(tmp_path / "mpl"))
+    plot = subprocess.run([sys.executable, PLOT, str(tmp_path / "out.h5")], env=env, capture_output=True, text=True,
+                          timeout=120)  # fmt: skip
+    assert plot.returncode == 0, plot.stderr
+    for suffix in ("convergence", "on_map", "best"):
+        assert (tmp_path / f"out_{suffix}.png").stat().st_size > 15_000, suffix
+
+
+def test_bad_optimisations_end_with_one_line(tmp_path):
+    scene = write_scene(tmp_path)
+    out = tmp_path / "out.h5"
+    optimise(1, scene, out)
+    again = optimise(2, scene, out, check=False)
+    assert again.returncode == 2
+    assert again.stderr.count("vibromap: error:") == 1
+    assert "already exists; use --overwrite" in again.stderr
+    replaced = optimise(2, scene, out, "--overwrite")
+    assert json.loads(replaced.stdout)["best"]
+
+    point = write_scene(tmp_path, "[system]\nm2 = 310.0\n", name="point.toml")
+    proc = optimise(2, point, tmp_path / "none.h5", check=False)
+    assert proc.returncode == 2
+    assert proc.stderr.count("vibromap: error:") == 1
+    assert "no [optimise] section" in proc.stderr
+    assert not (tmp_path / "none.h5").exists()
+
+    no_map = write_scene(tmp_path, SCENE.replace("[optimise]\n", '[optimise]\nmap = "missing.h5"\n'), name="m.toml")
+    proc = optimise(2, no_map, tmp_path / "m.h5", check=False)
+    assert proc.returncode == 1
+    assert proc.stderr.count("vibromap: error:") == 1
+    assert "missing.h5" in proc.stderr
+
+    far = write_scene(tmp_path, SCENE.replace('seeds = 2\n', 'seeds = 2\nregime = "(3,2)"\n'), name="far.toml")
+    proc = optimise(2, far, tmp_path / "far.h5", check=False)
+    assert proc.returncode == 2
+    assert proc.stderr.count("vibromap: error:") == 1
+    assert "no cell of the map keeps the regime (3,2)" in proc.stderr

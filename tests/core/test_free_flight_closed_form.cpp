@@ -1,0 +1,118 @@
+// The hybrid integrator's closed-form free flight: propagation and transition matrix against
+// Eigen's matrix exponential, contact entry against a root found independently, grazing
+// contacts that must and must not be found, and the whole hybrid method against dopri5.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "problems/linear_oscillator.hpp"
+#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/integrate/free_flight.hpp"
+
+using namespace vibromap;
+
+namespace {
+Parameters far_apart() {
+  Parameters p;
+  p.D = 10.0;
+  p.phi0 = 0.4;
+  p.initial = Eigen::Vector4d(0.02, 10.0, -0.05, 0.1);
+  return p;
+}
+
+double max_rel(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
+  return ((a - b).array().abs() / (b.array().abs() + 1e-3)).maxCoeff();
+}
+
+// z on the reference closed form, and the time of its largest value in [t0, t1] (golden
+// section on a dense scan's best bracket): independent of FreeFlight.
+struct ZMax {
+  double t, z;
+};
+ZMax max_of_z(const test::LinearOscillator& ref, const State& u0, double t0, double t1) {
+  auto z = [&](double t) { return ref.solution(u0, t)[1]; };
+  double best_t = t0;
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = t0 + (t1 - t0) * i / 2000.0;
+    if (z(t) > z(best_t)) best_t = t;
+  }
+  double a = std::max(t0, best_t - (t1 - t0) / 2000.0), b = std::min(t1, best_t + (t1 - t0) / 2000.0);
+  const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+  for (int i = 0; i < 80; ++i) {
+    const double c = b - g * (b - a), d = a + g * (b - a);
+    (z(c) > z(d) ? b : a) = (z(c) > z(d) ? d : c);
+  }
+  return {0.5 * (a + b), z(0.5 * (a + b))};
+}
+}  // namespace
+
+TEST(FreeFlightClosedForm, PropagationAndTransitionMatchTheMatrixExponential) {
+  const Model model(far_apart());
+  const FreeFlight flight(model);
+  ASSERT_TRUE(flight.valid());
+  const test::LinearOscillator ref(model);
+  const State u0 = Model::to_internal(far_apart().initial_state());
+  for (double t : {0.01, 0.3, 0.869, 5.0, 40.0}) {
+    EXPECT_LT(max_rel(flight.propagate(0.0, u0, t), ref.solution(u0, t)), 1e-11) << t;
+    const Eigen::Matrix4d exact = (flight.matrix() * t).exp();
+    EXPECT_LT((flight.transition(t) - exact).cwiseAbs().maxCoeff(), 1e-11 * (1.0 + exact.cwiseAbs().maxCoeff())) << t;
+  }
+  // Starting mid-period (forcing phase) is the same motion.
+  const State mid = flight.propagate(0.0, u0, 0.4);
+  EXPECT_LT(max_rel(flight.propagate(0.4, mid, 1.3), ref.solution(u0, 1.3)), 1e-11);
+}
+
+TEST(FreeFlightClosedForm, EntryIsTheFirstRootAndGrazesAreDecidedByTheirSign) {
+  // Shift the clearance so that the largest z of the free motion over [0, 3] is +eps or
+  // -eps: D -> D + (z* - eps) moves z by -(z* - eps) for the same x1, x2 - D.
+  const Parameters base = far_apart();
+  const test::LinearOscillator ref0{Model(base)};
+  const State u0 = Model::to_internal(base.initial_state());
+  const ZMax peak = max_of_z(ref0, u0, 0.0, 3.0);
+  for (double eps : {1e-6, 1e-10, -1e-10, -1e-6}) {
+    Parameters p = base;
+    const double shift = peak.z - eps;
+    p.D = base.D + shift;
+    p.initial = Eigen::Vector4d(0.02, 10.0 + shift, -0.05, 0.1);
+    const Model model(p);
+    const FreeFlight flight(model);
+    const auto entry = flight.find_entry(0.0, Model::to_internal(p.initial_state()), 3.0);
+    if (eps > 0) {
+      ASSERT_TRUE(entry.has_value()) << "eps " << eps;
+      // The crossing lies before the peak, within the time z needs to fall eps from it.
+      EXPECT_LT(*entry, peak.t);
+      EXPECT_GT(*entry, peak.t - 1e-2);
+      const State at = flight.propagate(0.0, Model::to_internal(p.initial_state()), *entry);
+      EXPECT_NEAR(at[1], 0.0, 1e-13);
+    } else {
+      EXPECT_FALSE(entry.has_value()) << "eps " << eps;
+    }
+  }
+}
+
+TEST(FreeFlightClosedForm, HybridAgreesWithDopri5ToSteadyState) {
+  Parameters table2;  // SPEC.md's Table 2
+  table2.m2 = 310.0;
+  table2.spring2 = {Spring::Form::frequency, 3.606};
+  table2.E1 = 1.4e10;
+  table2.E2 = 1.0e6;
+  for (const Parameters& p : {Parameters{}, table2}) {
+    PointOptions hybrid, dopri5;
+    hybrid.analysis.steady = dopri5.analysis.steady = SteadyMethod::integrate;
+    dopri5.integrator.method = Method::dopri5;
+    const PointSummary a = solve_point(p, hybrid), b = solve_point(p, dopri5);
+    ASSERT_EQ(a.regime.label(), "(1,1)");
+    ASSERT_EQ(a.regime, b.regime);
+    EXPECT_NEAR(a.T_con / b.T_con, 1.0, 1e-8);
+    EXPECT_LT(a.counters.rhs_evals, b.counters.rhs_evals);  // free flight costs no RHS evaluations
+  }
+}
+
+TEST(FreeFlightClosedForm, DefectiveSystemFallsBackToDopri5) {
+  Parameters p;  // two free bodies: k1 = k2 = 0, no dampers: A has a Jordan block
+  p.spring1 = {Spring::Form::stiffness, 0.0};
+  p.spring2 = {Spring::Form::stiffness, 0.0};
+  p.damper1 = {Damper::Form::coefficient, 0.0};
+  p.damper2 = {Damper::Form::coefficient, 0.0};
+  EXPECT_FALSE(FreeFlight(Model(p)).valid());
+}

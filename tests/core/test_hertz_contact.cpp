@@ -1,0 +1,59 @@
+#include <gtest/gtest.h>
+
+#include "problems/free_spheres.hpp"
+#include "vibromap/core/model/hertz_contact.hpp"
+#include "vibromap/core/model/system.hpp"
+
+using namespace vibromap;
+
+TEST(HertzContact, StiffnessMatchesSpecCheckValue) {
+  // SPEC.md: E1 = E2 = 2.099e11 Pa, nu = 0.3, R1 = R2 = 2 m give K = 1.541e11 N/m^1.5.
+  const HertzContact c(2.099e11, 2.099e11, 0.3, 0.3, 2.0, 2.0, 0.319);
+  EXPECT_NEAR(c.stiffness(), 1.541e11, 0.0005e11);
+  EXPECT_DOUBLE_EQ(c.effective_radius(), 1.0);
+}
+
+TEST(HertzContact, ForceIsDerivativeOfEnergyAndZeroOutsideContact) {
+  const HertzContact c(1e9, 2e9, 0.25, 0.3, 0.5, 1.5, 0.319);
+  EXPECT_EQ(c.force(-1e-3), 0.0);
+  EXPECT_EQ(c.energy(-1e-3), 0.0);
+  for (double z : {1e-6, 1e-4, 1e-2}) {
+    const double h = z * 1e-5;
+    const double dE = (c.energy(z + h) - c.energy(z - h)) / (2 * h);
+    EXPECT_NEAR(dE / c.force(z), 1.0, 1e-8);
+    const double dF = (c.force(z + h) - c.force(z - h)) / (2 * h);
+    EXPECT_NEAR(dF / c.force_derivative(z), 1.0, 1e-8);
+  }
+}
+
+TEST(HertzContact, DurationConstantMatchesSpec) {
+  EXPECT_NEAR(test::hertz_duration_constant(), 3.2180655, 1e-7);
+}
+
+TEST(Model, PairsGivenEitherWayGiveTheSameCoefficients) {
+  Parameters a;  // omega and xi form (defaults)
+  Parameters b = a;
+  b.spring1 = {Spring::Form::stiffness, a.m1 * 6.283 * 6.283};
+  b.spring2 = {Spring::Form::stiffness, a.m2 * 5.646 * 5.646};
+  const Model ma(a);
+  b.damper1 = {Damper::Form::coefficient, ma.c1()};
+  b.damper2 = {Damper::Form::coefficient, ma.c2()};
+  const Model mb(b);
+  EXPECT_NEAR(mb.k1(), ma.k1(), 1e-9 * ma.k1());
+  EXPECT_NEAR(mb.k2(), ma.k2(), 1e-9 * ma.k2());
+  EXPECT_NEAR(ma.c1(), 2 * 0.01 * a.m1 * 6.283, 1e-9);
+  EXPECT_NEAR(get_parameter(b, "xi2"), 0.01, 1e-12);
+  EXPECT_NEAR(get_parameter(a, "k2"), 100 * 5.646 * 5.646, 1e-9);
+}
+
+TEST(Model, NewtonThirdLawCouplingIsMassRatioM2OverM1) {
+  // A static approach z with no motion: the spring and contact forces on the two bodies
+  // are equal and opposite, so m1 a1 + m2 a2 = F(t) - k1 x1 (momentum balance).
+  Parameters p;
+  const Model m(p);
+  const State u(0.01, 2e-4, 0.0, 0.0);  // x1, z, v1, w
+  State du;
+  m.rhs(0.3, u, ContactMode::contact, du);
+  const double a1 = du[2], a2 = du[2] - du[3];
+  EXPECT_NEAR(p.m1 * a1 + p.m2 * a2, m.forcing(0.3) - m.k1() * u[0], 1e-9);
+}

@@ -1,0 +1,155 @@
+// Newton shooting and Floquet multipliers: the variational monodromy against finite
+// differences, an unstable orbit flagged unstable and left by brute force, and shooting
+// against brute-force integration on a grid.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/shooting.hpp"
+
+using namespace vibromap;
+
+namespace {
+Parameters table2_base(double E1, double E2) {
+  Parameters p;
+  p.m2 = 310.0;
+  p.spring2 = {Spring::Form::frequency, 3.606};
+  p.E1 = E1;
+  p.E2 = E2;
+  return p;
+}
+
+constexpr double kFdStep = 1e-5;  // finite-difference step, in units of the motion's scale
+
+State after_transient(const Model& m, int periods) {
+  auto integ = make_integrator(m, IntegratorOptions{});
+  State u = Model::to_internal(m.parameters().initial_state());
+  integ->reset(u);
+  Observer none;
+  for (int i = 0; i < periods; ++i) integ->advance_period(u, none);
+  return u;
+}
+
+State map_n(const Model& m, const State& y, int n, const IntegratorOptions& o) {
+  auto integ = make_integrator(m, o);
+  State u = y;
+  integ->reset(u);
+  Observer none;
+  for (int i = 0; i < n; ++i) integ->advance_period(u, none);
+  return u;
+}
+
+std::vector<double> moduli(const std::vector<std::complex<double>>& mu) {
+  std::vector<double> out;
+  for (auto m : mu) out.push_back(std::abs(m));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+}  // namespace
+
+TEST(Shooting, FloquetMultipliersMatchFiniteDifferenceMonodromy) {
+  for (const Parameters& p : {Parameters{}, table2_base(1.4e10, 1.0e6)}) {
+    const Model model(p);
+    IntegrationCounters c;
+    IntegratorOptions tight;
+    tight.rtol = 1e-12;
+    tight.atol = 1e-15;
+    const ShootingResult r = shoot(model, tight, after_transient(model, 30), ShootingOptions{1, 1e-12, 30, 0.5}, c);
+    ASSERT_TRUE(r.converged) << r.message;
+    // Central differences of the period map, one column per state component.
+    Eigen::Matrix4d fd;
+    const StateScale scale(model);
+    const Eigen::Vector4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
+    for (int j = 0; j < 4; ++j) {
+      const double h = kFdStep * unit[j];
+      State e = State::Zero();
+      e[j] = h;
+      fd.col(j) = (map_n(model, r.y + e, 1, tight) - map_n(model, r.y - e, 1, tight)) / (2 * h);
+    }
+    const Eigen::EigenSolver<Eigen::Matrix4d> es(fd, false);
+    const std::vector<std::complex<double>> mu_fd(es.eigenvalues().data(), es.eigenvalues().data() + 4);
+    const auto a = moduli(r.multipliers), b = moduli(mu_fd);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(a[static_cast<std::size_t>(i)], b[static_cast<std::size_t>(i)], 1e-6);
+    EXPECT_LT((r.monodromy - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()));
+  }
+}
+
+TEST(Shooting, UnstableOrbitIsFlaggedAndBruteForceLeavesIt) {
+  // Table 2's system with E1 = 1e9, E2 = 1e10 Pa has an unstable 3T-periodic orbit next to
+  // its stable ones; Newton for n = 3 from the transient converges to it.
+  const Model model(table2_base(1e9, 1e10));
+  IntegrationCounters c;
+  const ShootingResult r = shoot(model, IntegratorOptions{}, after_transient(model, 30), ShootingOptions{3, 1e-11, 40, 0.5}, c);
+  ASSERT_TRUE(r.converged) << r.message;
+  EXPECT_FALSE(r.stable());
+  EXPECT_GT(std::abs(r.multipliers.front()), 1.05);
+  // Brute force from a point 1e-8 off the orbit drifts away from it.
+  const StateScale scale(model);
+  State u = r.y;
+  u[0] += 1e-8 * scale.length();
+  double far = 0.0;
+  for (int cycle = 0; cycle < 200; ++cycle) {
+    u = map_n(model, u, 3, IntegratorOptions{});
+    far = std::max(far, scale.distance(u, r.y));
+  }
+  EXPECT_GT(far, 1e-3);
+  // And solve_point does not report it: its answer is stable.
+  const PointSummary s = solve_point(table2_base(1e9, 1e10), PointOptions{});
+  EXPECT_EQ(s.stable, 1);
+}
+
+TEST(Shooting, WithBasinCheckAgreesWithBruteForceOnAGridOfThePaperBox) {
+  // A 5 x 5 grid of E1 x E2 over [2e4, 2.1e11] Pa (log), Table 2's system. Several cells
+  // have coexisting attractors (see CoexistingAttractors...); the basin check makes shooting
+  // follow the one reached from rest, as brute force does.
+  int compared = 0;
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      const double E1 = 2e4 * std::pow(2.1e11 / 2e4, i / 4.0), E2 = 2e4 * std::pow(2.1e11 / 2e4, j / 4.0);
+      PointOptions shooting, brute;
+      shooting.analysis.basin_check = true;
+      brute.analysis.steady = SteadyMethod::integrate;
+      const PointSummary a = solve_point(table2_base(E1, E2), shooting);
+      const PointSummary b = solve_point(table2_base(E1, E2), brute);
+      EXPECT_EQ(a.regime.label(), b.regime.label()) << "E1 " << E1 << " E2 " << E2;
+      if (a.regime.kind == RegimeKind::periodic && a.regime == b.regime) {
+        EXPECT_NEAR(a.T_con / b.T_con, 1.0, 1e-6) << "E1 " << E1 << " E2 " << E2;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GE(compared, 15);
+}
+
+TEST(Shooting, CoexistingAttractorsAreBothStable) {
+  // Table 2's system at E1 = 1e9, E2 = 1e10 Pa: from rest the motion settles on a stable
+  // (3,3) orbit; Newton from a short transient finds a stable (1,1) orbit. Two attractors,
+  // so the two methods may answer differently there (the basin check picks the first).
+  PointOptions brute, fast, checked;
+  brute.analysis.steady = SteadyMethod::integrate;
+  checked.analysis.basin_check = true;
+  const PointSummary a = solve_point(table2_base(1e9, 1e10), brute);
+  const PointSummary b = solve_point(table2_base(1e9, 1e10), fast);
+  const PointSummary c = solve_point(table2_base(1e9, 1e10), checked);
+  EXPECT_EQ(a.regime.label(), "(3,3)");
+  EXPECT_EQ(a.stable, 1);  // brute force's orbit, polished by Newton
+  EXPECT_EQ(b.regime.label(), "(1,1)");
+  EXPECT_EQ(b.stable, 1);
+  EXPECT_EQ(c.regime.label(), "(3,3)");
+}
+
+TEST(Shooting, IsFasterThanBruteForceInWork) {
+  // Work, not time (timing belongs in benchmarks): RHS evaluations to steady state.
+  for (const Parameters& p : {Parameters{}, table2_base(1.4e10, 1.0e6)}) {
+    PointOptions brute;
+    brute.analysis.steady = SteadyMethod::integrate;
+    brute.integrator.method = Method::dopri5;
+    const PointSummary a = solve_point(p, PointOptions{}), b = solve_point(p, brute);
+    EXPECT_EQ(a.steady_method, SteadyMethod::shooting);
+    EXPECT_LT(a.counters.rhs_evals * 5, b.counters.rhs_evals);
+    EXPECT_NEAR(a.T_con / b.T_con, 1.0, 1e-8);
+  }
+}
