@@ -17,4 +17,11 @@ std::string cat(const Parts&... parts) {
   return s;
 }
 
+// `text` cut to at most `max` characters for echoing user input in a one-line message: a
+// longer text keeps its head and says how much was cut ("abc... (1048576 characters)").
+inline std::string clip(std::string_view text, std::size_t max = 80) {
+  if (text.size() <= max) return std::string(text);
+  return cat(text.substr(0, max), "... (", std::to_string(text.size()), " characters)");
+}
+
 }  // namespace vibromap
