@@ -265,7 +265,7 @@ int accuracy_command(const AccuracyArgs& args, std::ostream& out) {
   }
   out.flush();
   if (!args.csv.empty()) write_csv(args.csv, report);
-  return kExitOk;
+  return code(ExitCode::ok);
 }
 
 }  // namespace vibromap::cli

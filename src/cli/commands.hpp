@@ -1,19 +1,21 @@
 #pragma once
 // The subcommands of the vibromap executable. main.cpp declares the command line (CLI11),
-// parses it and dispatches here; every command returns the process exit code and lets
-// SceneError (exit 2) and IoError (exit 1) reach main, which prints them as one line.
+// parses it and dispatches here; every command returns the process exit code
+// (parallel/exit_code.hpp) and lets its errors reach main, which prints them as one line and
+// maps them to the exit code (campaigns/exit_status.hpp).
 
 #include <iosfwd>
 #include <string>
 #include <vector>
 
-namespace vibromap::cli {
+#include "vibromap/parallel/exit_code.hpp"
 
-// Exit codes, as documented in `vibromap --help`.
-inline constexpr int kExitOk = 0;       // done; a point whose regime is unresolved or failed is a result
-inline constexpr int kExitIoError = 1;  // a file could not be written (or another run-time failure)
-inline constexpr int kExitUsage = 2;    // bad command line or scene; nothing was written
-inline constexpr int kExitInterrupted = 3;  // a sweep stopped by a signal; its map holds a checkpoint (--resume)
+namespace vibromap {
+class MpiSession;
+struct Scene;
+}  // namespace vibromap
+
+namespace vibromap::cli {
 
 // Forcing periods kept by `run --trajectory` when the scene's [analysis] trajectory_periods is 0.
 inline constexpr int kDefaultTrajectoryPeriods = 2;
@@ -42,7 +44,7 @@ struct SweepArgs {
   std::string format = "table";  // final summary: "table" or "json"
 };
 
-// Runs the sweep on all ranks. Returns the exit code (3 when interrupted by a signal, with
+// Runs the sweep on all ranks. Returns the exit code (stopped when a signal stopped it, with
 // a checkpoint written).
 int sweep_command(const SweepArgs& args, std::ostream& out);
 
@@ -60,25 +62,33 @@ struct AccuracyArgs {
 // IoError when the CSV cannot be written (checked before the solves, too).
 int accuracy_command(const AccuracyArgs& args, std::ostream& out);
 
-// `vibromap optimise SCENE [--set section.key=value]... [--output FILE.h5] [--overwrite]
+// `vibromap optimise SCENE [--set section.key=value]... [--output FILE.h5] [--resume | --overwrite]
 // [--format table|json] [-q]`. Collective under mpirun: every rank runs it; only rank 0 prints.
 struct OptimiseArgs {
   std::string scene;
   std::vector<std::string> sets;
   std::string output;            // result file; empty: the scene's name with _optimise.h5, in the current directory
+  bool resume = false;           // finish a killed run from its journal FILE.h5.journal
   bool overwrite = false;        // replace an existing result file (and recompute the seeding sweep's map)
   bool quiet = false;            // no progress lines
   std::string format = "table";  // stdout: "table" or "json"
 };
 
 // The files of an optimisation with result file `output` (FILE.h5): the seeding sweep's map
-// FILE_map.h5 and the best point's trajectory FILE_trajectory.h5.
+// FILE_map.h5, the best point's trajectory FILE_trajectory.h5 and, while it runs, the journal of
+// its finished starts FILE.h5.journal.
 std::string optimise_map_path(const std::string& output);
 std::string optimise_trajectory_path(const std::string& output);
+std::string optimise_journal_path(const std::string& output);
 
 // Runs the scene's [optimise] on all ranks and prints the starts and the best points.
-// Returns the exit code (3 when a signal stopped the seeding sweep, with its map checkpointed).
+// Returns the exit code (stopped when a signal stopped the seeding sweep or the starts, with
+// the map or the journal checkpointed).
 int optimise_command(const OptimiseArgs& args, std::ostream& out);
+
+// Rank 0 reads and checks the scene (its error ends every rank with one line from rank 0); the
+// other ranks parse the text it read, so only rank 0 needs to see the file.
+Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets);
 
 // `vibromap keys [--toml]`: the scene schema as a table, or as a reference scene.
 int keys_command(bool as_toml, std::ostream& out);

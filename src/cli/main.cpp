@@ -12,25 +12,32 @@
 #include "commands.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/parallel/sweep_runner.hpp"
+#include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/parallel/exit_code.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace {
 
 using namespace vibromap;
 
-int report(std::string what, int code) {
+// The longest error line: messages clip the input they echo themselves; this is the backstop.
+constexpr std::size_t kMaxErrorLine = 1000;
+
+int report(std::string_view message, ExitCode exit) {
+  std::string what = clip(message, kMaxErrorLine);
   for (char& c : what) {
     if (c == '\n' || c == '\r') c = ' ';  // one line, always
   }
   std::cerr << "vibromap: error: " << what << "\n";
-  return code;
+  return code(exit);
 }
 
 std::string main_footer() {
-  return "Exit codes: 0 done (an unresolved or failed regime is a result, reported in the\n"
-         "output), 1 a file could not be written, 2 bad command line or scene (nothing is\n"
-         "written). 'vibromap run --help' explains a run, 'vibromap accuracy --help' the accuracy\n"
-         "study, 'vibromap optimise --help' the optimisation; 'vibromap keys' lists the scene keys.";
+  return exit_code_summary() +
+         "\n'vibromap run --help' explains a run, 'vibromap sweep --help' a sweep, 'vibromap accuracy\n"
+         "--help' the accuracy study, 'vibromap optimise --help' the optimisation; 'vibromap keys'\n"
+         "lists the scene keys.";
 }
 
 std::string run_footer() {
@@ -161,7 +168,11 @@ std::string optimise_footer() {
          "FILE.h5 holds every evaluation of every start (postprocess/vmpy plot_optimise FILE.h5 draws\n"
          "them), FILE_trajectory.h5 the best point's steady motion. --format json prints one object\n"
          "whose 'best' lists those points, best first. An existing FILE.h5 is replaced only with\n"
-         "--overwrite.\n\n" +
+         "--overwrite.\n\n"
+         "Finished starts go to the journal FILE.h5.journal as they arrive (synced every 10 s). SIGINT,\n"
+         "SIGTERM or SIGUSR1 stop the run after a final checkpoint (exit code 3), during the seeding\n"
+         "sweep or the starts; --resume then finishes it with the same answer, computing only what is\n"
+         "missing. The journal is removed once FILE.h5 is written.\n\n" +
          main_footer();
 }
 
@@ -173,7 +184,9 @@ CLI::App* add_optimise(CLI::App& app, cli::OptimiseArgs& args) {
       ->type_name("SECTION.KEY=VALUE");
   opt->add_option("-o,--output", args.output, "Result file to write (default: the scene's name with _optimise.h5)")
       ->type_name("FILE.h5");
-  opt->add_flag("--overwrite", args.overwrite, "Replace an existing result file and recompute the seeding sweep");
+  auto* resume = opt->add_flag("--resume", args.resume, "Finish a stopped or killed run from its journal (FILE.h5.journal)");
+  opt->add_flag("--overwrite", args.overwrite, "Replace an existing result file and recompute the seeding sweep")
+      ->excludes(resume);
   opt->add_flag("-q,--quiet", args.quiet, "No progress lines");
   opt->add_option("-f,--format", args.format, "Output on stdout: a table for people or JSON for scripts")
       ->check(CLI::IsMember({"table", "json"}))
@@ -193,7 +206,7 @@ int parse_error(const CLI::App& app, const CLI::ParseError& e) {
   if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
   const auto subs = app.get_subcommands();
   const std::string help = subs.empty() ? "vibromap --help" : "vibromap " + subs.front()->get_name() + " --help";
-  return report(std::string(e.what()) + " (see '" + help + "')", cli::kExitUsage);
+  return report(std::string(e.what()) + " (see '" + help + "')", ExitCode::bad_input);
 }
 
 // CLI11 reports an unknown command as a missing one; name it instead.
@@ -236,18 +249,25 @@ int dispatch(int argc, char** argv) {
   return cli::keys_command(keys_toml, std::cout);
 }
 
+// The campaign commands honour SIGINT, SIGTERM and SIGUSR1 from the first instant (a final
+// checkpoint, then exit 3): their handlers go in before anything else runs.
+bool is_campaign(int argc, char** argv) {
+  if (argc < 2) return false;
+  const std::string_view command = argv[1];
+  return command == "sweep" || command == "optimise";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (is_campaign(argc, argv)) install_stop_handlers();
   try {
     return dispatch(argc, argv);
   } catch (const QuietExit& e) {
     return e.code;
-  } catch (const SceneError& e) {
-    return report(e.what(), cli::kExitUsage);
-  } catch (const IoError& e) {
-    return report(e.what(), cli::kExitIoError);
   } catch (const std::exception& e) {
-    return report(e.what(), cli::kExitIoError);
+    return report(e.what(), exit_code_of(std::current_exception()));
+  } catch (...) {
+    return report("unknown error", ExitCode::internal);
   }
 }

@@ -11,9 +11,10 @@
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/parallel/multistart_runner.hpp"
+#include "vibromap/campaigns/multistart/optimise_run.hpp"
+#include "vibromap/parallel/mpi_session.hpp"
+#include "vibromap/parallel/signals.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
-#include "vibromap/parallel/sweep_runner.hpp"
 
 namespace vibromap::cli {
 namespace {
@@ -117,13 +118,15 @@ void write_algorithms_json(JsonWriter& w, const OptimiseReport& r, const Optimis
   w.end_array();
 }
 
-void print_json(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o, const std::string& output) {
+void print_json(std::ostream& out, const OptimiseRun& run, const OptimiseOptions& o, const std::string& output) {
+  const OptimiseReport& r = run.report;
   JsonWriter w(out);
   w.begin_object().field("output", output).field("seeds_from", r.seeds_from).field("trajectory", r.trajectory_file);
   w.field("objective", to_string(o.objective)).field("quantity", objective_quantity(o.objective));
   w.field("regime", o.regime ? o.regime->label() : std::string("any")).field("stability", to_string(o.stability));
   w.field("hertz_valid", o.hertz_valid);
   w.field("ranks", r.ranks).field("seeds", r.seeds.size()).field("evaluations", r.evaluations());
+  w.field("starts_resumed", run.starts_resumed).field("sweep_cells_computed", run.sweep.items_computed);
   w.field("wall_s", r.wall_s).field("sweep_wall_s", r.sweep_wall_s).field("optimise_wall_s", r.optimise_wall_s);
   w.field("verify_wall_s", r.verify_wall_s);
   write_starts_json(w, r, o);
@@ -211,33 +214,35 @@ void print_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptio
 std::string optimise_map_path(const std::string& output) { return stem_path(output) + "_map.h5"; }
 std::string optimise_trajectory_path(const std::string& output) { return stem_path(output) + "_trajectory.h5"; }
 
+std::string optimise_journal_path(const std::string& output) { return output + ".journal"; }
+
 int optimise_command(const OptimiseArgs& args, std::ostream& out) {
   const MpiSession mpi;
-  try {
-    const Scene scene = load_scene(args.scene, args.sets);
-    OptimiseRunConfig config;
-    config.output = args.output.empty() ? default_output(args.scene) : args.output;
-    config.map_output = optimise_map_path(config.output);
-    config.trajectory = optimise_trajectory_path(config.output);
-    config.overwrite = args.overwrite;
-    config.progress = !args.quiet;
-    const OptimiseReport report = run_optimise(scene, config);
-    if (mpi.rank() != 0) return kExitOk;
-    if (report.interrupted) {
-      std::cerr << "vibromap: the seeding sweep was interrupted; " << config.map_output
-                << " holds its checkpoint: run the same command again to resume it\n";
-      return kExitInterrupted;
-    }
-    if (args.format == "json") {
-      print_json(out, report, *scene.optimise, config.output);
-    } else {
-      print_table(out, report, *scene.optimise, config.output);
-    }
-    return kExitOk;
-  } catch (const SceneError&) {
-    if (mpi.rank() != 0) throw QuietExit{kExitUsage};  // every rank sees the same error; rank 0 says it
-    throw;
+  const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
+  OptimiseRunConfig config;
+  config.output = args.output.empty() ? default_output(args.scene) : args.output;
+  config.map_output = optimise_map_path(config.output);
+  config.trajectory = optimise_trajectory_path(config.output);
+  config.journal = optimise_journal_path(config.output);
+  config.resume = args.resume;
+  config.overwrite = args.overwrite;
+  config.progress = !args.quiet;
+  const OptimiseRun run = run_optimise(mpi, scene, config);
+  if (run.stop_signal != 0) {
+    if (mpi.rank() == 0)
+      std::cerr << "vibromap: stopped by " << signal_name(run.stop_signal) << " after a checkpoint: "
+                << (run.starts.items > 0 ? config.journal + " holds the finished starts"
+                                         : config.map_output + " holds the seeding sweep")
+                << "; run the same command with --resume to go on\n";
+    return code(ExitCode::stopped);
   }
+  if (mpi.rank() != 0) return code(ExitCode::ok);
+  if (args.format == "json") {
+    print_json(out, run, *scene.optimise, config.output);
+  } else {
+    print_table(out, run.report, *scene.optimise, config.output);
+  }
+  return code(ExitCode::ok);
 }
 
 }  // namespace vibromap::cli

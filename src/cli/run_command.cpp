@@ -69,7 +69,7 @@ int run_command(const RunArgs& args, std::ostream& out) {
   if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
   print_summary(out, summary, scene, args.format);
   if (!args.trajectory.empty()) save_trajectory(args.trajectory, summary, scene);
-  return kExitOk;
+  return code(ExitCode::ok);
 }
 
 int keys_command(bool as_toml, std::ostream& out) {
@@ -80,7 +80,7 @@ int keys_command(bool as_toml, std::ostream& out) {
     out << "\nGive a key in a scene as `key = value` under its [section], or on the command line as\n"
            "`--set section.key=value`. Keys marked 'or give ...' form a pair: give one of the two.\n";
   }
-  return kExitOk;
+  return code(ExitCode::ok);
 }
 
 }  // namespace vibromap::cli

@@ -1,13 +1,15 @@
-// `vibromap sweep`: a scene's [sweep] on all MPI ranks into one HDF5 map.
+// `vibromap sweep`: a scene's [sweep] on all MPI ranks into one HDF5 map (the sweep campaign).
 
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 
 #include "commands.hpp"
+#include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/sweep/sweep_run.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene.hpp"
-#include "vibromap/parallel/sweep_runner.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
 namespace {
@@ -16,35 +18,43 @@ std::string default_output(const std::string& scene_path) {
   return std::filesystem::path(scene_path).stem().string() + ".h5";
 }
 
-void print_report(std::ostream& out, const SweepReport& r, const std::string& output, const std::string& format) {
-  const double rate = r.wall_s > 0 ? static_cast<double>(r.cells_computed) / r.wall_s : 0.0;
-  if (format == "json") {
-    JsonWriter w(out);
-    w.begin_object()
-        .field("output", output)
-        .field("cells_total", r.cells_total)
-        .field("cells_resumed", r.cells_resumed)
-        .field("cells_computed", r.cells_computed)
-        .field("ranks", r.ranks)
-        .field("wall_s", r.wall_s)
-        .field("cells_per_s", rate)
-        .field("checkpoints", r.checkpoints)
-        .field("checkpoint_s", r.checkpoint_s)
-        .field("interrupted", r.interrupted)
-        .field("requests", r.requests)
-        .field("request_us", r.requests ? 1e6 * r.request_s / static_cast<double>(r.requests) : 0.0);
-    w.key("regimes").begin_object();
-    for (const auto& [label, count] : r.regimes) w.field(label, count);
-    w.end_object().end_object();
-    out << "\n";
-    return;
-  }
-  out << "map            " << output << (r.interrupted ? "  (interrupted: resume with --resume)" : "") << "\n"
-      << "cells          " << r.cells_total << " (" << r.cells_resumed << " from the resumed map, " << r.cells_computed
+double rate(const FarmReport& f) { return f.wall_s > 0 ? static_cast<double>(f.items_computed) / f.wall_s : 0.0; }
+
+void print_json(std::ostream& out, const SweepReport& r, const std::string& output) {
+  const FarmReport& f = r.farm;
+  JsonWriter w(out);
+  w.begin_object()
+      .field("output", output)
+      .field("cells_total", f.items)
+      .field("cells_resumed", f.items_resumed)
+      .field("cells_computed", f.items_computed)
+      .field("complete", f.complete())
+      .field("ranks", f.ranks)
+      .field("wall_s", f.wall_s)
+      .field("cells_per_s", rate(f))
+      .field("checkpoints", f.checkpoints)
+      .field("checkpoint_s", f.checkpoint_s)
+      .field("checkpoint_max_s", f.checkpoint_max_s)
+      .field("final_checkpoint_s", f.final_checkpoint_s)
+      .field("stopped_by", f.stop_signal ? signal_name(f.stop_signal) : std::string())
+      .field("requests", f.requests)
+      .field("request_us", f.requests ? 1e6 * f.request_s / static_cast<double>(f.requests) : 0.0);
+  w.key("regimes").begin_object();
+  for (const auto& [label, count] : r.regimes) w.field(label, count);
+  w.end_object().end_object();
+  out << "\n";
+}
+
+void print_table(std::ostream& out, const SweepReport& r, const std::string& output) {
+  const FarmReport& f = r.farm;
+  out << "map            " << output
+      << (f.stop_signal ? "  (stopped by " + signal_name(f.stop_signal) + ": go on with --resume)" : "") << "\n"
+      << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
       << " computed now)\n"
-      << "ranks          " << r.ranks << "\n"
-      << "wall time      " << std::setprecision(4) << r.wall_s << " s, " << rate << " cells/s\n"
-      << "checkpoints    " << r.checkpoints << " (" << r.checkpoint_s << " s writing)\n"
+      << "ranks          " << f.ranks << "\n"
+      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << rate(f) << " cells/s\n"
+      << "checkpoints    " << f.checkpoints << " (" << f.checkpoint_s << " s writing, longest " << f.checkpoint_max_s
+      << " s)\n"
       << "regimes       ";
   for (const auto& [label, count] : r.regimes) out << " " << label << " " << count;
   out << "\n";
@@ -52,24 +62,36 @@ void print_report(std::ostream& out, const SweepReport& r, const std::string& ou
 
 }  // namespace
 
+Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets) {
+  Scene scene;
+  mpi.agree([&] { scene = load_scene(path, sets); }, exit_status_of);
+  std::vector<char> text(scene.text.begin(), scene.text.end());
+  mpi.broadcast(text);
+  if (mpi.rank() != 0) scene = parse_scene(std::string_view(text.data(), text.size()), path);
+  return scene;
+}
+
 int sweep_command(const SweepArgs& args, std::ostream& out) {
   const MpiSession mpi;
-  Scene scene;
-  try {
-    scene = load_scene(args.scene, args.sets);
-  } catch (const SceneError&) {
-    if (mpi.rank() != 0) throw QuietExit{kExitUsage};  // every rank sees the same error; rank 0 says it
-    throw;
-  }
+  const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
   SweepRunConfig config;
   config.output = args.output.empty() ? default_output(args.scene) : args.output;
   config.resume = args.resume;
   config.overwrite = args.overwrite;
   config.progress = !args.quiet;
-  const SweepReport report = run_sweep(scene, config);
-  if (mpi.rank() != 0) return kExitOk;
-  print_report(out, report, config.output, args.format);
-  return report.interrupted ? kExitInterrupted : kExitOk;
+  const SweepReport report = run_sweep(mpi, scene, config);
+  if (mpi.rank() != 0) return report.farm.stop_signal ? code(ExitCode::stopped) : code(ExitCode::ok);
+  if (args.format == "json") {
+    print_json(out, report, config.output);
+  } else {
+    print_table(out, report, config.output);
+  }
+  out.flush();
+  if (report.farm.stop_signal == 0) return code(ExitCode::ok);
+  std::cerr << "vibromap: stopped by " << signal_name(report.farm.stop_signal) << " after a checkpoint: "
+            << config.output << " holds " << report.farm.items_resumed + report.farm.items_computed << " of "
+            << report.farm.items << " cells; run the same command with --resume to go on\n";
+  return code(ExitCode::stopped);
 }
 
 }  // namespace vibromap::cli

@@ -1,9 +1,7 @@
 #include "progress.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <ostream>
-#include <vector>
 
 namespace vibromap::detail {
 
@@ -17,44 +15,39 @@ std::string hms(double s) {
 }
 }  // namespace
 
-ProgressReporter::ProgressReporter(std::ostream& os, bool enabled, bool live, double interval_s, std::size_t total,
-                                   std::size_t already_done)
-    : os_(os), enabled_(enabled), live_(live), interval_s_(live ? 0.25 : interval_s), total_(total),
-      start_done_(already_done), start_(std::chrono::steady_clock::now()), last_(start_) {}
+ProgressReporter::ProgressReporter(std::ostream& os, bool enabled, bool live, double interval_s, std::string label,
+                                   std::string noun, std::uint64_t total, std::uint64_t already_done)
+    : os_(os), enabled_(enabled), live_(live), interval_s_(live ? 0.25 : interval_s), label_(std::move(label)),
+      noun_(std::move(noun)), total_(total), start_done_(already_done), start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
 
-std::string ProgressReporter::line(std::size_t done, const std::map<std::string, long>& regimes) const {
+std::string ProgressReporter::line(std::uint64_t done, const std::string& note) const {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double rate = elapsed > 0.0 ? static_cast<double>(done - start_done_) / elapsed : 0.0;
+  const double now_done = static_cast<double>(done > start_done_ ? done - start_done_ : 0);
+  const double rate = elapsed > 0.0 ? now_done / elapsed : 0.0;
   const double eta = rate > 0.0 ? static_cast<double>(total_ - done) / rate : -1.0;
-  char head[160];
-  std::snprintf(head, sizeof head, "sweep: %zu/%zu cells (%.1f%%), %.1f cells/s, elapsed %s, ETA %s", done, total_,
-                total_ ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0, rate,
+  char head[256];
+  std::snprintf(head, sizeof head, "%s: %llu/%llu %s (%.1f%%), %.1f %s/s, elapsed %s, ETA %s", label_.c_str(),
+                static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_), noun_.c_str(),
+                total_ ? 100.0 * static_cast<double>(done) / static_cast<double>(total_) : 100.0, rate, noun_.c_str(),
                 hms(elapsed).c_str(), hms(eta).c_str());
-  std::vector<std::pair<long, std::string>> top;
-  for (const auto& [label, count] : regimes) top.emplace_back(-count, label);
-  std::sort(top.begin(), top.end());
-  std::string out = head;
-  if (!top.empty()) out += " |";
-  for (std::size_t i = 0; i < top.size() && i < 5; ++i) out += " " + top[i].second + " " + std::to_string(-top[i].first);
-  if (top.size() > 5) out += " ...";
-  return out;
+  return note.empty() ? std::string(head) : std::string(head) + " | " + note;
 }
 
-void ProgressReporter::update(std::size_t done, const std::map<std::string, long>& regimes, bool force) {
+void ProgressReporter::update(std::uint64_t done, const std::string& note) {
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
-  if (!force && std::chrono::duration<double>(now - last_).count() < interval_s_) return;
+  if (std::chrono::duration<double>(now - last_).count() < interval_s_) return;
   last_ = now;
   if (live_)
-    os_ << '\r' << line(done, regimes) << "\033[K" << std::flush;
+    os_ << '\r' << line(done, note) << "\033[K" << std::flush;
   else
-    os_ << line(done, regimes) << '\n' << std::flush;
+    os_ << line(done, note) << '\n' << std::flush;
 }
 
-void ProgressReporter::finish(std::size_t done, const std::map<std::string, long>& regimes) {
+void ProgressReporter::finish(std::uint64_t done, const std::string& note) {
   if (!enabled_) return;
-  if (live_) os_ << '\r' << line(done, regimes) << "\033[K\n" << std::flush;
-  else os_ << line(done, regimes) << '\n' << std::flush;
+  os_ << (live_ ? "\r" : "") << line(done, note) << (live_ ? "\033[K\n" : "\n") << std::flush;
 }
 
 }  // namespace vibromap::detail

@@ -1,29 +1,32 @@
 #pragma once
-// Internal: rank 0's progress report of a sweep: cells done/total, cells per second, ETA and
-// the most frequent regimes. On a terminal a live line (rewritten in place, at most 4 per
-// second); otherwise one plain line every `interval` seconds, for batch logs.
+// Internal to the farm: rank 0's progress report: items done/total, items per second over this
+// run, ETA, and the campaign's note (a sweep's most frequent regimes). On a terminal a live
+// line rewritten in place (at most 4 per second); otherwise a plain line every `interval_s`
+// seconds, for batch logs.
 
 #include <chrono>
+#include <cstdint>
 #include <iosfwd>
-#include <map>
 #include <string>
 
 namespace vibromap::detail {
 
 class ProgressReporter {
  public:
-  ProgressReporter(std::ostream& os, bool enabled, bool live, double interval_s, std::size_t total,
-                   std::size_t already_done);
-  // done: cells done in the map so far; regimes: label -> count over the map.
-  void update(std::size_t done, const std::map<std::string, long>& regimes, bool force = false);
-  void finish(std::size_t done, const std::map<std::string, long>& regimes);
+  // label: what runs ("sweep"); noun: what is counted ("cells"); total: items of the campaign;
+  // already_done: items done before this run (not counted in the rate).
+  ProgressReporter(std::ostream& os, bool enabled, bool live, double interval_s, std::string label, std::string noun,
+                   std::uint64_t total, std::uint64_t already_done);
+  void update(std::uint64_t done, const std::string& note);  // prints when the interval has passed
+  void finish(std::uint64_t done, const std::string& note);  // prints the last line
+  std::string line(std::uint64_t done, const std::string& note) const;
 
  private:
-  std::string line(std::size_t done, const std::map<std::string, long>& regimes) const;
   std::ostream& os_;
   bool enabled_, live_;
   double interval_s_;
-  std::size_t total_, start_done_;
+  std::string label_, noun_;
+  std::uint64_t total_, start_done_;
   std::chrono::steady_clock::time_point start_, last_;
 };
 

@@ -9,7 +9,7 @@ vibromap_cli_test(optimise_without_section RC 2 ARGS optimise jobs/paper/table1.
 vibromap_cli_test(optimise_bad_algorithm RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.algorithm=bobyq
                   ERR "--set optimise\\.algorithm=bobyq: unknown algorithm 'bobyq' \\(did you mean 'bobyqa'\\?\\)")
-vibromap_cli_test(optimise_output_directory_missing RC 1
+vibromap_cli_test(optimise_output_directory_missing RC 4
                   ARGS optimise jobs/paper/optimise_box.toml -o no_such_dir/o.h5
                   ERR "no_such_dir/o\\.h5: cannot write the optimisation: directory 'no_such_dir' does not exist")
 

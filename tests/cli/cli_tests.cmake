@@ -79,8 +79,8 @@ vibromap_cli_test(unknown_option RC 2 ARGS run jobs/paper/table1.toml --bogus ER
 vibromap_cli_test(no_command RC 2 ARGS ERR "subcommand is required")
 vibromap_cli_test(unknown_command RC 2 ARGS solve jobs/paper/table1.toml ERR "unknown command 'solve'")
 
-# I/O failure: exit 1, before the solve.
-vibromap_cli_test(trajectory_directory_missing RC 1
+# I/O failure: exit 4, before the solve.
+vibromap_cli_test(trajectory_directory_missing RC 4
                   ARGS run jobs/paper/table1.toml --trajectory no_such_dir/t.h5
                   ERR "no_such_dir/t\\.h5: cannot write trajectory")
 
@@ -91,7 +91,7 @@ vibromap_cli_test(run_table1_json RC 0 ARGS run jobs/paper/table1.toml --format 
 vibromap_cli_test(run_table2_table RC 0 ARGS run jobs/paper/table2.toml
                   OUT "regime +\\(1,1\\).*T_con \\(s\\)")
 
-# `vibromap accuracy`: help, bad input (exit 2), an unwritable CSV (exit 1, before the
+# `vibromap accuracy`: help, bad input (exit 2), an unwritable CSV (exit 4, before the
 # study), and the default study end to end on Table 2 (~6 s, rk4 at 2^15 steps dominating;
 # the numbers are checked in test_accuracy).
 vibromap_cli_test(accuracy_help RC 0 ARGS accuracy --help
@@ -101,7 +101,7 @@ vibromap_cli_test(accuracy_missing_scene RC 2 ARGS accuracy jobs/no_such_scene.t
 vibromap_cli_test(accuracy_bad_set RC 2 ARGS accuracy jobs/paper/table2.toml --set analysis.steady=newton
                   ERR "--set analysis\\.steady=newton: must be one of \"shooting\", \"integrate\"")
 vibromap_cli_test(accuracy_bad_format RC 2 ARGS accuracy jobs/paper/table2.toml --format csv ERR "--format")
-vibromap_cli_test(accuracy_csv_directory_missing RC 1
+vibromap_cli_test(accuracy_csv_directory_missing RC 4
                   ARGS accuracy jobs/paper/table2.toml --csv no_such_dir/a.csv
                   ERR "no_such_dir/a\\.csv: cannot write the accuracy CSV: directory 'no_such_dir' does not exist")
 vibromap_cli_test(accuracy_table2 RC 0

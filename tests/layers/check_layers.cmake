@@ -9,15 +9,17 @@ cmake_minimum_required(VERSION 3.20)
 # Layer -> layers whose headers it may include (itself included).
 set(allowed_core      core)
 set(allowed_io        core io)
-set(allowed_parallel  core io parallel)
-set(allowed_cli       core io parallel cli)
+set(allowed_parallel  parallel)
+set(allowed_campaigns core io parallel campaigns)
+set(allowed_cli       core io parallel campaigns cli)
 # Layer -> regex of third-party includes it must not use (MPI only in parallel, HDF5 and TOML
 # only in io, CLI11 only in cli).
 set(forbidden_core     "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
 set(forbidden_io       "^(mpi\\.h|CLI/.*)$")
 set(forbidden_parallel "^(hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
+set(forbidden_campaigns "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
 set(forbidden_cli      "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*)$")
-set(layers core io parallel cli)
+set(layers core io parallel campaigns cli)
 
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "check_layers: give -DSOURCE_DIR=<repository>")

@@ -16,16 +16,16 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 import h5py
 import numpy as np
 
-EXE = os.environ.get("VIBROMAP_EXE", "build/vibromap")
-MPIEXEC = os.environ.get("VIBROMAP_MPIEXEC", "mpiexec")
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from campaign_helpers import ENV, EXE, MPIEXEC, kill_all  # noqa: E402
+
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 PLOT = os.path.join(REPO, "postprocess", "plot_optimise.py")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
 
 OMEGA = 7.23  # forcing frequency of the scene defaults, rad/s
 T = 2.0 * math.pi / OMEGA
@@ -188,7 +188,7 @@ def test_bad_optimisations_end_with_one_line(tmp_path):
 
     no_map = write_scene(tmp_path, SCENE.replace("[optimise]\n", '[optimise]\nmap = "missing.h5"\n'), name="m.toml")
     proc = optimise(2, no_map, tmp_path / "m.h5", check=False)
-    assert proc.returncode == 1
+    assert proc.returncode == 4
     assert proc.stderr.count("vibromap: error:") == 1
     assert "missing.h5" in proc.stderr
 
@@ -197,3 +197,60 @@ def test_bad_optimisations_end_with_one_line(tmp_path):
     assert proc.returncode == 2
     assert proc.stderr.count("vibromap: error:") == 1
     assert "no cell of the map keeps the regime (3,2)" in proc.stderr
+
+
+def journal_records(path):
+    """How many intact start records the journal holds (io/journal.hpp's layout)."""
+    import struct
+    import zlib
+    try:
+        data = path.read_bytes()
+    except OSError:
+        return 0
+    if len(data) < 16:
+        return 0
+    (length,) = struct.unpack_from("<Q", data, 8)
+    pos, count = 16 + length + 4, 0
+    while pos + 16 <= len(data):
+        item, size = struct.unpack_from("<QQ", data, pos)
+        end = pos + 16 + size
+        if end + 4 > len(data):
+            break
+        (crc,) = struct.unpack_from("<I", data, end)
+        if crc != zlib.crc32(data[pos:end]):
+            break
+        pos, count = end + 4, count + 1
+    return count
+
+
+def test_killed_optimisation_resumes_to_the_same_best_point(tmp_path):
+    """kill -9 of mpiexec and every rank once some starts are in the journal: --resume runs only
+    the other starts and ends with the same starts and best points as an uninterrupted run."""
+    text = SCENE.replace("seeds = 2", "seeds = 4").replace("max_evaluations = 60", "max_evaluations = 120")
+    scene = write_scene(tmp_path, text)
+    reference = json.loads(optimise(2, scene, tmp_path / "ref.h5").stdout)
+    total = len(reference["starts"])
+
+    out = tmp_path / "killed.h5"
+    journal = tmp_path / "killed.h5.journal"
+    cmd = [MPIEXEC, "-n", "2", EXE, "optimise", str(scene), "-o", str(out), "-q"]
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 300
+    while time.time() < deadline and proc.poll() is None and journal_records(journal) < 2:
+        time.sleep(0.02)
+    assert proc.poll() is None, "the optimisation finished before it could be killed; make it longer"
+    kill_all(proc.pid)
+    proc.wait()
+    kept = journal_records(journal)
+    assert 2 <= kept < total and not out.exists()
+
+    refused = optimise(2, scene, out, check=False)  # neither --resume nor --overwrite
+    assert refused.returncode == 2 and "--resume finishes it" in refused.stderr
+
+    resumed = json.loads(optimise(2, scene, out, "--resume").stdout)
+    assert resumed["starts_resumed"] == kept
+    assert resumed["sweep_cells_computed"] == 0  # the seeding map was complete: reused
+    strip = lambda starts: [{k: v for k, v in without_times(s).items() if k != "rank"} for s in starts]
+    assert strip(resumed["starts"]) == strip(reference["starts"])
+    assert without_times(resumed["best"]) == without_times(reference["best"])
+    assert not journal.exists()  # removed once the output is written

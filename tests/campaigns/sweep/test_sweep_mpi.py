@@ -19,10 +19,8 @@ import h5py
 import numpy as np
 import pytest
 
-EXE = os.environ.get("VIBROMAP_EXE", "build/vibromap")
-MPIEXEC = os.environ.get("VIBROMAP_MPIEXEC", "mpiexec")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from campaign_helpers import ENV, EXE, MPIEXEC, kill_all  # noqa: E402
 
 # Table 2 of SPEC.md with E1 x E2 axes. Brute-force integration (not the default shooting)
 # makes cells cost ~0.02-0.05 s each, so a sweep runs long enough to be killed mid-way.
@@ -58,36 +56,6 @@ def sweep(ranks, scene, out, *extra, check=True):
     if check:
         assert proc.returncode == 0, proc.stderr
     return proc
-
-
-def descendants(pid):
-    """Every process below pid (Open MPI puts each rank in a process group of its own)."""
-    children = {}
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open(f"/proc/{entry}/stat") as f:
-                stat = f.read()
-        except OSError:
-            continue
-        ppid = int(stat[stat.rindex(")") + 2:].split()[1])
-        children.setdefault(ppid, []).append(int(entry))
-    found, todo = [], [pid]
-    while todo:
-        for child in children.get(todo.pop(), []):
-            found.append(child)
-            todo.append(child)
-    return found
-
-
-def kill_all(pid):
-    """SIGKILL mpiexec and every rank at once, as a cluster's time limit does."""
-    for p in [pid, *descendants(pid)]:
-        try:
-            os.kill(p, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
 
 
 def datasets(path):
@@ -180,3 +148,78 @@ def test_bad_sweeps_exit_2_with_one_line(tmp_path):
     assert proc.returncode == 2
     assert "no [sweep] section" in proc.stderr
     assert not (tmp_path / "none.h5").exists()
+
+
+def stopped_cells(stderr):
+    """The cell count of the 'stopped by SIG...: FILE holds N of M cells' line."""
+    line = next(l for l in stderr.splitlines() if "stopped by" in l)
+    words = line.split()
+    return int(words[words.index("holds") + 1])
+
+
+def start_and_signal(cmd, sig, cells=5):
+    """Starts cmd (a sweep with progress lines on stderr), sends `sig` once a progress line shows
+    at least `cells` cells done, and returns (exit code, stderr)."""
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    lines = []
+    for line in proc.stderr:
+        lines.append(line)
+        if line.startswith("sweep: ") and int(line.split()[1].split("/")[0]) >= cells:
+            proc.send_signal(sig)
+            break
+    lines.extend(proc.stderr)
+    proc.wait(timeout=120)
+    return proc.returncode, "".join(lines)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGUSR1])
+def test_a_signal_stops_the_sweep_with_a_checkpoint_and_exit_3(tmp_path, sig):
+    """One process, no mpiexec: each stop signal ends the run with the cells computed so far in
+    the map (checkpoint_interval is long, so only the final checkpoint can hold them), exit 3,
+    and --resume finishes the map."""
+    scene = write_scene(tmp_path, n1=8, n2=6, checkpoint=600.0)
+    out = tmp_path / "stopped.h5"
+    rc, stderr = start_and_signal([EXE, "sweep", str(scene), "-o", str(out)], sig)
+    assert rc == 3, stderr
+    assert stderr.count("vibromap: stopped by " + signal.Signals(sig).name) == 1
+    held = stopped_cells(stderr)
+    with h5py.File(out, "r") as f:
+        assert int(f["done"][()].sum()) == held
+    assert 5 <= held < 48
+    proc = sweep(1, scene, out, "--resume", "--format", "json")
+    assert json.loads(proc.stdout)["cells_resumed"] == held
+
+
+def test_a_signal_in_the_first_instant_is_honoured(tmp_path):
+    """SIGTERM 50 ms after the start, while MPI and the scene are still being set up: the run
+    still ends with exit 3 and its line, not killed without a word."""
+    scene = write_scene(tmp_path, n1=8, n2=6)
+    out = tmp_path / "early.h5"
+    proc = subprocess.Popen([EXE, "sweep", str(scene), "-o", str(out), "--quiet"], env=ENV,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    _, stderr = proc.communicate(timeout=120)
+    assert proc.returncode == 3, stderr
+    assert "vibromap: stopped by SIGTERM" in stderr
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGUSR1])
+def test_a_signal_to_mpiexec_checkpoints_every_rank(tmp_path, sig):
+    """SIGTERM or SIGUSR1 to mpiexec (what Ctrl-C, scancel or a batch system's warning does):
+    mpiexec passes a signal to the ranks, which store what they computed, write the final
+    checkpoint and say so; --resume finishes the map to the uninterrupted one."""
+    scene = write_scene(tmp_path, n1=12, n2=8, checkpoint=600.0)
+    reference = tmp_path / "reference.h5"
+    sweep(2, scene, reference)
+    out = tmp_path / "stopped.h5"
+    rc, stderr = start_and_signal([MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out)], sig)
+    assert "vibromap: stopped by" in stderr, stderr
+    if sig == signal.SIGUSR1:
+        assert rc == 3  # mpiexec forwards SIGUSR1 and returns the ranks' code
+    held = stopped_cells(stderr)
+    with h5py.File(out, "r") as f:
+        assert int(f["done"][()].sum()) == held
+    assert 5 <= held < 96
+    sweep(2, scene, out, "--resume")
+    assert_same_map(reference, out)

@@ -101,7 +101,6 @@ struct OptimiseReport {
   double optimise_wall_s = 0.0;           // the starts' time, s
   double verify_wall_s = 0.0;             // the re-solves' time, s
   double wall_s = 0.0;                    // the whole command, s
-  bool interrupted = false;               // the seeding sweep was stopped by a signal
   long evaluations() const;               // over all starts
 };
 

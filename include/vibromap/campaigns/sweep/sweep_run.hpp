@@ -1,0 +1,36 @@
+#pragma once
+// The sweep campaign: a scene's [sweep] grid on every MPI rank into one HDF5 map.
+//   plan   the grid's cells in flat order; resume: the cells the map does not mark done
+//   solve  one cell: the scene's point with the cell's axis values, solved by the core
+//          (solve_point); an exception is the cell's status `failed`, never the run's
+//   codec  CellResult, field by field
+//   sink   the map file (io/map_file.hpp) on rank 0, with the regime counts for progress
+// The farm (parallel/farm.hpp) distributes, checkpoints and stops on signals.
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "vibromap/io/scene.hpp"
+#include "vibromap/parallel/farm.hpp"
+
+namespace vibromap {
+
+struct SweepRunConfig {
+  std::string output;      // the map file (HDF5)
+  bool resume = false;     // continue an existing map of the same scene (a new one when none exists)
+  bool overwrite = false;  // replace an existing map instead of refusing
+  bool progress = true;    // progress lines on rank 0's stderr
+};
+
+struct SweepReport {
+  FarmReport farm;                       // cells, ranks, time, checkpoints, stop signal
+  std::map<std::string, long> regimes;   // regime label -> cells, over the whole map (rank 0)
+};
+
+// Collective: every rank calls it with the same scene and config. Throws SceneError (no
+// [sweep]; an existing map without --resume or --overwrite; a map of another scene), IoError
+// (file errors) on rank 0, QuietExit with the same exit code on the others.
+SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunConfig& config);
+
+}  // namespace vibromap

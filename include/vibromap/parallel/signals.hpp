@@ -1,0 +1,25 @@
+#pragma once
+// Stop signals of a campaign. SIGINT, SIGTERM and SIGUSR1 all mean the same: stop handing out
+// work, let the items in flight finish, write a final checkpoint, exit with ExitCode::stopped.
+// The handlers only record the signal (an async-signal-safe store); the farm polls it.
+//
+// install_stop_handlers() is called first thing in main for the campaign commands, before MPI
+// starts or the scene is read, so a signal that arrives at any instant of a run is honoured
+// (the farm sees it when it starts and stops at once, after its first checkpoint). Commands
+// that are not campaigns keep the default actions (Ctrl-C ends `vibromap run` at once).
+// Later signals are ignored while the first is being honoured; kill -9 is always safe
+// (what was checkpointed is kept).
+
+#include <string>
+
+namespace vibromap {
+
+void install_stop_handlers();
+// The first stop signal received (SIGINT, SIGTERM or SIGUSR1), 0 when none.
+int stop_signal();
+// Records `signal` as if it had arrived (the farm on rank 0, when another rank was signalled).
+void request_stop(int signal);
+// "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".
+std::string signal_name(int signal);
+
+}  // namespace vibromap

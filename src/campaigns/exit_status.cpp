@@ -1,0 +1,28 @@
+#include "vibromap/campaigns/exit_status.hpp"
+
+#include <new>
+
+#include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/scene.hpp"
+
+namespace vibromap {
+
+ExitCode exit_code_of(std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const QuietExit& e) {
+    return static_cast<ExitCode>(e.code);
+  } catch (const SceneError&) {
+    return ExitCode::bad_input;
+  } catch (const IoError&) {
+    return ExitCode::io;
+  } catch (const std::bad_alloc&) {
+    return ExitCode::io;
+  } catch (...) {
+    return ExitCode::internal;
+  }
+}
+
+int exit_status_of(std::exception_ptr error) { return code(exit_code_of(error)); }
+
+}  // namespace vibromap

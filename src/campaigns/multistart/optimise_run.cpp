@@ -1,0 +1,245 @@
+// The multistart campaign: see optimise_run.hpp.
+
+#include "vibromap/campaigns/multistart/optimise_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "start_codec.hpp"
+#include "start_sink.hpp"
+#include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/sweep/sweep_run.hpp"
+#include "vibromap/core/optimise/point_objective.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/map_file.hpp"
+#include "vibromap/io/optimise_file.hpp"
+#include "vibromap/io/trajectory_file.hpp"
+#include "vibromap/parallel/campaign.hpp"
+
+namespace vibromap {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+constexpr int kVerifyTrajectoryPeriods = 2;  // periods of the best point's trajectory when the scene keeps none
+constexpr double kDistinct = 0.01;  // best points closer than this in every scaled variable are one point
+
+// ---- Output, journal ------------------------------------------------------------------------
+
+void check_outputs(const OptimiseRunConfig& config) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path dir = fs::path(config.output).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec))
+    throw IoError(cat(config.output, ": cannot write the optimisation: directory '", dir.string(), "' does not exist"));
+  if (fs::exists(config.output, ec) && !config.overwrite)
+    throw SceneError(cat(config.output, config.resume ? ": already exists: the optimisation is complete" : ": already exists",
+                         "; use --overwrite to replace it"));
+  if (fs::exists(config.journal, ec) && !config.resume && !config.overwrite)
+    throw SceneError(cat(config.journal, ": an unfinished run of this output left its journal; --resume finishes it, "
+                         "--overwrite starts again"));
+}
+
+// What a journal must match to be resumed: the scene and the seeds.
+std::string run_identity(const Scene& scene, const std::vector<Seed>& seeds) {
+  std::ostringstream os;
+  os.precision(17);
+  os << scene.text << "\n# seeds\n";
+  for (const Seed& s : seeds) {
+    for (const double x : s.x) os << x << " ";
+    os << "\n";
+  }
+  return os.str();
+}
+
+Journal open_journal(const Scene& scene, const OptimiseRunConfig& config, const std::vector<Seed>& seeds) {
+  const std::string identity = run_identity(scene, seeds);
+  if (config.resume && std::filesystem::exists(config.journal)) {
+    Journal j = Journal::open(config.journal);
+    if (j.identity() != identity)
+      throw SceneError(cat(config.journal, ": --resume: the journal belongs to another scene or seeding map than ",
+                           scene.path, "; use --overwrite to start again"));
+    return j;
+  }
+  return Journal::create(config.journal, identity);
+}
+
+// ---- Seeds ----------------------------------------------------------------------------------
+
+// The scene without its [optimise] section: what the seeding sweep's map records, so that
+// changing an [optimise] setting does not make the map "another scene" for --resume.
+Scene sweep_scene(const Scene& scene) {
+  Scene s = scene;
+  s.optimise.reset();
+  const auto at = s.text.find("\n[optimise]\n");
+  if (at != std::string::npos) {
+    const auto next = s.text.find("\n[", at + 1);
+    s.text.erase(at, next == std::string::npos ? std::string::npos : next - at);
+  }
+  return s;
+}
+
+// Rank 0: the best cells of a map file as seeds.
+std::vector<Seed> seeds_from_map(const Scene& scene, const std::string& path, bool made_here) {
+  const SweepMap map = read_map(path);
+  try {
+    return select_seeds(map.grid, map.cells, map.done, map.stored, scene.params, *scene.optimise,
+                        scene.options.analysis.hertz_limit);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(cat(scene.path, ": [optimise] seeds from ", path, ": ", e.what(),
+                         made_here ? cat("; the seeding map ", path, " is kept for the next run") : std::string()));
+  }
+}
+
+void broadcast_seeds(const MpiSession& mpi, std::vector<Seed>& seeds) {
+  ByteWriter w;
+  if (mpi.rank() == 0) {
+    w.put(static_cast<std::uint64_t>(seeds.size()));
+    for (const Seed& s : seeds) w.put(s.x);
+  }
+  std::vector<char> bytes = std::move(w.bytes());
+  mpi.broadcast(bytes);
+  if (mpi.rank() == 0) return;
+  ByteReader r(bytes);
+  seeds.resize(static_cast<std::size_t>(r.get<std::uint64_t>()));
+  for (Seed& s : seeds) s.x = r.get_doubles();
+}
+
+// Step 1: the seeds on every rank. Returns the seeding sweep's stop signal (0: none).
+int make_seeds(const MpiSession& mpi, const Scene& scene, const OptimiseRunConfig& config, OptimiseRun& run,
+               std::vector<Seed>& seeds) {
+  const OptimiseOptions& o = *scene.optimise;
+  const bool sweep_first = o.map.empty() && scene.sweep.has_value();
+  if (sweep_first) {
+    SweepRunConfig sc;
+    sc.output = config.map_output;
+    sc.overwrite = config.overwrite;
+    sc.resume = !config.overwrite;  // an existing map of this scene is finished or reused
+    sc.progress = config.progress;
+    run.sweep = run_sweep(mpi, sweep_scene(scene), sc).farm;
+    const int stopped = mpi.broadcast(run.sweep.stop_signal);
+    if (stopped != 0) return stopped;
+  }
+  run.report.seeds_from = !o.map.empty() ? o.map : sweep_first ? config.map_output : "scene";
+  mpi.agree([&] {
+    seeds = !o.map.empty() ? seeds_from_map(scene, o.map, false)
+            : sweep_first  ? seeds_from_map(scene, config.map_output, true)
+                           : std::vector<Seed>{scene_seed(scene.params, o)};
+  }, exit_status_of);
+  broadcast_seeds(mpi, seeds);
+  return 0;
+}
+
+// ---- Best points ------------------------------------------------------------------------------
+
+// The scene text of a best point: the scene, and the --set overrides that give the point.
+std::string point_scene_text(const Scene& scene, const VerifiedPoint& v) {
+  std::string text = scene.text;
+  text += "\n# best point of vibromap optimise; vibromap run SCENE with:";
+  for (const FreeVariable& f : scene.optimise->variables) text += " --set " + parameter_override(f.name, get_parameter(v.params, f.name));
+  return text + "\n";
+}
+
+// Rank 0: re-solves the best points and writes the best one's trajectory.
+void verify_best(const Scene& scene, const OptimiseRunConfig& config, OptimiseReport& report) {
+  const OptimiseOptions& o = *scene.optimise;
+  const auto t0 = Clock::now();
+  const Box box(o.variables);
+  const auto points = best_points(report.starts, box, o.best, std::max(kDistinct, 10.0 * o.local.xtol_rel));
+  const int periods = std::max(scene.options.analysis.trajectory_periods, kVerifyTrajectoryPeriods);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& [start, evaluation] = points[i];
+    const int keep = i == 0 && !config.trajectory.empty() ? periods : 0;
+    report.best.push_back(verify_point(scene.params, scene.options, o, report.starts[start], evaluation, keep));
+  }
+  if (!report.best.empty() && !report.best.front().integrate.trajectory.empty()) {
+    write_trajectory(config.trajectory, report.best.front().integrate, point_scene_text(scene, report.best.front()));
+    report.trajectory_file = std::filesystem::path(config.trajectory).filename().string();
+  }
+  report.verify_wall_s = seconds_since(t0);
+}
+
+StartRecord run_one(const Scene& scene, const std::vector<Seed>& seeds, const StartSpec& spec, int rank) {
+  StartRecord rec{spec, {}, rank};
+  try {
+    rec.result = run_start(scene.params, scene.options, *scene.optimise, seeds.at(static_cast<std::size_t>(spec.seed)),
+                           spec.algorithm);
+  } catch (const std::exception& e) {  // a start's trouble is its result, never the run's
+    rec.result.stop = std::string("FAILURE (") + e.what() + ")";
+  }
+  return rec;
+}
+
+FarmOptions farm_options(const OptimiseRunConfig& config) {
+  FarmOptions o;
+  o.label = "optimise";
+  o.noun = "starts";
+  o.checkpoint_interval = 10.0;  // a start takes seconds; its journal record is small
+  o.progress = config.progress;
+  o.progress_interval = 60.0;    // every start also prints its own line
+  o.exit_code_of = exit_status_of;
+  return o;
+}
+
+// Step 2: the starts on the farm. Rank 0 gets every start's record in report.starts.
+void run_starts(const MpiSession& mpi, const Scene& scene, const OptimiseRunConfig& config,
+                const std::vector<Seed>& seeds, OptimiseRun& run) {
+  const std::vector<StartSpec> plan = plan_starts(seeds.size(), scene.optimise->algorithms);
+  const detail::StartCodec codec(plan);
+  std::unique_ptr<detail::StartSink> sink;
+  mpi.agree([&] {
+    sink = std::make_unique<detail::StartSink>(codec, plan, *scene.optimise, open_journal(scene, config, seeds),
+                                               config.progress);
+  }, exit_status_of);
+  if (sink) {
+    run.starts_resumed = static_cast<std::size_t>(sink->items_done());
+    if (config.progress)
+      std::cerr << "optimise: " << plan.size() << " starts (" << seeds.size() << " seeds x "
+                << scene.optimise->algorithms.size() << " algorithms) on " << mpi.size() << " rank"
+                << (mpi.size() > 1 ? "s" : "") << ", seeds from " << run.report.seeds_from
+                << (run.starts_resumed ? cat(", ", std::to_string(run.starts_resumed), " done by an earlier run") : "")
+                << "\n";
+  }
+  Campaign<StartRecord> campaign;
+  campaign.solve = [&](std::uint64_t i) { return run_one(scene, seeds, plan.at(static_cast<std::size_t>(i)), mpi.rank()); };
+  campaign.codec = &codec;
+  campaign.sink = sink.get();
+  run.starts = run_campaign(mpi, farm_options(config), campaign);
+  if (sink) run.report.starts = sink->records();
+}
+
+}  // namespace
+
+OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const OptimiseRunConfig& config) {
+  const auto t0 = Clock::now();
+  OptimiseRun run;
+  run.report.ranks = mpi.size();
+  mpi.agree([&] {
+    if (!scene.optimise) throw SceneError(scene.path + ": no [optimise] section: nothing to optimise (see 'vibromap keys')");
+    check_outputs(config);
+  }, exit_status_of);
+  std::vector<Seed> seeds;
+  if ((run.stop_signal = make_seeds(mpi, scene, config, run, seeds)) != 0) return run;
+  run.report.sweep_wall_s = run.sweep.wall_s;
+  const auto t_starts = Clock::now();
+  run_starts(mpi, scene, config, seeds, run);
+  if ((run.stop_signal = mpi.broadcast(run.starts.stop_signal)) != 0 || mpi.rank() != 0) return run;
+  OptimiseReport& report = run.report;
+  for (const FreeVariable& v : scene.optimise->variables) report.variables.push_back(v.name);
+  report.measures = PointObjective(scene.params, scene.options, *scene.optimise).measure_names();
+  report.seeds = seeds;
+  report.optimise_wall_s = seconds_since(t_starts);
+  verify_best(scene, config, report);
+  report.wall_s = seconds_since(t0);
+  write_optimise_file(config.output, report, *scene.optimise, scene.text);
+  std::filesystem::remove(config.journal);
+  return run;
+}
+
+}  // namespace vibromap
