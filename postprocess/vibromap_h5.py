@@ -276,6 +276,19 @@ def _attribute_value(value):
     return array
 
 
+def read_dataset(dataset: h5py.Dataset, path: str) -> np.ndarray:
+    """The whole dataset as a numpy array, or VibromapFileError naming it when a chunk of it fails
+    to read (vibromap's maps checksum every chunk: a damaged byte fails instead of reading wrong)."""
+    try:
+        return np.asarray(dataset[()])
+    except OSError as exc:
+        name = dataset.name.lstrip("/")
+        raise VibromapFileError(
+            f"{path}: dataset '{name}' is damaged: a chunk of it fails its checksum or cannot be read ({exc}); "
+            "vibromap sweep --resume recomputes the damaged cells"
+        ) from exc
+
+
 def _map_axes(f: h5py.File, path: str) -> dict[str, MapAxis]:
     """The axes of a map: the dimension scales attached to /done, in order."""
     done = f["done"]
@@ -295,7 +308,7 @@ def _map_axes(f: h5py.File, path: str) -> dict[str, MapAxis]:
             raise VibromapFileError(f"{path}: axis '{name}' has scale '{spacing}' (expected lin or log)")
         axes[name] = MapAxis(
             name=name,
-            values=np.asarray(scale[()], dtype=np.float64),
+            values=np.asarray(read_dataset(scale, path), dtype=np.float64),
             scale=spacing,
             units=_text(scale.attrs.get("units", "")),
             long_name=_text(scale.attrs.get("long_name", "")),
@@ -323,7 +336,7 @@ def read_map(path: str) -> SweepMap:
                 if name in MAP_ALWAYS:
                     raise VibromapFileError(f"{path}: dataset '{name}' has shape {item.shape}, not the map's {shape}")
                 continue
-            data[name] = np.asarray(item[()])
+            data[name] = read_dataset(item, path)
             units[name] = _text(item.attrs.get("units", ""))
         regime_meanings = _flag_meanings(f["regime"], REGIME_FLAG_VALUES, REGIME_FLAG_MEANINGS, path)
         status_meanings = _flag_meanings(f["status"], STATUS_FLAG_VALUES, STATUS_FLAG_MEANINGS, path)

@@ -85,6 +85,18 @@ void track_creation_order(Hid plist, bool links, std::string_view file) {
   check(H5Pset_attr_creation_order(plist, flags), file, "set attribute creation order tracking");
 }
 
+// (file type, memory type) of an element type.
+std::pair<Hid, Hid> element_types(ElementType element) {
+  switch (element) {
+    case ElementType::int64: return {H5T_STD_I64LE, H5T_NATIVE_INT64};
+    case ElementType::int32: return {H5T_STD_I32LE, H5T_NATIVE_INT32};
+    case ElementType::int8: return {H5T_STD_I8LE, H5T_NATIVE_INT8};
+    case ElementType::uint8: return {H5T_STD_U8LE, H5T_NATIVE_UINT8};
+    case ElementType::float64: break;
+  }
+  return {H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE};
+}
+
 // Number of elements of an attribute or dataset's dataspace.
 std::size_t element_count(Hid space, std::string_view file, std::string_view what) {
   return static_cast<std::size_t>(check(H5Sget_simple_extent_npoints(space), file, cat("get the size of ", what)));
@@ -345,6 +357,90 @@ std::vector<std::int64_t> Dataset::read_int() const {
   return data;
 }
 
+ElementType Dataset::element_type() const {
+  const std::string what = detail::describe("dataset", name_);
+  const Handle type = detail::make_handle(H5Dget_type(id()), HandleKind::datatype, file_path_, "get the type of " + what);
+  if (detail::type_class(type.get(), file_path_, what) == H5T_FLOAT) return ElementType::float64;
+  const std::size_t size = H5Tget_size(type.get());
+  if (size == 1) return H5Tget_sign(type.get()) == H5T_SGN_NONE ? ElementType::uint8 : ElementType::int8;
+  return size <= 4 ? ElementType::int32 : ElementType::int64;
+}
+
+Shape Dataset::chunk_shape() const {
+  const std::string what = detail::describe("dataset", name_);
+  const Handle dcpl = detail::make_handle(H5Dget_create_plist(id()), HandleKind::property_list, file_path_,
+                                          "get the creation properties of " + what);
+  if (H5Pget_layout(dcpl.get()) != H5D_CHUNKED) return {};
+  std::vector<hsize_t> dims(shape().size());
+  check(H5Pget_chunk(dcpl.get(), static_cast<int>(dims.size()), dims.data()), file_path_, "get the chunks of " + what);
+  return Shape(dims.begin(), dims.end());
+}
+
+namespace {
+
+// Adds to `space` the boxes that hold the flat (row-major) elements [first, last) of an array
+// of extent dims[d..] whose leading indices are prefix[0..d): at most 2(N-d)-1 boxes.
+void select_flat(hid_t space, const std::vector<hsize_t>& dims, std::size_t d, std::vector<hsize_t>& start,
+                 hsize_t first, hsize_t last, bool& any, const std::string& file) {
+  if (first >= last) return;
+  hsize_t inner = 1;
+  for (std::size_t i = d + 1; i < dims.size(); ++i) inner *= dims[i];
+  const hsize_t lo = first / inner, hi = (last - 1) / inner;  // the slices of dimension d touched
+  if (lo == hi && d + 1 < dims.size()) {
+    start[d] = lo;
+    select_flat(space, dims, d + 1, start, first - lo * inner, last - lo * inner, any, file);
+    return;
+  }
+  hsize_t full_lo = lo, full_hi = hi + 1;  // slices of dimension d covered whole: [full_lo, full_hi)
+  if (first % inner != 0) {
+    start[d] = lo;
+    select_flat(space, dims, d + 1, start, first - lo * inner, inner, any, file);
+    ++full_lo;
+  }
+  if (last % inner != 0 && hi >= full_lo) {
+    start[d] = hi;
+    select_flat(space, dims, d + 1, start, 0, last - hi * inner, any, file);
+    --full_hi;
+  }
+  if (full_lo >= full_hi) return;
+  std::vector<hsize_t> box_start(start.begin(), start.end()), count(dims.size(), 1);
+  box_start[d] = full_lo;
+  count[d] = full_hi - full_lo;
+  for (std::size_t i = d + 1; i < dims.size(); ++i) box_start[i] = 0, count[i] = dims[i];
+  check(H5Sselect_hyperslab(space, any ? H5S_SELECT_OR : H5S_SELECT_SET, box_start.data(), nullptr, count.data(),
+                            nullptr),
+        file, "select a range of elements");
+  any = true;
+}
+
+}  // namespace
+
+void Dataset::transfer_flat(std::uint64_t first, std::size_t count, ElementType memory, void* buffer, bool write) const {
+  const std::string what = detail::describe("dataset", name_);
+  const std::string operation = cat(write ? "write " : "read ", what, " elements ", std::to_string(first), "..",
+                                    std::to_string(first + count));
+  if (count == 0) return;
+  Handle space = detail::make_handle(H5Dget_space(id()), HandleKind::dataspace, file_path_, "get the dataspace of " + what);
+  const int rank = static_cast<int>(check(H5Sget_simple_extent_ndims(space.get()), file_path_, "get the rank of " + what));
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank));
+  check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), file_path_, "get the shape of " + what);
+  hsize_t total = 1;
+  for (const hsize_t n : dims) total *= n;
+  if (first + count > total) fail(file_path_, cat("cannot ", operation, ": the dataset holds ", std::to_string(total)));
+  std::vector<hsize_t> start(dims.size(), 0);
+  bool any = false;
+  select_flat(space.get(), dims, 0, start, first, first + count, any, file_path_);
+  const hsize_t n = count;
+  const Handle memspace = detail::make_handle(H5Screate_simple(1, &n, nullptr), HandleKind::dataspace, file_path_,
+                                              "create a memory dataspace for " + what);
+  const hid_t mem_type = detail::element_types(memory).second;
+  if (write) {
+    check(H5Dwrite(id(), mem_type, memspace.get(), space.get(), H5P_DEFAULT, buffer), file_path_, operation);
+  } else {
+    check(H5Dread(id(), mem_type, memspace.get(), space.get(), H5P_DEFAULT, buffer), file_path_, operation);
+  }
+}
+
 // ---- Dataset: dimension scales (HDF5 High-Level H5DS) -----------------------------------
 
 void Dataset::make_dimension_scale(std::string_view dimension_name) {
@@ -407,10 +503,17 @@ Handle dataset_creation_list(const std::vector<hsize_t>& dims, std::size_t count
   if (!options.chunk.empty() && options.chunk.size() != dims.size())
     fail(file, what + ": chunk rank differs from the data's rank");
   detail::track_creation_order(dcpl.get(), false, file);
+  // No modification times in object headers: the same content gives the same bytes, and
+  // writing data never touches a header.
+  check(H5Pset_obj_track_times(dcpl.get(), 0), file, "switch off time tracking for " + what);
   if (options.fill_value)
     check(H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &*options.fill_value), file, "set the fill value of " + what);
+  if (options.allocate_early) {
+    check(H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY), file, "set early allocation for " + what);
+    check(H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_ALLOC), file, "set the fill time of " + what);
+  }
   // HDF5 cannot chunk a fixed-size array with an empty dimension; nothing to compress anyway.
-  if (count == 0 || (options.chunk.empty() && options.deflate == 0)) return dcpl;
+  if (count == 0 || (options.chunk.empty() && options.deflate == 0 && !options.fletcher32)) return dcpl;
   std::vector<hsize_t> chunk(dims.size());
   for (std::size_t i = 0; i < dims.size(); ++i) {
     const hsize_t wanted = options.chunk.empty() ? dims[i] : static_cast<hsize_t>(options.chunk[i]);
@@ -419,23 +522,14 @@ Handle dataset_creation_list(const std::vector<hsize_t>& dims, std::size_t count
   check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), file, "set chunks for " + what);
   if (options.deflate > 0)
     check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(options.deflate)), file, "set compression for " + what);
+  if (options.fletcher32) check(H5Pset_fletcher32(dcpl.get()), file, "set the checksum filter for " + what);
   return dcpl;
 }
 
 }  // namespace
 
-std::pair<detail::Hid, detail::Hid> Group::element_types(Element element) {
-  switch (element) {
-    case Element::int64: return {H5T_STD_I64LE, H5T_NATIVE_INT64};
-    case Element::int32: return {H5T_STD_I32LE, H5T_NATIVE_INT32};
-    case Element::int8: return {H5T_STD_I8LE, H5T_NATIVE_INT8};
-    case Element::uint8: return {H5T_STD_U8LE, H5T_NATIVE_UINT8};
-    case Element::float64: break;
-  }
-  return {H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE};
-}
 
-Dataset Group::write_numbers(std::string_view name, const void* data, std::size_t count, Element element,
+Dataset Group::write_numbers(std::string_view name, const void* data, std::size_t count, ElementType element,
                              const Shape& shape, const DatasetOptions& options) {
   const std::string full_name = child_name(name);
   const std::string what = detail::describe("dataset", full_name);
@@ -452,7 +546,7 @@ Dataset Group::write_numbers(std::string_view name, const void* data, std::size_
       fail(file_path_, cat("cannot write ", what, ": shape holds ", std::to_string(product),
                                    " values, data has ", std::to_string(count)));
   }
-  const auto [file_type, mem_type] = element_types(element);
+  const auto [file_type, mem_type] = detail::element_types(element);
   const Handle space = detail::make_handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                                            HandleKind::dataspace, file_path_, "create dataspace for " + what);
   const Handle dcpl = dataset_creation_list(dims, count, options, file_path_, what);
@@ -460,37 +554,44 @@ Dataset Group::write_numbers(std::string_view name, const void* data, std::size_
   Handle dataset = detail::make_handle(
       H5Dcreate2(id(), std::string(name).c_str(), file_type, space.get(), lcpl.get(), dcpl.get(), H5P_DEFAULT),
       HandleKind::dataset, file_path_, "create " + what);
-  if (count > 0)
+  if (count > 0 && data != nullptr)
     check(H5Dwrite(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), file_path_, "write " + what);
-  if (options.fill_value)
+  if (options.fill_value && options.fill_attribute)
     detail::write_attribute(dataset.get(), "_FillValue", file_path_, file_type, H5T_NATIVE_DOUBLE, &*options.fill_value);
   return Dataset(std::move(dataset), file_path_, full_name);
 }
 
+Dataset Group::create_dataset(std::string_view name, ElementType type, const Shape& shape,
+                              const DatasetOptions& options) {
+  std::size_t count = 1;
+  for (const std::size_t d : shape) count *= d;
+  return write_numbers(name, nullptr, count, type, shape.empty() ? Shape{0} : shape, options);
+}
+
 Dataset Group::write_dataset(std::string_view name, std::span<const double> data, const Shape& shape,
                              const DatasetOptions& options) {
-  return write_numbers(name, data.data(), data.size(), Element::float64, shape, options);
+  return write_numbers(name, data.data(), data.size(), ElementType::float64, shape, options);
 }
 
 Dataset Group::write_dataset(std::string_view name, std::span<const std::int64_t> data, const Shape& shape,
                              const DatasetOptions& options) {
-  return write_numbers(name, data.data(), data.size(), Element::int64, shape, options);
+  return write_numbers(name, data.data(), data.size(), ElementType::int64, shape, options);
 }
 
 Dataset Group::write_dataset(std::string_view name, std::span<const int> data, const Shape& shape,
                              const DatasetOptions& options) {
   static_assert(sizeof(int) == 4, "int is stored as int32");
-  return write_numbers(name, data.data(), data.size(), Element::int32, shape, options);
+  return write_numbers(name, data.data(), data.size(), ElementType::int32, shape, options);
 }
 
 Dataset Group::write_dataset(std::string_view name, std::span<const std::int8_t> data, const Shape& shape,
                              const DatasetOptions& options) {
-  return write_numbers(name, data.data(), data.size(), Element::int8, shape, options);
+  return write_numbers(name, data.data(), data.size(), ElementType::int8, shape, options);
 }
 
 Dataset Group::write_dataset(std::string_view name, std::span<const std::uint8_t> data, const Shape& shape,
                              const DatasetOptions& options) {
-  return write_numbers(name, data.data(), data.size(), Element::uint8, shape, options);
+  return write_numbers(name, data.data(), data.size(), ElementType::uint8, shape, options);
 }
 
 Dataset Group::open_dataset(std::string_view name) const {
@@ -549,31 +650,51 @@ bool Group::exists(std::string_view name) const {
 
 namespace {
 
-Handle open_file(const std::string& path, FileMode mode) {
+Handle file_access_list(const std::string& path, const FileOptions& options) {
+  Handle fapl = detail::make_handle(H5Pcreate(H5P_FILE_ACCESS), HandleKind::property_list, path, "create property list");
+  check(H5Pset_file_locking(fapl.get(), options.locking, true), path, "set file locking");
+  // 521 slots (HDF5's default count), w0 = 1: chunks read or written whole leave the cache first.
+  check(H5Pset_cache(fapl.get(), 0, 521, options.chunk_cache_bytes, 1.0), path, "set the chunk cache");
+  if (options.format_1_8)
+    check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), path, "set the file format");
+  return fapl;
+}
+
+Handle open_file(const std::string& path, FileMode mode, const FileOptions& options) {
   detail::silence_hdf5_error_printing();
+  const Handle fapl = file_access_list(path, options);
   switch (mode) {
     case FileMode::truncate: {
       const Handle fcpl = detail::make_handle(H5Pcreate(H5P_FILE_CREATE), HandleKind::property_list, path,
                                               "create property list");
       detail::track_creation_order(fcpl.get(), true, path);
-      return detail::make_handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT), HandleKind::file,
+      return detail::make_handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), HandleKind::file,
                                  path, "create file");
     }
     case FileMode::read_write:
-      return detail::make_handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), HandleKind::file, path,
+      return detail::make_handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), HandleKind::file, path,
                                  "open file for writing");
     case FileMode::read_only:
       break;
   }
-  return detail::make_handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), HandleKind::file, path,
+  return detail::make_handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), HandleKind::file, path,
                              "open file for reading");
 }
 
 }  // namespace
 
-Hdf5File::Hdf5File(const std::string& path, FileMode mode) : Group(open_file(path, mode), path, "/") {}
+Hdf5File::Hdf5File(const std::string& path, FileMode mode, const FileOptions& options)
+    : Group(open_file(path, mode, options), path, "/") {}
 
 void Hdf5File::flush() { check(H5Fflush(id(), H5F_SCOPE_LOCAL), file_path_, "flush file"); }
+
+void Hdf5File::sync() {
+  flush();
+  void* handle = nullptr;
+  check(H5Fget_vfd_handle(id(), H5P_DEFAULT, &handle), file_path_, "get the file's descriptor");
+  if (handle == nullptr || ::fsync(*static_cast<int*>(handle)) != 0)
+    fail(file_path_, cat("cannot sync the file to disk (", std::strerror(errno), ")"));
+}
 
 void Hdf5File::close() {
   if (!handle_.valid()) return;

@@ -1,12 +1,13 @@
 #include "vibromap/io/map_file.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <limits>
-#include <span>
 #include <stdexcept>
 #include <string_view>
-#include <type_traits>
 
+#include "map_fields.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
@@ -16,190 +17,22 @@
 // of status and regime (CF section 3.5); _FillValue marks float cells not computed.
 
 namespace vibromap {
+using detail::fail;
 namespace detail {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr std::string_view kStableLongName =
-    "stability of the periodic orbit from its Floquet multipliers (unknown where not computed)";
+constexpr std::size_t kChunkCacheBytes = 4u << 20;   // per dataset: a few chunks in flight
+constexpr std::uint64_t kDoneWindow = 1u << 20;       // cells of /done read at a time by pending()
 
-
-std::string_view axis_long_name(std::string_view axis) {
-  if (axis == "E1") return "Young's modulus of body 1";
-  if (axis == "E2") return "Young's modulus of body 2";
-  if (axis == "R1") return "radius of the contact surface of body 1";
-  if (axis == "R2") return "radius of the contact surface of body 2";
-  if (axis == "m2") return "mass of the attached body";
-  if (axis == "k2") return "stiffness of the spring joining the bodies";
-  if (axis == "omega2") return "partial natural frequency of the attached body";
-  return "swept parameter";
+FileOptions writer_options() {
+  FileOptions o;
+  o.locking = false;  // readers may open the map while it runs; the sweep holds its own lock
+  o.chunk_cache_bytes = kChunkCacheBytes;
+  return o;
 }
 
-// CF flag_meanings: the enum's names from to_string, with '_' for '-' (CF meanings are
-// blank-separated words), preceded by not_computed for code -1. Codes run -1..last.
-template <class Enum>
-std::string flag_meanings(Enum last, std::int8_t (*code)(Enum)) {
-  std::string meanings = "not_computed";
-  for (int i = 0; i <= code(last); ++i) {
-    std::string name = to_string(static_cast<Enum>(i));
-    std::replace(name.begin(), name.end(), '-', '_');
-    meanings.append(" ").append(name);
-  }
-  return meanings;
-}
-
-std::vector<std::int8_t> flag_values(std::int8_t last) {
-  std::vector<std::int8_t> values;
-  for (int v = kNotComputed; v <= last; ++v) values.push_back(static_cast<std::int8_t>(v));
-  return values;
-}
-
-// ---- writing ----------------------------------------------------------------------------
-
-// Refuses a map the layout cannot hold, before any file is touched.
-void check_writable(const std::string& path, const SweepMap& map) {
-  const auto refuse = [&](std::string_view why) { fail(path, cat("cannot write map: ", why)); };
-  const std::string cells = std::to_string(map.grid.size());
-  if (map.grid.axes().empty()) refuse("the grid has no axes");
-  if (map.cells.size() != map.grid.size())
-    refuse(cat(std::to_string(map.cells.size()), " cell records for ", cells, " cells"));
-  if (map.done.size() != map.grid.size())
-    refuse(cat(std::to_string(map.done.size()), " done flags for ", cells, " cells"));
-  const auto& axes = map.grid.axes();
-  for (std::size_t i = 0; i < axes.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (axes[i].name == axes[j].name) refuse(cat("axis '", axes[i].name, "' appears twice"));
-  for (std::size_t i = 0; i < map.stored.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (map.stored[i] == map.stored[j]) refuse(cat("quantity '", to_string(map.stored[i]), "' is stored twice"));
-}
-
-// One value per cell: get(cell) where the cell is done, `not_done` elsewhere.
-template <class T, class Get>
-std::vector<T> per_cell(const SweepMap& map, Get get, T not_done) {
-  std::vector<T> values(map.cells.size(), not_done);
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (map.done[i] != 0) values[i] = static_cast<T>(get(map.cells[i]));
-  return values;
-}
-
-// The coordinate datasets, made dimension scales named after their axes.
-std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
-  std::vector<Dataset> scales;
-  for (const Axis& axis : grid.axes()) {
-    Dataset coordinate = file.write_dataset(axis.name, axis.values);
-    coordinate.make_dimension_scale(axis.name);
-    coordinate.set_attribute("units", axis_units(axis.name));
-    coordinate.set_attribute("long_name", axis_long_name(axis.name));
-    coordinate.set_attribute("scale", to_string(axis.scale));
-    scales.push_back(std::move(coordinate));
-  }
-  return scales;
-}
-
-// Writes one N-D field over the grid, labels its dimensions with the axes and names it.
-template <class T>
-Dataset write_field(Hdf5File& file, std::string_view name, const std::vector<T>& values, const Grid& grid,
-                    const std::vector<Dataset>& scales, std::string_view long_name, std::string_view units = {}) {
-  DatasetOptions options;
-  if constexpr (std::is_floating_point_v<T>) options.fill_value = kNaN;
-  Dataset dataset = file.write_dataset(name, std::span<const T>(values), grid.shape(), options);
-  for (std::size_t d = 0; d < scales.size(); ++d) dataset.attach_dimension_scale(scales[d], d);
-  dataset.set_attribute("long_name", long_name);
-  if (!units.empty()) dataset.set_attribute("units", units);
-  return dataset;
-}
-
-// An int8 code dataset with its CF flag_values / flag_meanings (CF section 3.5).
-template <class Get>
-void write_flags(Hdf5File& file, const SweepMap& map, const std::vector<Dataset>& scales, std::string_view name,
-                 Get get, std::string_view long_name, const std::vector<std::int8_t>& values,
-                 std::string_view meanings) {
-  Dataset d = write_field(file, name, per_cell<std::int8_t>(map, get, kNotComputed), map.grid, scales, long_name);
-  d.set_attribute("flag_values", values);
-  d.set_attribute("flag_meanings", meanings);
-}
-
-void write_codes(Hdf5File& file, const SweepMap& map, const std::vector<Dataset>& scales) {
-  const std::vector<std::uint8_t> done = per_cell<std::uint8_t>(map, [](const CellResult&) { return 1; }, 0);
-  write_field(file, "done", done, map.grid, scales, "1 where the cell has been computed");
-  write_flags(file, map, scales, "status", [](const CellResult& c) { return c.status; },
-              "outcome of the point solver", flag_values(status_code(SolveStatus::invalid_input)),
-              flag_meanings(SolveStatus::invalid_input, &status_code));
-  write_flags(file, map, scales, "regime", [](const CellResult& c) { return c.regime; },
-              "motion regime; periodic (n,k) with n and k", flag_values(regime_code(RegimeKind::failed)),
-              flag_meanings(RegimeKind::failed, &regime_code));
-  write_flags(file, map, scales, "stable", [](const CellResult& c) { return c.stable; }, kStableLongName,
-              {-1, 0, 1}, "unknown unstable stable");
-  write_field(file, "n", per_cell<int>(map, [](const CellResult& c) { return c.n; }, 0), map.grid, scales,
-              "period of the regime in forcing periods (0 where not periodic)", "1");
-  write_field(file, "k", per_cell<int>(map, [](const CellResult& c) { return c.k; }, 0), map.grid, scales,
-              "impacts per regime period (0 where not periodic)", "1");
-}
-
-// One stored quantity: int64 (0 where not done) or float64 (NaN where not done, and where the
-// solver did not compute it, e.g. max_multiplier of a cell without a periodic orbit).
-void write_quantity(Hdf5File& file, const SweepMap& map, const std::vector<Dataset>& scales, Quantity q) {
-  const std::string name = to_string(q);
-  if (quantity_is_integer(q)) {
-    const auto values = per_cell<std::int64_t>(map, [q](const CellResult& c) { return quantity_int(c, q); }, 0);
-    write_field(file, name, values, map.grid, scales, quantity_description(q), quantity_units(q));
-  } else {
-    const auto values = per_cell<double>(map, [q](const CellResult& c) { return c.value(q); }, kNaN);
-    write_field(file, name, values, map.grid, scales, quantity_description(q), quantity_units(q));
-  }
-}
-
-void write_measures(Hdf5File& file, const SweepMap& map, const std::vector<Dataset>& scales) {
-  write_field(file, "wall_s", per_cell<double>(map, [](const CellResult& c) { return c.wall_s; }, kNaN), map.grid,
-              scales, "wall-clock time spent on the cell", "s");
-  write_field(file, "steady_residual",
-              per_cell<double>(map, [](const CellResult& c) { return c.steady_residual; }, kNaN), map.grid, scales,
-              "relative residual of the steady-state test", "1");
-  for (const Quantity q : map.stored) write_quantity(file, map, scales, q);
-}
-
-void write_root_attributes(Hdf5File& file, const SweepMap& map) {
-  const auto cells_done = std::count_if(map.done.begin(), map.done.end(), [](std::uint8_t d) { return d != 0; });
-  std::string stored;
-  for (const Quantity q : map.stored) stored.append(stored.empty() ? "" : " ").append(to_string(q));
-  file.set_attribute("title", "vibromap regime map");
-  file.set_attribute("Conventions", "CF-1.8");
-  file.set_attribute("vibromap_version", VIBROMAP_VERSION);
-  file.set_attribute("scene", map.scene_text);
-  file.set_attribute("ranks", map.ranks);
-  file.set_attribute("cells_total", map.grid.size());
-  file.set_attribute("cells_done", cells_done);
-  file.set_attribute("complete", static_cast<std::size_t>(cells_done) == map.grid.size() ? 1 : 0);
-  file.set_attribute("stored", stored);
-}
-
-}  // namespace
-}  // namespace detail
-
-void write_map(const std::string& path, const SweepMap& map) {
-  detail::check_writable(path, map);
-  write_hdf5_atomically(path, [&](Hdf5File& file) {
-    const std::vector<Dataset> scales = detail::write_axes(file, map.grid);
-    detail::write_codes(file, map, scales);
-    detail::write_measures(file, map, scales);
-    detail::write_root_attributes(file, map);
-  });
-}
-
-// ---- reading ----------------------------------------------------------------------------
-
-namespace detail {
-namespace {
-
-[[noreturn]] void malformed(const Hdf5File& file, std::string_view what) {
-  fail(file.path(), cat("not a valid vibromap map: ", what));
-}
-
-void require_attribute(const Hdf5Object& object, const Hdf5File& file, std::string_view name) {
-  if (!object.has_attribute(name))
-    malformed(file, object.name() == "/" ? cat("no root attribute '", name, "'")
-                                         : cat("no attribute '", name, "' on dataset '", object.name(), "'"));
+[[noreturn]] void malformed(const std::string& path, std::string_view what) {
+  fail(path, cat("not a valid vibromap map: ", what));
 }
 
 std::string shape_text(const Shape& shape) {
@@ -208,60 +41,115 @@ std::string shape_text(const Shape& shape) {
   return text.empty() ? "scalar" : text;
 }
 
-// Opens /<name> and checks that it has the grid's shape.
-Dataset open_field(const Hdf5File& file, std::string_view name, const Shape& shape) {
-  if (!file.exists(name)) malformed(file, cat("no dataset '/", name, "'"));
-  Dataset dataset = file.open_dataset(name);
-  if (dataset.shape() != shape)
-    malformed(file, cat("dataset '", dataset.name(), "' has shape ", shape_text(dataset.shape()), ", expected ",
-                        shape_text(shape), " (the axes' lengths)"));
-  return dataset;
+// ---- Making a map ------------------------------------------------------------------------
+
+DatasetOptions chunked(const Shape& chunk, std::optional<double> fill, bool fill_attribute) {
+  DatasetOptions o;
+  o.chunk = chunk;
+  o.fletcher32 = true;
+  o.allocate_early = true;
+  o.fill_value = fill;
+  o.fill_attribute = fill_attribute;
+  return o;
 }
 
-// The integers of /<name>, each checked to lie in [lo, hi].
-std::vector<std::int64_t> read_ints(const Hdf5File& file, std::string_view name, const Shape& shape,
-                                    std::int64_t lo, std::int64_t hi) {
-  std::vector<std::int64_t> values = open_field(file, name, shape).read_int();
-  for (const std::int64_t v : values)
-    if (v < lo || v > hi)
-      malformed(file, cat("dataset '/", name, "' holds ", std::to_string(v), ", outside ", std::to_string(lo), "..",
-                          std::to_string(hi)));
-  return values;
+std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
+  std::vector<Dataset> scales;
+  for (const Axis& axis : grid.axes()) {
+    DatasetOptions o;
+    o.fletcher32 = true;  // one chunk: the whole axis
+    Dataset coordinate = file.write_dataset(axis.name, std::span<const double>(axis.values), {}, o);
+    coordinate.make_dimension_scale(axis.name);
+    coordinate.set_attribute("units", axis.units);
+    coordinate.set_attribute("long_name", axis.long_name);
+    coordinate.set_attribute("key", axis.key);
+    coordinate.set_attribute("scale", to_string(axis.scale));
+    scales.push_back(std::move(coordinate));
+  }
+  return scales;
+}
+
+Dataset make_field(Hdf5File& file, const MapField& f, const Shape& shape, const Shape& chunk,
+                   const std::vector<Dataset>& scales) {
+  Dataset d = file.create_dataset(f.name, f.file_type, shape, chunked(chunk, f.fill, f.fill_attribute));
+  for (std::size_t i = 0; i < scales.size(); ++i) d.attach_dimension_scale(scales[i], i);
+  d.set_attribute("long_name", f.long_name);
+  if (!f.units.empty()) d.set_attribute("units", f.units);
+  if (!f.flag_values.empty()) {
+    d.set_attribute("flag_values", std::span<const std::int8_t>(f.flag_values));
+    d.set_attribute("flag_meanings", f.flag_meanings);
+  }
+  return d;
+}
+
+void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
+  std::string stored;
+  for (const Quantity q : layout.stored) stored.append(stored.empty() ? "" : " ").append(to_string(q));
+  file.set_attribute("title", "vibromap regime map");
+  file.set_attribute("Conventions", "CF-1.8");
+  file.set_attribute("vibromap_version", VIBROMAP_VERSION);
+  file.set_attribute("scene", layout.scene_text);
+  file.set_attribute("identity", layout.identity);
+  file.set_attribute("ranks", ranks);
+  file.set_attribute("cells_total", layout.grid.size());
+  file.set_attribute("cells_done", 0);
+  file.set_attribute("complete", 0);
+  file.set_attribute("stored", stored);
+}
+
+// Refuses a layout the file cannot hold, before any file is touched.
+void check_layout(const std::string& path, const MapLayout& layout) {
+  const auto refuse = [&](std::string_view why) { fail(path, cat("cannot write map: ", why)); };
+  if (layout.grid.axes().empty()) refuse("the grid has no axes");
+  const auto& axes = layout.grid.axes();
+  for (std::size_t i = 0; i < axes.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (axes[i].name == axes[j].name) refuse(cat("axis '", axes[i].name, "' appears twice"));
+  for (std::size_t i = 0; i < layout.stored.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (layout.stored[i] == layout.stored[j]) refuse(cat("quantity '", to_string(layout.stored[i]), "' is stored twice"));
+}
+
+// ---- Reading a map's layout ----------------------------------------------------------------
+
+void require_attribute(const Hdf5Object& object, const std::string& path, std::string_view name) {
+  if (!object.has_attribute(name))
+    malformed(path, object.name() == "/" ? cat("no root attribute '", name, "'")
+                                         : cat("no attribute '", name, "' on dataset '", object.name(), "'"));
 }
 
 // One axis from the dimension scale attached to dimension `dim` of /done.
 Axis read_axis(const Hdf5File& file, const Dataset& done, std::size_t dim) {
+  const std::string& path = file.path();
   const std::vector<std::string> scales = done.attached_scales(dim);
   if (scales.size() != 1)
-    malformed(file, cat("dimension ", std::to_string(dim), " of dataset '/done' has ", std::to_string(scales.size()),
+    malformed(path, cat("dimension ", std::to_string(dim), " of dataset '/done' has ", std::to_string(scales.size()),
                         " coordinates attached, expected 1"));
   const Dataset coordinate = file.open_dataset(scales.front());
   Axis axis;
   axis.name = coordinate.dimension_scale_name();
-  if (coordinate.shape().size() != 1) malformed(file, cat("coordinate '", coordinate.name(), "' is not 1-D"));
-  axis.values = coordinate.read_double();
-  require_attribute(coordinate, file, "scale");
+  if (coordinate.shape().size() != 1) malformed(path, cat("coordinate '", coordinate.name(), "' is not 1-D"));
+  try {
+    axis.values = coordinate.read_double();
+  } catch (const IoError& e) {
+    fail(path, cat("coordinate '", coordinate.name(), "' is damaged (", e.what(), ")"));
+  }
+  for (const char* name : {"scale", "units", "long_name", "key"}) require_attribute(coordinate, path, name);
+  axis.units = coordinate.read_string_attribute("units");
+  axis.long_name = coordinate.read_string_attribute("long_name");
+  axis.key = coordinate.read_string_attribute("key");
   try {
     axis.scale = parse_axis_scale(coordinate.read_string_attribute("scale"));
   } catch (const std::invalid_argument& e) {
-    malformed(file, cat("coordinate '", coordinate.name(), "': ", e.what()));
+    malformed(path, cat("coordinate '", coordinate.name(), "': ", e.what()));
   }
   if (const std::string err = validate_axis(axis); !err.empty())
-    malformed(file, cat("coordinate '", coordinate.name(), "': ", err));
+    malformed(path, cat("coordinate '", coordinate.name(), "': ", err));
   return axis;
 }
 
-Grid read_grid(const Hdf5File& file) {
-  if (!file.exists("done")) malformed(file, "no dataset '/done'");
-  const Dataset done = file.open_dataset("done");
-  std::vector<Axis> axes;
-  for (std::size_t d = 0; d < done.shape().size(); ++d) axes.push_back(read_axis(file, done, d));
-  if (axes.empty()) malformed(file, "dataset '/done' is a scalar, expected one dimension per axis");
-  return Grid(std::move(axes));
-}
-
 std::vector<Quantity> read_stored(const Hdf5File& file) {
-  require_attribute(file, file, "stored");
+  require_attribute(file, file.path(), "stored");
   const std::string text = file.read_string_attribute("stored");
   std::vector<Quantity> stored;
   std::size_t begin = 0;
@@ -272,7 +160,7 @@ std::vector<Quantity> read_stored(const Hdf5File& file) {
       try {
         stored.push_back(parse_quantity(name));
       } catch (const std::invalid_argument&) {
-        malformed(file, cat("root attribute 'stored' names an unknown quantity '", name, "'"));
+        malformed(file.path(), cat("root attribute 'stored' names an unknown quantity '", clip(name), "'"));
       }
     }
     begin = end + 1;
@@ -280,76 +168,391 @@ std::vector<Quantity> read_stored(const Hdf5File& file) {
   return stored;
 }
 
-// Codes and counters of every cell (the always-kept datasets).
-void read_codes(const Hdf5File& file, SweepMap& map) {
-  const Shape shape = map.grid.shape();
-  const auto done = read_ints(file, "done", shape, 0, 1);
-  const auto status = read_ints(file, "status", shape, kNotComputed, status_code(SolveStatus::invalid_input));
-  const auto regime = read_ints(file, "regime", shape, kNotComputed, regime_code(RegimeKind::failed));
-  const auto stable = read_ints(file, "stable", shape, -1, 1);
-  const auto n = read_ints(file, "n", shape, 0, std::numeric_limits<std::int32_t>::max());
-  const auto k = read_ints(file, "k", shape, 0, std::numeric_limits<std::int32_t>::max());
-  const auto wall_s = open_field(file, "wall_s", shape).read_double();
-  const auto residual = open_field(file, "steady_residual", shape).read_double();
-  map.done.assign(done.size(), 0);
-  map.cells.assign(done.size(), CellResult{});
-  for (std::size_t i = 0; i < done.size(); ++i) {
-    if (done[i] == 0) continue;
-    CellResult& c = map.cells[i];
-    map.done[i] = 1;
-    c.status = static_cast<std::int8_t>(status[i]);
-    c.regime = static_cast<std::int8_t>(regime[i]);
-    c.stable = static_cast<std::int8_t>(stable[i]);
-    c.n = static_cast<std::int32_t>(n[i]);
-    c.k = static_cast<std::int32_t>(k[i]);
-    c.wall_s = wall_s[i];
-    c.steady_residual = residual[i];
-  }
-}
-
-// A stored quantity of every cell done, exactly as written (NaN stays NaN).
-void read_quantity(const Hdf5File& file, Quantity q, SweepMap& map) {
-  const std::string name = to_string(q);
-  const Shape shape = map.grid.shape();
-  if (!quantity_is_integer(q)) {
-    const auto values = open_field(file, name, shape).read_double();
-    for (std::size_t i = 0; i < values.size(); ++i)
-      if (map.done[i] != 0) set_quantity(map.cells[i], q, values[i]);
-    return;
-  }
-  const auto values = read_ints(file, name, shape, 0, quantity_max(q));
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (map.done[i] != 0) set_quantity_int(map.cells[i], q, values[i]);
-}
-
-// The root attributes must all be there, and their counts agree with the datasets.
-void check_root_attributes(const Hdf5File& file, const SweepMap& map) {
-  for (const char* name : {"title", "Conventions", "vibromap_version", "scene", "ranks", "cells_total", "cells_done",
-                           "complete"})
-    require_attribute(file, file, name);
-  const auto done = std::count(map.done.begin(), map.done.end(), std::uint8_t{1});
-  if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(map.grid.size()))
-    malformed(file, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(map.grid.size()),
+MapLayout read_layout(const Hdf5File& file) {
+  const std::string& path = file.path();
+  MapLayout layout;
+  layout.stored = read_stored(file);
+  for (const char* name : {"title", "Conventions", "vibromap_version", "scene", "identity", "ranks", "cells_total",
+                           "cells_done", "complete"})
+    require_attribute(file, path, name);
+  if (!file.exists("done")) malformed(path, "no dataset '/done'");
+  const Dataset done = file.open_dataset("done");
+  std::vector<Axis> axes;
+  for (std::size_t d = 0; d < done.shape().size(); ++d) axes.push_back(read_axis(file, done, d));
+  if (axes.empty()) malformed(path, "dataset '/done' is a scalar, expected one dimension per axis");
+  layout.grid = Grid(std::move(axes));
+  layout.scene_text = file.read_string_attribute("scene");
+  layout.identity = file.read_string_attribute("identity");
+  if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(layout.grid.size()))
+    malformed(path, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(layout.grid.size()),
                         " cells"));
-  if (file.read_int_attribute("cells_done") != done)
-    malformed(file, cat("root attribute 'cells_done' differs from the ", std::to_string(done),
-                        " cells marked in dataset '/done'"));
+  return layout;
+}
+
+// Opens /<name> and checks that it has the grid's shape.
+Dataset open_field(const Hdf5File& file, std::string_view name, const Shape& shape) {
+  if (!file.exists(name)) malformed(file.path(), cat("no dataset '/", name, "'"));
+  Dataset dataset = file.open_dataset(name);
+  if (dataset.shape() != shape)
+    malformed(file.path(), cat("dataset '", dataset.name(), "' has shape ", shape_text(dataset.shape()), ", expected ",
+                               shape_text(shape), " (the axes' lengths)"));
+  return dataset;
 }
 
 }  // namespace
+
+// ---- One chunk of every dataset ----------------------------------------------------------------
+
+// The datasets of an open map and a buffer per dataset for one chunk of cells.
+struct MapDatasets {
+  std::vector<MapField> fields;
+  Dataset done;
+  std::vector<Dataset> data;                     // fields[i]'s dataset
+  std::vector<std::uint8_t> done_buffer;
+  std::vector<std::vector<double>> reals;        // per field, float fields
+  std::vector<std::vector<std::int64_t>> ints;   // per field, integer fields
+
+  void open(const Hdf5File& file, const MapLayout& layout) {
+    fields = map_fields(layout.stored);
+    const Shape shape = layout.grid.shape();
+    done = open_field(file, "done", shape);
+    for (const MapField& f : fields) data.push_back(open_field(file, f.name, shape));
+    reals.resize(fields.size());
+    ints.resize(fields.size());
+  }
+
+  // Reads cells `span` of dataset i (-1: done). False when HDF5 fails (a damaged chunk).
+  bool read(int i, const CellSpan& span, std::string* why) {
+    const std::size_t n = static_cast<std::size_t>(span.end - span.begin);
+    try {
+      if (i < 0) {
+        done_buffer.resize(n);
+        done.read_flat(span.begin, std::span<std::uint8_t>(done_buffer));
+      } else if (fields[static_cast<std::size_t>(i)].integer) {
+        ints[static_cast<std::size_t>(i)].resize(n);
+        data[static_cast<std::size_t>(i)].read_flat(span.begin, std::span<std::int64_t>(ints[static_cast<std::size_t>(i)]));
+      } else {
+        reals[static_cast<std::size_t>(i)].resize(n);
+        data[static_cast<std::size_t>(i)].read_flat(span.begin, std::span<double>(reals[static_cast<std::size_t>(i)]));
+      }
+    } catch (const IoError& e) {
+      if (why) *why = e.what();
+      return false;
+    }
+    return true;
+  }
+
+  std::string name(int i) const { return i < 0 ? "done" : fields[static_cast<std::size_t>(i)].name; }
+
+  // Cell k of the chunk read last, from the buffers (integer values range-checked).
+  CellResult cell(std::size_t k, const std::string& path) const {
+    CellResult c;
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      const MapField& f = fields[i];
+      if (!f.integer) {
+        f.set_real(c, reals[i][k]);
+        continue;
+      }
+      const std::int64_t v = ints[i][k];
+      if (v < f.lo || v > f.hi)
+        malformed(path, cat("dataset '/", f.name, "' holds ", std::to_string(v), ", outside ", std::to_string(f.lo), "..",
+                            std::to_string(f.hi)));
+      f.set_int(c, v);
+    }
+    return c;
+  }
+
+  void fill_chunk(const CellSpan& span) {
+    const std::size_t n = static_cast<std::size_t>(span.end - span.begin);
+    done_buffer.assign(n, 0);
+    done.write_flat(span.begin, std::span<const std::uint8_t>(done_buffer));
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      if (fields[i].integer) {
+        ints[i].assign(n, static_cast<std::int64_t>(fields[i].fill.value_or(0.0)));
+        data[i].write_flat(span.begin, std::span<const std::int64_t>(ints[i]));
+      } else {
+        reals[i].assign(n, fields[i].fill.value_or(0.0));
+        data[i].write_flat(span.begin, std::span<const double>(reals[i]));
+      }
+    }
+  }
+};
+
 }  // namespace detail
 
-SweepMap read_map(const std::string& path) {
+// ---- MapWriter -------------------------------------------------------------------------------
+
+struct MapWriter::Impl {
+  std::string path;
+  Hdf5File file;
+  MapLayout layout;
+  Shape chunk;
+  std::vector<CellSpan> chunks;
+  detail::MapDatasets ds;
+  std::uint64_t done_count = 0;
+  MapRepair repair;
+  std::vector<CellSpan> unflushed;       // written since the last checkpoint, in arrival order
+  std::uint64_t window_begin = 0;        // pending(): the cached window of /done
+  std::vector<std::uint8_t> window;
+  std::vector<double> reals;             // write(): one field's values
+  std::vector<std::int64_t> ints;
+
+  Impl(std::string p, Hdf5File f) : path(std::move(p)), file(std::move(f)) {}
+};
+
+MapWriter::MapWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+MapWriter::MapWriter(MapWriter&&) noexcept = default;
+MapWriter& MapWriter::operator=(MapWriter&&) noexcept = default;
+MapWriter::~MapWriter() = default;
+
+const std::string& MapWriter::path() const { return impl_->path; }
+const MapLayout& MapWriter::layout() const { return impl_->layout; }
+std::uint64_t MapWriter::cells_done() const { return impl_->done_count; }
+const MapRepair& MapWriter::repair() const { return impl_->repair; }
+
+std::uint64_t MapWriter::file_bytes(const MapLayout& layout) {
+  std::uint64_t per_cell = 1;  // done
+  for (const detail::MapField& f : detail::map_fields(layout.stored)) per_cell += detail::element_bytes(f.file_type);
+  // HDF5 stores every chunk whole, the ones that overhang the grid's edge included.
+  const Shape shape = layout.grid.shape();
+  const Shape chunk = detail::map_chunk_shape(shape);
+  std::uint64_t chunks = 1, chunk_cells = 1;
+  for (std::size_t d = 0; d < shape.size(); ++d) {
+    chunks *= (shape[d] + chunk[d] - 1) / chunk[d];
+    chunk_cells *= chunk[d];
+  }
+  std::uint64_t axes = 0;
+  for (const Axis& a : layout.grid.axes()) axes += 8 * a.values.size() + 4;
+  constexpr std::uint64_t kPerChunk = 64;      // its checksum and its entry in the chunk index, about
+  constexpr std::uint64_t kHeaders = 32768;    // object headers and attributes, about
+  return chunks * (chunk_cells * per_cell + 10 * kPerChunk) + axes + kHeaders + layout.scene_text.size() +
+         layout.identity.size();
+}
+
+MapWriter MapWriter::create(const std::string& path, const MapLayout& layout, int ranks) {
+  detail::check_layout(path, layout);
+  try {
+    auto impl = std::make_unique<Impl>(path, Hdf5File(path, FileMode::truncate, detail::writer_options()));
+    impl->layout = layout;
+    const Shape shape = layout.grid.shape();
+    impl->chunk = detail::map_chunk_shape(shape);
+    impl->chunks = detail::chunk_spans(shape, impl->chunk);
+    const std::vector<Dataset> scales = detail::write_axes(impl->file, layout.grid);
+    detail::MapField done_field = detail::done_field();
+    impl->ds.fields = detail::map_fields(layout.stored);
+    impl->ds.done = detail::make_field(impl->file, done_field, shape, impl->chunk, scales);
+    for (const detail::MapField& f : impl->ds.fields)
+      impl->ds.data.push_back(detail::make_field(impl->file, f, shape, impl->chunk, scales));
+    impl->ds.reals.resize(impl->ds.fields.size());
+    impl->ds.ints.resize(impl->ds.fields.size());
+    detail::write_root_attributes(impl->file, layout, ranks);
+    impl->file.sync();
+    return MapWriter(std::move(impl));
+  } catch (...) {
+    std::remove(path.c_str());
+    throw;
+  }
+}
+
+MapWriter MapWriter::resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done) {
+  auto impl = std::make_unique<Impl>(path, Hdf5File(path, FileMode::read_write, detail::writer_options()));
+  impl->layout = detail::read_layout(impl->file);
+  const Shape shape = impl->layout.grid.shape();
+  impl->chunk = detail::map_chunk_shape(shape);
+  impl->chunks = detail::chunk_spans(shape, impl->chunk);
+  impl->ds.open(impl->file, impl->layout);
+  MapWriter writer(std::move(impl));
+  writer.verify_and_repair(visit_done);
+  return writer;
+}
+
+// Reads every chunk of every dataset: a chunk that fails to read anywhere is wiped everywhere
+// (fill values, /done = 0); the others' done cells are counted and visited.
+void MapWriter::verify_and_repair(const std::function<void(const CellResult&)>& visit_done) {
+  Impl& m = *impl_;
+  std::vector<CellSpan> damaged;
+  const int n_fields = static_cast<int>(m.ds.fields.size());
+  for (const CellSpan& span : m.chunks) {
+    bool ok = true;
+    for (int i = -1; i < n_fields; ++i) {
+      if (m.ds.read(i, span, nullptr)) continue;
+      ok = false;
+      const std::string name = m.ds.name(i);
+      if (std::find(m.repair.datasets.begin(), m.repair.datasets.end(), name) == m.repair.datasets.end())
+        m.repair.datasets.push_back(name);
+    }
+    if (!ok) {
+      damaged.push_back(span);
+      continue;
+    }
+    for (std::size_t k = 0; k < m.ds.done_buffer.size(); ++k) {
+      if (m.ds.done_buffer[k] > 1) detail::malformed(m.path, "dataset '/done' holds a value other than 0 or 1");
+      if (m.ds.done_buffer[k] == 0) continue;
+      const CellResult c = m.ds.cell(k, m.path);
+      ++m.done_count;
+      if (visit_done) visit_done(c);
+    }
+  }
+  for (const CellSpan& span : damaged) {
+    ++m.repair.chunks;
+    m.repair.cells += span.end - span.begin;
+    m.ds.fill_chunk(span);
+  }
+  if (!damaged.empty()) m.file.sync();
+}
+
+std::uint64_t MapWriter::pending(std::uint64_t from, std::uint64_t max, std::vector<CellSpan>& out) {
+  Impl& m = *impl_;
+  const std::uint64_t cells = m.layout.grid.size();
+  std::uint64_t taken = 0, i = from;
+  while (i < cells && taken < max) {
+    if (i < m.window_begin || i >= m.window_begin + m.window.size()) {
+      m.window_begin = i;
+      m.window.resize(static_cast<std::size_t>(std::min(detail::kDoneWindow, cells - i)));
+      m.ds.done.read_flat(i, std::span<std::uint8_t>(m.window));
+    }
+    if (m.window[static_cast<std::size_t>(i - m.window_begin)] == 0) {
+      if (!out.empty() && out.back().end == i) {
+        ++out.back().end;
+      } else {
+        out.push_back({i, i + 1});
+      }
+      ++taken;
+    }
+    ++i;
+  }
+  return i;
+}
+
+void MapWriter::write(std::uint64_t first, std::span<const CellResult> cells) {
+  Impl& m = *impl_;
+  if (cells.empty()) return;
+  for (std::size_t i = 0; i < m.ds.fields.size(); ++i) {
+    const detail::MapField& f = m.ds.fields[i];
+    if (f.integer) {
+      m.ints.resize(cells.size());
+      for (std::size_t k = 0; k < cells.size(); ++k) m.ints[k] = f.get_int(cells[k]);
+      m.ds.data[i].write_flat(first, std::span<const std::int64_t>(m.ints));
+    } else {
+      m.reals.resize(cells.size());
+      for (std::size_t k = 0; k < cells.size(); ++k) m.reals[k] = f.get_real(cells[k]);
+      m.ds.data[i].write_flat(first, std::span<const double>(m.reals));
+    }
+  }
+  const std::uint64_t last = first + cells.size();
+  if (!m.unflushed.empty() && m.unflushed.back().end == first) {
+    m.unflushed.back().end = last;
+  } else {
+    m.unflushed.push_back({first, last});
+  }
+}
+
+void MapWriter::checkpoint() {
+  Impl& m = *impl_;
+  if (m.unflushed.empty()) return;
+  m.file.sync();  // the data first: /done never runs ahead of it
+  std::sort(m.unflushed.begin(), m.unflushed.end(),
+            [](const CellSpan& a, const CellSpan& b) { return a.begin < b.begin; });
+  std::vector<std::uint8_t> ones;
+  for (const CellSpan& span : m.unflushed) {
+    for (std::uint64_t at = span.begin; at < span.end;) {
+      const std::uint64_t n = std::min<std::uint64_t>(span.end - at, detail::kDoneWindow);
+      ones.assign(static_cast<std::size_t>(n), 1);
+      m.ds.done.write_flat(at, std::span<const std::uint8_t>(ones));
+      at += n;
+    }
+    m.done_count += span.end - span.begin;
+  }
+  m.unflushed.clear();
+  m.window.clear();  // pending() reads /done afresh
+  m.file.sync();
+}
+
+void MapWriter::finish(int ranks) {
+  Impl& m = *impl_;
+  checkpoint();
+  m.file.set_attribute("cells_done", m.done_count);
+  m.file.set_attribute("complete", m.done_count == m.layout.grid.size() ? 1 : 0);
+  m.file.set_attribute("ranks", ranks);
+  m.file.sync();
+  m.ds = detail::MapDatasets{};
+  m.file.close();
+}
+
+// ---- Reading ---------------------------------------------------------------------------------
+
+MapLayout read_map_layout(const std::string& path) {
   const Hdf5File file(path, FileMode::read_only);
+  return detail::read_layout(file);
+}
+
+void scan_map(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit) {
+  const Hdf5File file(path, FileMode::read_only);
+  const MapLayout layout = detail::read_layout(file);
+  const Shape shape = layout.grid.shape();
+  const Shape chunk = detail::map_chunk_shape(shape);
+  detail::MapDatasets ds;
+  ds.open(file, layout);
+  const int n_fields = static_cast<int>(ds.fields.size());
+  for (const CellSpan& span : detail::chunk_spans(shape, chunk)) {
+    std::string why;
+    for (int i = -1; i < n_fields; ++i)
+      if (!ds.read(i, span, &why))
+        fail(path, cat("dataset '/", ds.name(i), "' is damaged: cells ", std::to_string(span.begin), "..",
+                       std::to_string(span.end - 1), " fail to read (", why, ")"));
+    for (std::size_t k = 0; k < ds.done_buffer.size(); ++k) {
+      if (ds.done_buffer[k] > 1) detail::malformed(path, "dataset '/done' holds a value other than 0 or 1");
+      if (ds.done_buffer[k] == 1) visit(span.begin + k, ds.cell(k, path));
+    }
+  }
+}
+
+SweepMap read_map(const std::string& path) {
   SweepMap map;
-  map.stored = detail::read_stored(file);
-  map.grid = detail::read_grid(file);
-  detail::read_codes(file, map);
-  for (const Quantity q : map.stored) detail::read_quantity(file, q, map);
-  detail::check_root_attributes(file, map);
-  map.scene_text = file.read_string_attribute("scene");
-  map.ranks = static_cast<int>(file.read_int_attribute("ranks"));
+  {
+    const Hdf5File file(path, FileMode::read_only);
+    const MapLayout layout = detail::read_layout(file);
+    map.grid = layout.grid;
+    map.stored = layout.stored;
+    map.scene_text = layout.scene_text;
+    map.identity = layout.identity;
+    map.ranks = static_cast<int>(file.read_int_attribute("ranks"));
+  }
+  map.cells.assign(map.grid.size(), CellResult{});
+  map.done.assign(map.grid.size(), 0);
+  scan_map(path, [&](std::uint64_t i, const CellResult& c) {
+    map.cells[i] = c;
+    map.done[i] = 1;
+  });
   return map;
+}
+
+void write_map(const std::string& path, const SweepMap& map) {
+  const auto refuse = [&](std::string_view why) { fail(path, cat("cannot write map: ", why)); };
+  const std::string cells = std::to_string(map.grid.size());
+  if (map.cells.size() != map.grid.size()) refuse(cat(std::to_string(map.cells.size()), " cell records for ", cells, " cells"));
+  if (map.done.size() != map.grid.size()) refuse(cat(std::to_string(map.done.size()), " done flags for ", cells, " cells"));
+  detail::check_layout(path, {map.grid, map.stored, map.scene_text, map.identity});
+  const std::string tmp = path + ".tmp";
+  try {
+    MapWriter w = MapWriter::create(tmp, {map.grid, map.stored, map.scene_text, map.identity}, map.ranks);
+    for (std::uint64_t i = 0; i < map.cells.size();) {
+      if (!map.done[i]) {
+        ++i;
+        continue;
+      }
+      std::uint64_t j = i;
+      while (j < map.cells.size() && map.done[j]) ++j;
+      w.write(i, std::span<const CellResult>(map.cells.data() + i, static_cast<std::size_t>(j - i)));
+      i = j;
+    }
+    w.finish(map.ranks);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+      fail(path, cat("cannot rename file '", tmp, "' to it (", std::strerror(errno), ")"));
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
 }
 
 }  // namespace vibromap

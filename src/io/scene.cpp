@@ -929,7 +929,13 @@ void check_axis_range(const Axis& axis, const std::string& loc) {
 
 Axis read_axis(std::string_view name, const toml::node& node, const std::string& loc) {
   const toml::table& t = axis_table(name, node, loc);
-  Axis axis{std::string(name), {}, axis_scale(t, loc)};
+  Axis axis;
+  axis.name = std::string(name);
+  axis.scale = axis_scale(t, loc);
+  const SceneKey& k = axis_key(name);
+  axis.key = cat(k.section, ".", k.key);
+  axis.units = k.unit == "-" ? "1" : std::string(k.unit);
+  axis.long_name = std::string(k.meaning);
   const toml::node* values = t.get("values");
   if (values != nullptr && (t.contains("from") || t.contains("to") || t.contains("n"))) {
     fail(cat(loc, ": axis ", name, " gives both values and from/to/n: an axis is ", kAxisForms));

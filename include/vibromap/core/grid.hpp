@@ -20,9 +20,12 @@ std::string to_string(AxisScale s);             // "lin", "log"
 AxisScale parse_axis_scale(std::string_view s);  // throws std::invalid_argument
 
 struct Axis {
-  std::string name;            // a swept parameter: E1, E2, R1, R2, m2, k2, omega2
+  std::string name;            // its coordinate name in maps: the key within its section (E1, omega2)
   std::vector<double> values;  // the axis points, SI units
   AxisScale scale = AxisScale::lin;  // how the points were spaced (plots use it for their axes)
+  std::string key{};           // the full scene key ("contact.E1")
+  std::string units{};         // SI unit ("Pa"; "1" when dimensionless)
+  std::string long_name{};     // the key's meaning, one line (CF long_name)
 };
 
 // The parameters a [sweep] may have as axes, in the canonical order used when the scene does

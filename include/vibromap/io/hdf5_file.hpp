@@ -31,6 +31,7 @@
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -92,14 +93,26 @@ std::int64_t check(std::int64_t ret, std::string_view file, std::string_view ope
 
 }  // namespace detail
 
+// The element types of datasets (file types little-endian; integers signed but uint8).
+enum class ElementType { float64, int64, int32, int8, uint8 };
+
 // Storage options of a new dataset. Defaults: contiguous, uncompressed.
 struct DatasetOptions {
-  Shape chunk;      // chunk extent per dimension (clamped to the data's extent); empty: contiguous unless deflate > 0, -
+  Shape chunk;      // chunk extent per dimension (clamped to the data's extent); empty: contiguous unless deflate > 0 or fletcher32, -
   int deflate = 0;  // gzip level 1..9 (needs chunks: the whole array is one chunk if chunk is empty); 0: none, -
   // Value of elements never written, converted to the dataset's type; also written as the
   // attribute "_FillValue" of the dataset's own type (the netCDF/CF convention, which
   // xarray decodes to NaN). Empty: HDF5's default (0) and no attribute, -
   std::optional<double> fill_value = std::nullopt;  // (initialised: aggregates may omit it without a warning)
+  // Write fill_value also as the attribute "_FillValue" (xarray then masks it to NaN: right for
+  // floats, not for integer codes whose fill is itself a meaning, such as -1 "not computed"), -
+  bool fill_attribute = true;
+  // HDF5's Fletcher32 checksum filter on every chunk (h5py and netCDF-4 verify it on each read):
+  // a damaged byte makes the read of its chunk fail instead of returning a wrong number, -
+  bool fletcher32 = false;
+  // Allocate every chunk (and write its fill value) when the dataset is made, so that writes
+  // never change the file's structure (nor its size), -
+  bool allocate_early = false;
 };
 
 // Something that carries attributes: the file's root group, a group or a dataset. Holds its
@@ -155,10 +168,20 @@ class Hdf5Object {
 // named after its dimension is attached to dimension `dim` of each dataset it labels.
 class Dataset : public Hdf5Object {
  public:
+  Dataset() = default;
   Shape shape() const;
   std::size_t size() const;  // number of elements
   std::vector<double> read_double() const;
   std::vector<std::int64_t> read_int() const;
+  ElementType element_type() const;  // the nearest of ElementType (floats as float64, ints by size)
+  Shape chunk_shape() const;         // empty when the dataset is not chunked
+
+  // The elements [first, first + values.size()) in flat (row-major) order, as one selection
+  // of at most 2N-1 boxes of the N-D dataset; converted to and from the dataset's own type.
+  template <class T>
+  void write_flat(std::uint64_t first, std::span<const T> values);
+  template <class T>
+  void read_flat(std::uint64_t first, std::span<T> values) const;
 
   // Makes this dataset a dimension scale whose dimension is called `dimension_name`
   // (netCDF reads a scale named after its own dataset as a coordinate variable).
@@ -174,7 +197,30 @@ class Dataset : public Hdf5Object {
   friend class Group;
   using Hdf5Object::Hdf5Object;
   void read_into(void* buffer, std::size_t count, bool as_double) const;
+  void transfer_flat(std::uint64_t first, std::size_t count, ElementType memory, void* buffer, bool write) const;
 };
+
+template <class T>
+constexpr ElementType element_type_of() {
+  if constexpr (std::is_same_v<T, double>) return ElementType::float64;
+  else if constexpr (std::is_same_v<T, std::int64_t>) return ElementType::int64;
+  else if constexpr (std::is_same_v<T, std::int32_t>) return ElementType::int32;
+  else if constexpr (std::is_same_v<T, std::int8_t>) return ElementType::int8;
+  else {
+    static_assert(std::is_same_v<T, std::uint8_t>, "float64, int64, int32, int8 or uint8");
+    return ElementType::uint8;
+  }
+}
+
+template <class T>
+void Dataset::write_flat(std::uint64_t first, std::span<const T> values) {
+  transfer_flat(first, values.size(), element_type_of<T>(), const_cast<T*>(values.data()), true);
+}
+
+template <class T>
+void Dataset::read_flat(std::uint64_t first, std::span<T> values) const {
+  transfer_flat(first, values.size(), element_type_of<T>(), values.data(), false);
+}
 
 // A group: a directory of datasets and groups (the file's root is one).
 // write_dataset creates a new dataset (throws if `name` exists); an empty shape means 1-D
@@ -191,6 +237,8 @@ class Group : public Hdf5Object {
                         const DatasetOptions& options = {});
   Dataset write_dataset(std::string_view name, std::span<const std::uint8_t> data, const Shape& shape = {},
                         const DatasetOptions& options = {});
+  // A new dataset of `shape` holding only fill values (write it with Dataset::write_flat).
+  Dataset create_dataset(std::string_view name, ElementType type, const Shape& shape, const DatasetOptions& options);
   Dataset open_dataset(std::string_view name) const;
 
   Group create_group(std::string_view name);
@@ -203,9 +251,7 @@ class Group : public Hdf5Object {
   using Hdf5Object::Hdf5Object;
 
  private:
-  enum class Element { float64, int64, int32, int8, uint8 };
-  static std::pair<detail::Hid, detail::Hid> element_types(Element element);  // (file type, memory type)
-  Dataset write_numbers(std::string_view name, const void* data, std::size_t count, Element element,
+  Dataset write_numbers(std::string_view name, const void* data, std::size_t count, ElementType element,
                         const Shape& shape, const DatasetOptions& options);
 };
 
@@ -215,13 +261,27 @@ enum class FileMode {
   read_only,   // open an existing file for reading
 };
 
+// How a file is opened. Defaults: what every reader expects.
+struct FileOptions {
+  // HDF5's own file lock (flock) while the file is open. Off for a file written over hours
+  // that readers should be able to open meanwhile (the writer keeps a lock of its own), -
+  bool locking = true;
+  // Raw-data chunk cache per dataset, bytes (HDF5's default is 1 MiB), -
+  std::size_t chunk_cache_bytes = 1 << 20;
+  // Write the 1.8 file format (checksummed object headers; netCDF-4 and h5py read it) instead
+  // of the oldest one that can hold the file, -
+  bool format_1_8 = false;
+};
+
 // An open HDF5 file, usable as its root group "/". Move-only; the destructor closes it.
 class Hdf5File : public Group {
  public:
-  explicit Hdf5File(const std::string& path, FileMode mode = FileMode::read_only);
+  explicit Hdf5File(const std::string& path, FileMode mode = FileMode::read_only, const FileOptions& options = {});
 
   const std::string& path() const { return file_path_; }
   void flush();
+  // flush(), then the operating system's buffers of the file to the disk (fsync).
+  void sync();
   // Closes the file and reports a failure (e.g. a failed final flush) as IoError. Objects
   // opened from this file must be destroyed first: HDF5 keeps the file open until they are.
   void close();

@@ -1,9 +1,12 @@
 #pragma once
-// Regime maps: one HDF5 file per sweep, readable by h5py and by xarray (netCDF-4 compatible).
+// Regime maps: one HDF5 file per sweep, readable by h5py and by xarray (netCDF-4 compatible),
+// written cell by cell as a sweep runs (MapWriter) and read back whole or streamed chunk by
+// chunk (read_map, scan_map).
 //
 // Layout (N = number of axes, shape = the axes' lengths, first axis slowest):
-//   /<axis>          1-D float64 coordinate per swept parameter (E1, E2, ...), a dimension
-//                    scale, attributes units, long_name, scale ("lin" | "log")
+//   /<axis>          1-D float64 coordinate per axis, named after the key within its section
+//                    (E1, omega, F0, ...), a dimension scale; attributes units, long_name, key
+//                    (the full scene key, "forcing.omega") and scale ("lin" | "log")
 //   /done            N-D uint8: 1 where the cell has been computed
 //   /status          N-D int8: flag_values -1..3, flag_meanings
 //                    "not_computed ok budget failed invalid_input"
@@ -17,47 +20,134 @@
 //   /wall_s          N-D float64, units s
 //   /steady_residual N-D float64, units 1
 //   /<quantity>      N-D, only for the scene's [sweep] store list, with units and long_name
-//                    from cell_result.cpp's quantity table: int64 for the integer quantities
-//                    (hertz_valid, periods, rhs_evals), float64 for the others (T_con, k_con,
-//                    F_max, z_max, z_ratio, v_in, impulse, max_multiplier, lyapunov).
-//                    max_multiplier and lyapunov are NaN also in cells done where the solver
-//                    did not compute them (no periodic orbit; Lyapunov exponent not asked).
-// Every N-D dataset has the axes attached as dimension scales, in order. Float datasets
-// hold NaN (their _FillValue) where done == 0; integer ones hold 0 and regime/status/stable
-// -1. So a NaN alone does not say whether a cell was reached: /done does.
-// Root attributes: title, Conventions ("CF-1.8"), vibromap_version, scene (the full scene
-// text), ranks (MPI ranks of the run that wrote the file), cells_total, cells_done,
-// complete (0 | 1), stored (the quantity names, space separated).
+//                    from the quantity catalogue (core/quantities.hpp): int64 for the integer
+//                    quantities, float64 for the others. max_multiplier and lyapunov are NaN
+//                    also in cells done where the solver did not compute them.
+// Float datasets hold NaN (their _FillValue) where done == 0; integer ones hold 0, and
+// regime/status/stable -1. So a NaN alone does not say whether a cell was reached: /done does.
+// Root attributes: title, Conventions ("CF-1.8"), vibromap_version, scene (the scene text),
+// identity (what --resume compares: the canonical cell-defining values), ranks, cells_total,
+// cells_done, complete (0 | 1; both brought up to date when a run ends), stored (the quantity
+// names, space separated).
 //
-// Writing is atomic (FILE.tmp, fsync, rename), so a run killed at any moment leaves either
-// the previous checkpoint or the new one, never a half-written file.
+// Storage, and why a run killed at any instant loses nothing that was checkpointed:
+//   - Every dataset is chunked and carries HDF5's Fletcher32 checksum filter (verified by HDF5,
+//     h5py and netCDF-4 on every read): a damaged byte makes its chunk unreadable instead of
+//     returning a wrong number.
+//   - The chunks of the N-D datasets are runs of consecutive cells in flat order (the trailing
+//     axes whole, about kMapChunkCells cells), so the cells handed out together land in one or
+//     two chunks, and every chunk is a contiguous range of flat indices.
+//   - Every chunk is allocated, and its fill values written, when the file is made: the file's
+//     size is known up front (file_bytes), and writing cells never changes the file's structure.
+//   - Cells are written into the data datasets as they arrive. checkpoint() flushes them and
+//     syncs the file, and only then sets /done for them (flushed and synced again): /done is
+//     never ahead of the data. A chunk torn by a kill in the middle of its write fails its
+//     checksum; resume() wipes such chunks and computes their cells again.
+// Memory: a writer holds HDF5's chunk cache, one chunk-sized buffer per dataset and the ranges of
+// the cells written since the last checkpoint, never a whole dataset.
 
 #include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
-#include "vibromap/core/quantities.hpp"
 #include "vibromap/core/grid.hpp"
+#include "vibromap/core/quantities.hpp"
 
 namespace vibromap {
 
+// Cells per chunk of the N-D datasets, about (a chunk is 256 KiB of float64).
+constexpr std::uint64_t kMapChunkCells = 32768;
+
+// What fixes a map before any cell is computed.
+struct MapLayout {
+  Grid grid;
+  std::vector<Quantity> stored;  // optional quantities kept in the file
+  std::string scene_text;        // provenance: the scene after overrides
+  std::string identity;          // what --resume compares (one "key = value" line per cell-defining key)
+};
+
+// Cells [begin, end) in flat order.
+struct CellSpan {
+  std::uint64_t begin = 0;
+  std::uint64_t end = 0;
+};
+
+// What resume() found damaged and wiped: its cells are no longer done.
+struct MapRepair {
+  std::uint64_t chunks = 0;              // damaged chunks (counted once over the datasets)
+  std::uint64_t cells = 0;               // cells in them that were done and will be recomputed
+  std::vector<std::string> datasets;     // the datasets where damage was found
+};
+
+class MapWriter {
+ public:
+  // The bytes a new map of `layout` takes on disk, about (every chunk is allocated up front).
+  static std::uint64_t file_bytes(const MapLayout& layout);
+  // Makes a new map file at `path` (replacing one): every dataset, allocated and filled; synced.
+  // Throws IoError naming the path; a partly made file is removed.
+  static MapWriter create(const std::string& path, const MapLayout& layout, int ranks);
+  // Opens a map to go on filling it: checks its layout, reads every chunk of every dataset to
+  // verify its checksum, wipes damaged chunks (repair()), counts the cells done and calls
+  // visit_done(cell) for each (resume's counts of regimes). Throws IoError naming the path and
+  // what is wrong when it is not a map, a value is out of range or its axes are damaged.
+  static MapWriter resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done = {});
+
+  MapWriter(MapWriter&&) noexcept;
+  MapWriter& operator=(MapWriter&&) noexcept;
+  ~MapWriter();
+
+  const std::string& path() const;
+  const MapLayout& layout() const;
+  std::uint64_t cells_done() const;  // as recorded in /done (the last checkpoint)
+  const MapRepair& repair() const;
+
+  // The cells not done at or after `from`, ascending, at most `max` of them, appended to `out`;
+  // returns where the scan stopped (cells when none are left). Reads /done a window at a time.
+  std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<CellSpan>& out);
+  // Writes the results of cells [first, first + cells.size()) (not done until the checkpoint).
+  void write(std::uint64_t first, std::span<const CellResult> cells);
+  // Makes the cells written since the last checkpoint durable and done (see the file comment).
+  void checkpoint();
+  // The last checkpoint, then the root attributes cells_done, complete and ranks; closes.
+  void finish(int ranks);
+
+ private:
+  struct Impl;
+  explicit MapWriter(std::unique_ptr<Impl> impl);
+  void verify_and_repair(const std::function<void(const CellResult&)>& visit_done);
+  std::unique_ptr<Impl> impl_;
+};
+
+// A whole map in memory (small maps: tests, the Python samples, seeds of small sweeps).
 struct SweepMap {
   Grid grid;
   std::vector<Quantity> stored;     // optional quantities kept in the file
   std::vector<CellResult> cells;    // grid.size() records, flat index order
   std::vector<std::uint8_t> done;   // grid.size() flags
   std::string scene_text;           // provenance
+  std::string identity;             // what --resume compares
   int ranks = 1;                    // MPI ranks of the run
 };
 
-// Writes the whole map atomically. Throws IoError naming the path.
+// Writes a whole map (create, every done cell, finish) to `path + ".tmp"`, renamed to `path`
+// when complete: a failure leaves no file and an existing `path` untouched. Throws IoError.
 void write_map(const std::string& path, const SweepMap& map);
 
-// Reads a map written by write_map (for --resume and tests), every value exactly as written
-// (NaN stays NaN). Records of cells not done are default CellResult, and so are optional
-// quantities not stored (0; NaN for max_multiplier and lyapunov). Throws IoError naming the
-// path and what is missing or malformed (a map without /stable, from before it was kept,
-// included).
+// The layout of the map at `path` (its axes, stored quantities, scene and identity). Throws
+// IoError naming the path when it is not a readable map.
+MapLayout read_map_layout(const std::string& path);
+
+// Streams the map at `path` chunk by chunk: visit(flat index, cell) for every cell done, in flat
+// order; memory stays one chunk per dataset. Throws IoError naming the path and the dataset when
+// a chunk is damaged (its checksum fails) or a value is out of its range.
+void scan_map(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit);
+
+// Reads a whole map (every value exactly as written; NaN stays NaN). Records of cells not done
+// are default CellResult, and so are optional quantities not stored. Throws IoError naming the
+// path and what is missing, malformed or damaged.
 SweepMap read_map(const std::string& path);
 
 }  // namespace vibromap

@@ -4,48 +4,25 @@
 #include <vector>
 
 namespace vibromap::detail {
-namespace {
 
 std::string regime_label(const CellResult& c) { return Regime{static_cast<RegimeKind>(c.regime), c.n, c.k}.label(); }
 
-}  // namespace
-
-MapSink::MapSink(const CellCodec& codec, std::string path, SweepMap map)
-    : ResultSink<CellResult>(codec), path_(std::move(path)), map_(std::move(map)) {
-  for (std::size_t i = 0; i < map_.cells.size(); ++i) {
-    if (!map_.done[i]) continue;
-    ++done_;
-    ++regimes_[regime_label(map_.cells[i])];
-  }
-}
+MapSink::MapSink(const CellCodec& codec, MapWriter writer, std::map<std::string, long> regimes, int ranks)
+    : ResultSink<CellResult>(codec), writer_(std::move(writer)), regimes_(std::move(regimes)), ranks_(ranks) {}
 
 std::uint64_t MapSink::pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) {
-  std::uint64_t taken = 0, i = from;
-  for (; i < items() && taken < max; ++i) {
-    if (map_.done[i]) continue;
-    if (!out.empty() && out.back().end == i) {
-      ++out.back().end;
-    } else {
-      out.push_back({i, i + 1});
-    }
-    ++taken;
-  }
-  return i;
+  spans_.clear();
+  const std::uint64_t next = writer_.pending(from, max, spans_);
+  for (const CellSpan& s : spans_) out.push_back({s.begin, s.end});
+  return next;
 }
 
 void MapSink::store_results(const ItemRange& range, std::vector<CellResult>& results) {
-  for (std::uint64_t i = range.begin; i < range.end; ++i) {
-    const CellResult& c = results[i - range.begin];
-    map_.cells[i] = c;
-    if (!map_.done[i]) ++done_;
-    map_.done[i] = 1;
-    ++regimes_[regime_label(c)];
-  }
+  writer_.write(range.begin, results);
+  for (const CellResult& c : results) ++regimes_[regime_label(c)];
 }
 
-void MapSink::checkpoint() { write_map(path_, map_); }
-
-void MapSink::finish(bool) { write_map(path_, map_); }
+void MapSink::finish(bool) { writer_.finish(ranks_); }
 
 std::string MapSink::note() const {
   std::vector<std::pair<long, std::string>> top;

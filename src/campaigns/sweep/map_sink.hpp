@@ -1,5 +1,6 @@
 #pragma once
-// Internal to the sweep campaign: rank 0's sink of cell results into the map file.
+// Internal to the sweep campaign: rank 0's sink of cell results, streamed into the map file
+// (io/map_file.hpp's MapWriter), with the regime counts for progress lines and the report.
 
 #include <map>
 #include <string>
@@ -11,23 +12,26 @@ namespace vibromap::detail {
 
 class MapSink : public ResultSink<CellResult> {
  public:
-  MapSink(const CellCodec& codec, std::string path, SweepMap map);
+  // `regimes`: the counts of the cells the map already holds (resume).
+  MapSink(const CellCodec& codec, MapWriter writer, std::map<std::string, long> regimes, int ranks);
 
-  std::uint64_t items() const override { return map_.grid.size(); }
-  std::uint64_t items_done() const override { return done_; }
+  std::uint64_t items() const override { return writer_.layout().grid.size(); }
+  std::uint64_t items_done() const override { return writer_.cells_done(); }
   std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) override;
   void store_results(const ItemRange& range, std::vector<CellResult>& results) override;
-  void checkpoint() override;
+  void checkpoint() override { writer_.checkpoint(); }
   void finish(bool complete) override;
   std::string note() const override;  // the five most frequent regimes
 
   const std::map<std::string, long>& regimes() const { return regimes_; }
 
  private:
-  std::string path_;
-  SweepMap map_;
-  std::uint64_t done_ = 0;
+  MapWriter writer_;
   std::map<std::string, long> regimes_;
+  int ranks_;
+  std::vector<CellSpan> spans_;
 };
+
+std::string regime_label(const CellResult& c);
 
 }  // namespace vibromap::detail

@@ -2,7 +2,9 @@
 
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 
+#include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 
 #include "cell_codec.hpp"
@@ -10,10 +12,17 @@
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_lock.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
 namespace vibromap {
 namespace {
+
+std::string gigabytes(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", static_cast<double>(bytes) / 1e9);
+  return text;
+}
 
 // The scene text without the run-control keys that may change between a run and its resume.
 std::string cell_defining_text(const std::string& text) {
@@ -31,34 +40,64 @@ std::string cell_defining_text(const std::string& text) {
   return out;
 }
 
-// Rank 0: the map to fill (new, or read back for --resume).
-SweepMap prepare_map(const Scene& scene, const SweepRunConfig& config, int ranks) {
-  const Grid grid(scene.sweep->axes);
+// The map's identity: what a resume must match (every cell-defining value).
+std::string map_identity(const Scene& scene) { return cell_defining_text(scene.text); }
+
+// Refuses, before the file is made, a map the disk cannot hold.
+void check_space(const std::string& output, const MapLayout& layout) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::absolute(output).parent_path();
+  std::error_code ec;
+  const fs::space_info space = fs::space(dir, ec);
+  const std::uint64_t need = MapWriter::file_bytes(layout);
+  if (!ec && need > space.available)
+    throw SceneError(cat(output, ": the map of ", std::to_string(layout.grid.size()), " cells needs ", gigabytes(need),
+                         " GB, and its file system has ", gigabytes(space.available),
+                         " GB free; store fewer quantities, sweep fewer cells or write elsewhere"));
+}
+
+// A note on stderr when resume() wiped damaged chunks (their cells are computed again).
+void report_repair(const MapWriter& w) {
+  const MapRepair& r = w.repair();
+  if (r.chunks == 0) return;
+  std::string datasets;
+  for (const std::string& d : r.datasets) datasets += (datasets.empty() ? "" : ", ") + d;
+  std::cerr << "vibromap: note: " << w.path() << ": " << r.chunks << " damaged chunk" << (r.chunks > 1 ? "s" : "")
+            << " (checksum failed in " << datasets << ") wiped; their " << r.cells << " cells are computed again\n";
+}
+
+// Checks that a map being resumed is this scene's.
+void check_same_run(const MapWriter& w, const MapLayout& wanted, const Scene& scene) {
+  const MapLayout& have = w.layout();
+  bool same = have.grid.axes().size() == wanted.grid.axes().size() && have.stored == wanted.stored &&
+              have.identity == wanted.identity;
+  for (std::size_t d = 0; same && d < wanted.grid.axes().size(); ++d)
+    same = have.grid.axes()[d].name == wanted.grid.axes()[d].name &&
+           have.grid.axes()[d].values == wanted.grid.axes()[d].values;
+  if (!same)
+    throw SceneError(cat(w.path(), ": --resume: the map was made from a different scene or grid than ", scene.path,
+                         " (compare its 'scene' attribute); use another --output"));
+}
+
+// Rank 0: the lock, and the map to fill (new, or opened for --resume), with its regime counts.
+std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRunConfig& config, int ranks,
+                                              const detail::CellCodec& codec, std::unique_ptr<OutputLock>& lock) {
+  if (!scene.sweep) throw SceneError(scene.path + ": no [sweep] section: nothing to sweep (see 'vibromap keys')");
+  lock = std::make_unique<OutputLock>(config.output);
+  const MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene)};
   const bool exists = std::filesystem::exists(config.output);
+  std::map<std::string, long> regimes;
   if (config.resume && exists) {
-    SweepMap map = read_map(config.output);
-    bool same = map.grid.axes().size() == grid.axes().size() && map.stored == scene.sweep->store &&
-                cell_defining_text(map.scene_text) == cell_defining_text(scene.text);
-    for (std::size_t d = 0; same && d < grid.axes().size(); ++d)
-      same = map.grid.axes()[d].name == grid.axes()[d].name && map.grid.axes()[d].values == grid.axes()[d].values;
-    if (!same)
-      throw SceneError(cat(config.output, ": --resume: the map was made from a different scene or grid than ",
-                           scene.path, " (compare its 'scene' attribute); use another --output"));
-    map.scene_text = scene.text;
-    map.ranks = ranks;
-    return map;
+    MapWriter w = MapWriter::resume(config.output, [&](const CellResult& c) { ++regimes[detail::regime_label(c)]; });
+    check_same_run(w, layout, scene);
+    report_repair(w);
+    return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(regimes), ranks);
   }
-  if (exists && !config.resume && !config.overwrite)
+  if (exists && !config.overwrite)
     throw SceneError(cat(config.output, ": already exists; use --resume to continue it or --overwrite to replace it"));
-  SweepMap map;
-  map.grid = grid;
-  map.stored = scene.sweep->store;
-  map.cells.assign(grid.size(), CellResult{});
-  map.done.assign(grid.size(), 0);
-  map.scene_text = scene.text;
-  map.ranks = ranks;
-  write_map(config.output, map);  // the output is known to be writable before any cell is computed
-  return map;
+  check_space(config.output, layout);
+  return std::make_unique<detail::MapSink>(codec, MapWriter::create(config.output, layout, ranks), std::move(regimes),
+                                           ranks);
 }
 
 CellResult solve_cell(const Scene& scene, const Grid& grid, std::uint64_t flat) {
@@ -87,11 +126,9 @@ FarmOptions farm_options(const Scene& scene, const SweepRunConfig& config) {
 
 SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunConfig& config) {
   const detail::CellCodec codec;
+  std::unique_ptr<OutputLock> lock;
   std::unique_ptr<detail::MapSink> sink;
-  mpi.agree([&] {
-    if (!scene.sweep) throw SceneError(scene.path + ": no [sweep] section: nothing to sweep (see 'vibromap keys')");
-    sink = std::make_unique<detail::MapSink>(codec, config.output, prepare_map(scene, config, mpi.size()));
-  }, exit_status_of);
+  mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, lock); }, exit_status_of);
   const Grid grid(scene.sweep->axes);
   Campaign<CellResult> campaign;
   campaign.solve = [&](std::uint64_t flat) { return solve_cell(scene, grid, flat); };

@@ -1,0 +1,48 @@
+#pragma once
+// Internal to the map file: the datasets a map holds per cell (map_file.hpp documents the
+// layout), each with its type, fill value, attributes and the CellResult member it stores;
+// and the chunk geometry shared by all of them.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vibromap/core/quantities.hpp"
+#include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/map_file.hpp"
+
+namespace vibromap::detail {
+
+struct MapField {
+  std::string name;
+  ElementType file_type = ElementType::float64;
+  bool integer = false;                    // read and written as int64 (else as double)
+  std::optional<double> fill;              // value of a cell not done
+  bool fill_attribute = true;              // _FillValue attribute (floats only: xarray masks it)
+  std::string long_name, units;
+  std::vector<std::int8_t> flag_values;    // CF flags of the code datasets
+  std::string flag_meanings;
+  std::int64_t lo = 0, hi = 0;             // integer fields: the valid range of a done cell
+  std::function<double(const CellResult&)> get_real;
+  std::function<void(CellResult&, double)> set_real;
+  std::function<std::int64_t(const CellResult&)> get_int;
+  std::function<void(CellResult&, std::int64_t)> set_int;
+};
+
+// /done (not a CellResult member: written by checkpoints).
+MapField done_field();
+// The per-cell datasets in file order: status, regime, stable, n, k, wall_s, steady_residual,
+// then the stored quantities.
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored);
+std::uint64_t element_bytes(ElementType t);
+
+// The chunks of an N-D map dataset of `shape`: trailing axes whole while they fit in
+// kMapChunkCells cells, then as many slices of the next axis as fit (at least one), 1 before.
+// Every chunk is then a contiguous range of flat indices.
+Shape map_chunk_shape(const Shape& shape);
+// Every chunk of `shape` as its range of flat indices, in flat order.
+std::vector<CellSpan> chunk_spans(const Shape& shape, const Shape& chunk);
+
+}  // namespace vibromap::detail
