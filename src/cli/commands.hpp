@@ -26,6 +26,7 @@ struct RunArgs {
   std::vector<std::string> sets;  // overrides "section.key=value", in command-line order
   std::string format = "table";   // "table" or "json"
   std::string trajectory;         // HDF5 file for the kept trajectory; empty: none
+  bool overwrite = false;         // replace an existing trajectory file
 };
 
 // Solves the scene's point and prints its summary to `out`; writes the trajectory file when

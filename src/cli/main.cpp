@@ -2,6 +2,7 @@
 // the commands of commands.hpp. Every error ends here as one line on stderr,
 // "vibromap: error: ...", with the exit code of commands.hpp.
 
+#include <csignal>
 #include <exception>
 #include <iostream>
 #include <sstream>
@@ -53,7 +54,9 @@ std::string run_footer() {
         "--trajectory keeps [analysis] trajectory_periods forcing periods of the steady\n"
         "motion (" << cli::kDefaultTrajectoryPeriods << " when the scene gives 0), sampled "
         "trajectory_samples times per period,\nand writes them to an HDF5 file (read by "
-        "postprocess/). Without --trajectory no\ntrajectory is computed.\n\n"
+        "postprocess/). Without --trajectory no\ntrajectory is computed. An existing FILE.h5 is replaced "
+        "only with --overwrite, and\nnever when it is not a regular file; a trajectory too big for the "
+        "memory or the disk is\nrefused before the solve, with its size.\n\n"
      << main_footer();
   return os.str();
 }
@@ -72,6 +75,7 @@ CLI::App* add_run(CLI::App& app, cli::RunArgs& args) {
       ->capture_default_str();
   run->add_option("-t,--trajectory", args.trajectory, "Also write the steady motion's trajectory to FILE.h5")
       ->type_name("FILE.h5");
+  run->add_flag("--overwrite", args.overwrite, "Replace an existing trajectory file");
   run->footer(run_footer());
   return run;
 }
@@ -261,6 +265,9 @@ bool is_campaign(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (is_campaign(argc, argv)) install_stop_handlers();
+  // A file-size limit (ulimit -f, a batch system's) must fail a write with EFBIG, which the
+  // I/O layer reports as one line, not kill the process with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     return dispatch(argc, argv);
   } catch (const QuietExit& e) {

@@ -1,6 +1,9 @@
 // `vibromap run` and `vibromap keys`.
 
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -32,14 +35,53 @@ Scene load_run_scene(const RunArgs& args) {
   return load_scene(args.scene, sets);
 }
 
-// Fails before the (possibly long) solve when the trajectory file's directory is missing.
-void check_output_directory(const std::string& path) {
+// The memory the system can give without swapping (MemAvailable), bytes; 0 when unknown.
+std::uint64_t available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return 0;
+}
+
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
+  return text;
+}
+
+// Checks the trajectory file before the (possibly long) solve: its directory exists, an
+// existing file is a regular one and may be replaced, and the trajectory fits in memory and on
+// the disk.
+void check_trajectory(const std::string& path, bool overwrite, const Scene& scene) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(path).parent_path();
   std::error_code ec;
-  if (!dir.empty() && !fs::is_directory(dir, ec)) {
+  const fs::path dir = fs::path(path).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec))
     throw IoError(path + ": cannot write trajectory: directory '" + dir.string() + "' does not exist");
+  if (fs::exists(fs::symlink_status(path, ec)) || fs::exists(path, ec)) {
+    if (!fs::is_regular_file(path, ec))
+      throw SceneError(path + ": --trajectory: not a regular file (a device, directory or pipe); name a new FILE.h5");
+    if (!overwrite) throw SceneError(path + ": --trajectory: already exists; use --overwrite to replace it");
   }
+  const AnalysisOptions& a = scene.options.analysis;
+  const double samples = static_cast<double>(a.trajectory_periods) * static_cast<double>(a.trajectory_samples);
+  // The samples (7 float64 each) are kept once by the solver and once, column by column, by the
+  // writer; a vector may hold twice its size while it grows.
+  const double memory = 3.0 * samples * static_cast<double>(sizeof(TrajectorySample));
+  const double file = samples * static_cast<double>(sizeof(TrajectorySample));
+  const std::string what = "--trajectory: " + std::to_string(a.trajectory_periods) + " periods x " +
+                           std::to_string(a.trajectory_samples) + " samples ([analysis] trajectory_periods, "
+                           "trajectory_samples)";
+  if (const std::uint64_t avail = available_memory(); avail > 0 && memory > 0.5 * static_cast<double>(avail))
+    throw SceneError(path + ": " + what + " need about " + gigabytes(memory) + " of memory, more than half the " +
+                     gigabytes(static_cast<double>(avail)) + " available; keep fewer periods or samples");
+  const fs::space_info space = fs::space(dir.empty() ? fs::path(".") : dir, ec);
+  if (!ec && file > static_cast<double>(space.available))
+    throw SceneError(path + ": " + what + " make a " + gigabytes(file) + " file; its file system has " +
+                     gigabytes(static_cast<double>(space.available)) + " free");
 }
 
 void print_summary(std::ostream& out, const PointSummary& summary, const Scene& scene, const std::string& format) {
@@ -64,7 +106,7 @@ void save_trajectory(const std::string& path, const PointSummary& summary, const
 
 int run_command(const RunArgs& args, std::ostream& out) {
   const Scene scene = load_run_scene(args);
-  if (!args.trajectory.empty()) check_output_directory(args.trajectory);
+  if (!args.trajectory.empty()) check_trajectory(args.trajectory, args.overwrite, scene);
   const PointSummary summary = solve_point(scene.params, scene.options);
   if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
   print_summary(out, summary, scene, args.format);

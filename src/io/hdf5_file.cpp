@@ -22,8 +22,15 @@ namespace {
 
 // HDF5 prints its whole error stack to stderr on every failure unless told not to; we report
 // errors as one IoError line instead. Called before the first file is created or opened.
+//
+// Also: no HDF5 clean-up at exit. Every file is closed by its owner before the process ends;
+// HDF5's own atexit pass only closes what a failed close left half-closed (a write that failed
+// with EFBIG or ENOSPC), and crashed doing so (a segfault in H5F__close_cb). H5dont_atexit must
+// come before the library's first real call, so this runs before the first file is made or
+// opened.
 void silence_hdf5_error_printing() {
   static const bool done = [] {
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();
@@ -441,6 +448,72 @@ void Dataset::transfer_flat(std::uint64_t first, std::size_t count, ElementType 
   }
 }
 
+namespace {
+
+// HDF5's Fletcher32 (H5checksum.c, H5_checksum_fletcher32): 16-bit words taken big-endian,
+// sums folded every 360 words, an odd last byte as the high byte of a word.
+std::uint32_t fletcher32(const unsigned char* data, std::size_t bytes) {
+  std::size_t words = bytes / 2;
+  std::uint32_t sum1 = 0, sum2 = 0;
+  while (words > 0) {
+    std::size_t block = std::min<std::size_t>(words, 360);
+    words -= block;
+    do {
+      sum1 += (static_cast<std::uint32_t>(data[0]) << 8) | data[1];
+      data += 2;
+      sum2 += sum1;
+    } while (--block);
+    sum1 = (sum1 & 0xffff) + (sum1 >> 16);
+    sum2 = (sum2 & 0xffff) + (sum2 >> 16);
+  }
+  if (bytes % 2) {
+    sum1 += static_cast<std::uint32_t>(*data) << 8;
+    sum2 += sum1;
+    sum1 = (sum1 & 0xffff) + (sum1 >> 16);
+    sum2 = (sum2 & 0xffff) + (sum2 >> 16);
+  }
+  sum1 = (sum1 & 0xffff) + (sum1 >> 16);
+  sum2 = (sum2 & 0xffff) + (sum2 >> 16);
+  return (sum2 << 16) | sum1;
+}
+
+}  // namespace
+
+void Dataset::reset_chunk(const Shape& offset, double fill) {
+  const std::string what = detail::describe("dataset", name_);
+  const std::string operation = "replace a chunk of " + what;
+  const Shape chunk = chunk_shape();
+  if (chunk.size() != offset.size()) fail(file_path_, cat("cannot ", operation, ": not chunked as expected"));
+  const Handle dcpl = detail::make_handle(H5Dget_create_plist(id()), HandleKind::property_list, file_path_,
+                                          "get the creation properties of " + what);
+  const int filters = static_cast<int>(check(H5Pget_nfilters(dcpl.get()), file_path_, operation));
+  bool checksum = false;
+  for (int i = 0; i < filters; ++i) {
+    unsigned flags = 0;
+    std::size_t n = 0;
+    const H5Z_filter_t f = H5Pget_filter2(dcpl.get(), static_cast<unsigned>(i), &flags, &n, nullptr, 0, nullptr, nullptr);
+    if (f != H5Z_FILTER_FLETCHER32) fail(file_path_, cat("cannot ", operation, ": it has a filter other than Fletcher32"));
+    checksum = true;
+  }
+  std::size_t elements = 1;
+  for (const std::size_t c : chunk) elements *= c;
+  // The fill value in the file's own type, as HDF5 stores it (little-endian types only).
+  const Handle type = detail::make_handle(H5Dget_type(id()), HandleKind::datatype, file_path_, "get the type of " + what);
+  const std::size_t size = H5Tget_size(type.get());
+  std::vector<unsigned char> convert(std::max<std::size_t>(size, sizeof(double)));
+  std::memcpy(convert.data(), &fill, sizeof fill);
+  check(H5Tconvert(H5T_NATIVE_DOUBLE, type.get(), 1, convert.data(), nullptr, H5P_DEFAULT), file_path_,
+        "convert the fill value of " + what);
+  std::vector<unsigned char> bytes(elements * size + (checksum ? 4 : 0));
+  for (std::size_t i = 0; i < elements; ++i) std::memcpy(bytes.data() + i * size, convert.data(), size);
+  if (checksum) {
+    const std::uint32_t sum = fletcher32(bytes.data(), elements * size);
+    for (int k = 0; k < 4; ++k) bytes[elements * size + static_cast<std::size_t>(k)] = static_cast<unsigned char>(sum >> (8 * k));
+  }
+  std::vector<hsize_t> at(offset.begin(), offset.end());
+  check(H5Dwrite_chunk(id(), H5P_DEFAULT, 0, at.data(), bytes.size(), bytes.data()), file_path_, operation);
+}
+
 // ---- Dataset: dimension scales (HDF5 High-Level H5DS) -----------------------------------
 
 void Dataset::make_dimension_scale(std::string_view dimension_name) {
@@ -688,12 +761,22 @@ Hdf5File::Hdf5File(const std::string& path, FileMode mode, const FileOptions& op
 
 void Hdf5File::flush() { check(H5Fflush(id(), H5F_SCOPE_LOCAL), file_path_, "flush file"); }
 
-void Hdf5File::sync() {
-  flush();
+int Hdf5File::descriptor() const {
   void* handle = nullptr;
   check(H5Fget_vfd_handle(id(), H5P_DEFAULT, &handle), file_path_, "get the file's descriptor");
-  if (handle == nullptr || ::fsync(*static_cast<int*>(handle)) != 0)
-    fail(file_path_, cat("cannot sync the file to disk (", std::strerror(errno), ")"));
+  if (handle == nullptr) fail(file_path_, "the file has no descriptor (not a POSIX file driver)");
+  return *static_cast<int*>(handle);
+}
+
+void Hdf5File::sync() {
+  flush();
+  if (::fsync(descriptor()) != 0) fail(file_path_, cat("cannot sync the file to disk (", std::strerror(errno), ")"));
+}
+
+void Hdf5File::start_writeback() {
+  // Asks the kernel to start writing the file's dirty pages now, without waiting for them, so
+  // that the next sync() finds little left to do (RocksDB's bytes_per_sync does the same).
+  ::sync_file_range(descriptor(), 0, 0, SYNC_FILE_RANGE_WRITE);
 }
 
 void Hdf5File::close() {

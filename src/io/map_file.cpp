@@ -1,6 +1,7 @@
 #include "vibromap/io/map_file.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -132,7 +133,7 @@ Axis read_axis(const Hdf5File& file, const Dataset& done, std::size_t dim) {
   try {
     axis.values = coordinate.read_double();
   } catch (const IoError& e) {
-    fail(path, cat("coordinate '", coordinate.name(), "' is damaged (", e.what(), ")"));
+    fail(path, cat("coordinate '", coordinate.name(), "' is damaged (", e.what(), "); the map's axes cannot be trusted: make it again with --overwrite"));
   }
   for (const char* name : {"scale", "units", "long_name", "key"}) require_attribute(coordinate, path, name);
   axis.units = coordinate.read_string_attribute("units");
@@ -262,19 +263,16 @@ struct MapDatasets {
     return c;
   }
 
-  void fill_chunk(const CellSpan& span) {
-    const std::size_t n = static_cast<std::size_t>(span.end - span.begin);
-    done_buffer.assign(n, 0);
-    done.write_flat(span.begin, std::span<const std::uint8_t>(done_buffer));
-    for (std::size_t i = 0; i < fields.size(); ++i) {
-      if (fields[i].integer) {
-        ints[i].assign(n, static_cast<std::int64_t>(fields[i].fill.value_or(0.0)));
-        data[i].write_flat(span.begin, std::span<const std::int64_t>(ints[i]));
-      } else {
-        reals[i].assign(n, fields[i].fill.value_or(0.0));
-        data[i].write_flat(span.begin, std::span<const double>(reals[i]));
-      }
+  // Replaces chunk `span` of every dataset with fill values, /done with 0, without reading it.
+  void fill_chunk(const CellSpan& span, const Shape& shape) {
+    Shape offset(shape.size());
+    std::uint64_t flat = span.begin;
+    for (std::size_t d = shape.size(); d-- > 0;) {
+      offset[d] = static_cast<std::size_t>(flat % shape[d]);
+      flat /= shape[d];
     }
+    done.reset_chunk(offset, 0.0);
+    for (std::size_t i = 0; i < fields.size(); ++i) data[i].reset_chunk(offset, fields[i].fill.value_or(0.0));
   }
 };
 
@@ -296,6 +294,7 @@ struct MapWriter::Impl {
   std::vector<std::uint8_t> window;
   std::vector<double> reals;             // write(): one field's values
   std::vector<std::int64_t> ints;
+  std::chrono::steady_clock::time_point last_writeback = std::chrono::steady_clock::now();
 
   Impl(std::string p, Hdf5File f) : path(std::move(p)), file(std::move(f)) {}
 };
@@ -396,7 +395,7 @@ void MapWriter::verify_and_repair(const std::function<void(const CellResult&)>& 
   for (const CellSpan& span : damaged) {
     ++m.repair.chunks;
     m.repair.cells += span.end - span.begin;
-    m.ds.fill_chunk(span);
+    m.ds.fill_chunk(span, m.layout.grid.shape());
   }
   if (!damaged.empty()) m.file.sync();
 }
@@ -438,6 +437,12 @@ void MapWriter::write(std::uint64_t first, std::span<const CellResult> cells) {
       for (std::size_t k = 0; k < cells.size(); ++k) m.reals[k] = f.get_real(cells[k]);
       m.ds.data[i].write_flat(first, std::span<const double>(m.reals));
     }
+  }
+  // Every second or so, push what HDF5 has evicted towards the disk: checkpoints then wait
+  // for the last second's data only, not for everything since the previous checkpoint.
+  if (const auto now = std::chrono::steady_clock::now(); now - m.last_writeback > std::chrono::seconds(1)) {
+    m.file.start_writeback();
+    m.last_writeback = now;
   }
   const std::uint64_t last = first + cells.size();
   if (!m.unflushed.empty() && m.unflushed.back().end == first) {

@@ -7,6 +7,7 @@
 #   EXPECT_RC    the exact exit code
 #   EXPECT_ERR   a regex stderr must match (optional)
 #   EXPECT_OUT   a regex stdout must match (optional)
+#   MAX_ERR      the longest stderr may be, in characters (optional)
 # When EXPECT_RC is not 0, stderr must be exactly one line "vibromap: error: ..." and stdout
 # must be empty: a failed command writes nothing else. Tests run in the source directory,
 # so scenes are named as a user would name them (jobs/paper/table1.toml).
@@ -34,11 +35,16 @@ endif()
 if(DEFINED EXPECT_OUT AND NOT out MATCHES "${EXPECT_OUT}")
   message(FATAL_ERROR "stdout does not match '${EXPECT_OUT}'\n${context}")
 endif()
+string(LENGTH "${err}" err_length)
+if(DEFINED MAX_ERR AND err_length GREATER MAX_ERR)
+  string(SUBSTRING "${err}" 0 300 head)
+  message(FATAL_ERROR "stderr has ${err_length} characters, more than ${MAX_ERR}: ${head}...")
+endif()
 ]=])
 
-# vibromap_cli_test(name RC code ARGS arg... [ERR regex] [OUT regex])
+# vibromap_cli_test(name RC code ARGS arg... [ERR regex] [OUT regex] [MAX_ERR characters])
 function(vibromap_cli_test name)
-  cmake_parse_arguments(T "" "RC;ERR;OUT" "ARGS" ${ARGN})
+  cmake_parse_arguments(T "" "RC;ERR;OUT;MAX_ERR" "ARGS" ${ARGN})
   string(REPLACE ";" "|" args "${T_ARGS}")
   set(defs "-DEXE=$<TARGET_FILE:vibromap>" "-DARGS=${args}" "-DEXPECT_RC=${T_RC}")
   if(DEFINED T_ERR)
@@ -46,6 +52,9 @@ function(vibromap_cli_test name)
   endif()
   if(DEFINED T_OUT)
     list(APPEND defs "-DEXPECT_OUT=${T_OUT}")
+  endif()
+  if(DEFINED T_MAX_ERR)
+    list(APPEND defs "-DMAX_ERR=${T_MAX_ERR}")
   endif()
   add_test(NAME cli.${name} COMMAND ${CMAKE_COMMAND} ${defs} -P ${VIBROMAP_CLI_CHECK}
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
@@ -78,6 +87,28 @@ vibromap_cli_test(bad_format RC 2 ARGS run jobs/paper/table1.toml --format xml E
 vibromap_cli_test(unknown_option RC 2 ARGS run jobs/paper/table1.toml --bogus ERR "--bogus")
 vibromap_cli_test(no_command RC 2 ARGS ERR "subcommand is required")
 vibromap_cli_test(unknown_command RC 2 ARGS solve jobs/paper/table1.toml ERR "unknown command 'solve'")
+
+# A key of 1 MB (a pasted blob, a binary file given as a scene): the error line echoes it cut.
+string(REPEAT "x" 1048576 _vibromap_long_key)
+set(VIBROMAP_CLI_LONG_KEY_SCENE ${CMAKE_CURRENT_BINARY_DIR}/cli_long_key.toml)
+file(WRITE ${VIBROMAP_CLI_LONG_KEY_SCENE} "[system]\n${_vibromap_long_key} = 1.0\n")
+unset(_vibromap_long_key)
+vibromap_cli_test(long_key_is_cut_in_the_error_line RC 2 ARGS run ${VIBROMAP_CLI_LONG_KEY_SCENE}
+                  ERR "cli_long_key\\.toml:2: unknown key 'xxxx" MAX_ERR 1100)
+
+# The trajectory file: an existing file is kept without --overwrite, a device is never written,
+# and a trajectory that cannot fit in memory is refused with its size, all before the solve.
+set(VIBROMAP_CLI_EXISTING ${CMAKE_CURRENT_BINARY_DIR}/cli_existing_trajectory.h5)
+file(WRITE ${VIBROMAP_CLI_EXISTING} "not a trajectory yet\n")
+vibromap_cli_test(trajectory_refuses_an_existing_file RC 2
+                  ARGS run jobs/paper/table1.toml --trajectory ${VIBROMAP_CLI_EXISTING}
+                  ERR "cli_existing_trajectory\\.h5: --trajectory: already exists; use --overwrite to replace it")
+vibromap_cli_test(trajectory_refuses_a_device RC 2 ARGS run jobs/paper/table1.toml --trajectory /dev/full --overwrite
+                  ERR "/dev/full: --trajectory: not a regular file")
+vibromap_cli_test(trajectory_too_big_is_refused_with_its_size RC 2
+                  ARGS run jobs/paper/table1.toml --trajectory ${CMAKE_CURRENT_BINARY_DIR}/cli_huge.h5
+                       --set analysis.trajectory_periods=100000000 --set analysis.trajectory_samples=100000
+                  ERR "100000000 periods x 100000 samples .* need about [0-9.e+]+ GB of memory, more than half the")
 
 # I/O failure: exit 4, before the solve.
 vibromap_cli_test(trajectory_directory_missing RC 4

@@ -182,6 +182,12 @@ class Dataset : public Hdf5Object {
   void write_flat(std::uint64_t first, std::span<const T> values);
   template <class T>
   void read_flat(std::uint64_t first, std::span<T> values) const;
+  // Replaces the whole chunk that starts at `offset` (one index per dimension, a multiple of the
+  // chunk extent) with `fill` (converted to the dataset's type), written directly as stored
+  // bytes (H5Dwrite_chunk) with its Fletcher32 checksum when the dataset has one: the old chunk
+  // is never read, so a damaged one (its checksum failing) can be replaced, an edge chunk that
+  // overhangs the dataset included. Only for datasets without filters but Fletcher32.
+  void reset_chunk(const Shape& offset, double fill);
 
   // Makes this dataset a dimension scale whose dimension is called `dimension_name`
   // (netCDF reads a scale named after its own dataset as a coordinate variable).
@@ -282,6 +288,10 @@ class Hdf5File : public Group {
   void flush();
   // flush(), then the operating system's buffers of the file to the disk (fsync).
   void sync();
+  // Starts writing the operating system's buffers of the file to the disk, without waiting
+  // (sync_file_range): a sync() soon after has less to wait for. Best effort: never throws.
+  void start_writeback();
+  int descriptor() const;  // the file's POSIX descriptor (sec2 driver)
   // Closes the file and reports a failure (e.g. a failed final flush) as IoError. Objects
   // opened from this file must be destroyed first: HDF5 keeps the file open until they are.
   void close();

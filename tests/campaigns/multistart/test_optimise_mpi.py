@@ -254,3 +254,16 @@ def test_killed_optimisation_resumes_to_the_same_best_point(tmp_path):
     assert strip(resumed["starts"]) == strip(reference["starts"])
     assert without_times(resumed["best"]) == without_times(reference["best"])
     assert not journal.exists()  # removed once the output is written
+
+
+def test_a_seeding_map_that_cannot_seed_is_kept_and_said_so(tmp_path):
+    """No cell of the seeding sweep holds the kept regime: exit 2, and the line says the map it
+    made is kept (before, it said "nothing written" after writing it)."""
+    scene = write_scene(tmp_path, SCENE.replace("[optimise]\n", '[optimise]\nregime = "(9,9)"\n'))
+    proc = optimise(2, scene, tmp_path / "out.h5", check=False)
+    assert proc.returncode == 2
+    assert proc.stderr.count("vibromap: error:") == 1
+    assert f"the seeding map {tmp_path / 'out_map.h5'} is kept for the next run" in proc.stderr
+    with h5py.File(tmp_path / "out_map.h5", "r") as f:
+        assert f["done"][()].all()
+    assert not (tmp_path / "out.h5").exists()
