@@ -11,7 +11,8 @@
 
 #include "commands.hpp"
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/sweep_runner.hpp"
 
 namespace {

@@ -10,7 +10,8 @@
 
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/multistart_runner.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "vibromap/parallel/sweep_runner.hpp"

@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/sweep_runner.hpp"
 
 namespace vibromap::cli {

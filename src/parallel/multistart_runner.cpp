@@ -20,6 +20,7 @@
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/optimise_file.hpp"
+#include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 #include "vibromap/parallel/multistart_runner.hpp"
 #include "mpi_messages.hpp"

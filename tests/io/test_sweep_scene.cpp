@@ -1,4 +1,4 @@
-// The [sweep] section of a scene (io/scene.hpp): axes, order, store, intervals, overrides,
+// The [sweep] section of a scene (io/scene/): axes, order, store, intervals, overrides,
 // one-line errors, provenance, the reference scene's example and the sweep jobs in jobs/.
 
 #include <cmath>
@@ -13,7 +13,9 @@
 #include <gtest/gtest.h>
 
 #include "support/scene_testing.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/core/grid.hpp"
 
 namespace vibromap {

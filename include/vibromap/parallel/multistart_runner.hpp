@@ -25,7 +25,7 @@
 
 #include <string>
 
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/core/optimise/multistart.hpp"
 
 namespace vibromap {

@@ -25,7 +25,7 @@
 #include <map>
 #include <string>
 
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap {
 

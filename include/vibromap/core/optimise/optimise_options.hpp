@@ -1,7 +1,7 @@
 #pragma once
 // What `vibromap optimise` does (issue #5): the objective, the regime kept as a constraint,
 // the free parameters and their box, where the starts come from, and the local algorithm
-// with its stopping rules. The [optimise] section of a scene (io/scene.hpp) fills it; every
+// with its stopping rules. The [optimise] section of a scene (io/scene/) fills it; every
 // field has a valid default except the free variables, which a scene must name.
 //
 // Scaled variables: each free parameter is mapped to u in [0, 1] over its box, linearly or in

@@ -1,6 +1,7 @@
 #pragma once
 // The [sweep] section of a scene: the grid's axes, what to store, and how often to
-// checkpoint and report.
+// checkpoint and report. scene.hpp's file comment shows the section; `vibromap keys`
+// documents its keys.
 
 #include <vector>
 
