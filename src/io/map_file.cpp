@@ -24,17 +24,6 @@ constexpr std::string_view kStableLongName =
     "stability of the periodic orbit from its Floquet multipliers (unknown where not computed)";
 
 
-std::string_view axis_long_name(std::string_view axis) {
-  if (axis == "E1") return "Young's modulus of body 1";
-  if (axis == "E2") return "Young's modulus of body 2";
-  if (axis == "R1") return "radius of the contact surface of body 1";
-  if (axis == "R2") return "radius of the contact surface of body 2";
-  if (axis == "m2") return "mass of the attached body";
-  if (axis == "k2") return "stiffness of the spring joining the bodies";
-  if (axis == "omega2") return "partial natural frequency of the attached body";
-  return "swept parameter";
-}
-
 // CF flag_meanings: the enum's names from to_string, with '_' for '-' (CF meanings are
 // blank-separated words), preceded by not_computed for code -1. Codes run -1..last.
 template <class Enum>
@@ -89,8 +78,8 @@ std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
   for (const Axis& axis : grid.axes()) {
     Dataset coordinate = file.write_dataset(axis.name, axis.values);
     coordinate.make_dimension_scale(axis.name);
-    coordinate.set_attribute("units", axis_units(axis.name));
-    coordinate.set_attribute("long_name", axis_long_name(axis.name));
+    coordinate.set_attribute("units", axis.units);
+    coordinate.set_attribute("long_name", axis.long_name);
     coordinate.set_attribute("scale", to_string(axis.scale));
     scales.push_back(std::move(coordinate));
   }

@@ -19,6 +19,7 @@
 #include "progress.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
+#include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/parallel/sweep_runner.hpp"
 
 namespace vibromap {
@@ -69,9 +70,10 @@ void unpack(const std::vector<char>& buf, std::vector<std::uint64_t>& index, std
 
 // --- Solving ------------------------------------------------------------------------------
 
-CellResult solve_cell(const Scene& scene, const Grid& grid, std::size_t flat) {
+CellResult solve_cell(const CellMaker& make_cell, std::size_t flat) {
   try {
-    return summarize(solve_point(grid.cell(scene.params, flat), scene.options));
+    const CellPoint cell = make_cell(flat);
+    return summarize(solve_point(cell.params, cell.options));
   } catch (const std::exception&) {  // a cell's trouble is its status, never the run's
     CellResult c;
     c.status = status_code(SolveStatus::failed);
@@ -80,21 +82,22 @@ CellResult solve_cell(const Scene& scene, const Grid& grid, std::size_t flat) {
   }
 }
 
-std::vector<CellResult> solve_cells(const Scene& scene, const Grid& grid, const std::vector<std::uint64_t>& index) {
+std::vector<CellResult> solve_cells(const CellMaker& make_cell, const std::vector<std::uint64_t>& index) {
   std::vector<CellResult> out;
   out.reserve(index.size());
-  for (std::uint64_t i : index) out.push_back(solve_cell(scene, grid, i));
+  for (std::uint64_t i : index) out.push_back(solve_cell(make_cell, i));
   return out;
 }
 
 void worker_loop(const Scene& scene, const Grid& grid) {
+  const CellMaker make_cell(scene, grid);
   std::vector<std::uint64_t> index;
   std::vector<CellResult> cells;
   for (;;) {
     send_bytes(pack(index, cells), 0, kTagResult);
     unpack(recv_bytes(0, kTagWork), index, cells);
     if (index.empty()) return;
-    cells = solve_cells(scene, grid, index);
+    cells = solve_cells(make_cell, index);
   }
 }
 
@@ -124,8 +127,9 @@ class Coordinator {
   void run(SweepReport& report) {
     const auto t0 = Clock::now();
     last_checkpoint_ = t0;
+    const CellMaker make_cell(scene_, map_.grid);
     std::thread coordinator([this] { coordinate(); });
-    for (auto chunk = take_chunk(); !chunk.empty(); chunk = take_chunk()) store(chunk, solve_cells(scene_, map_.grid, chunk));
+    for (auto chunk = take_chunk(); !chunk.empty(); chunk = take_chunk()) store(chunk, solve_cells(make_cell, chunk));
     local_done_ = true;
     coordinator.join();
     if (error_) std::rethrow_exception(error_);
@@ -285,6 +289,7 @@ SweepMap prepare_map(const Scene& scene, const SweepRunConfig& config, int ranks
     if (!same)
       throw SceneError(config.output + ": --resume: the map was made from a different scene or grid than " +
                        scene.path + " (compare its 'scene' attribute); use another --output");
+    map.grid = grid;  // the scene's axes: the same values, with their keys, units and meanings
     map.scene_text = scene.text;
     map.ranks = ranks;
     return map;

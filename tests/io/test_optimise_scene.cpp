@@ -287,7 +287,7 @@ TEST(OptimiseScene, KeysListingDocumentsTheOptimiseKeys) {
   std::ostringstream os;
   write_scene_keys(os);
   const std::string text = os.str();
-  for (const std::string_view name : sweep_axis_names()) {
+  for (const std::string_view name : free_parameter_names()) {
     EXPECT_NE(text.find(concat({"optimise.", name, " "})), std::string::npos) << name;
   }
   for (const char* key : {"optimise.objective ", "optimise.regime ", "optimise.algorithm ", "optimise.seeds ",

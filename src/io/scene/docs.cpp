@@ -15,7 +15,8 @@
 namespace vibromap {
 
 using detail::all_sections;
-using detail::axis_key;
+using detail::first_axes;
+using detail::free_parameter_key;
 using detail::join;
 using detail::keys_of;
 using detail::kAxisForms;
@@ -81,17 +82,17 @@ std::string store_text(const std::vector<Quantity>& store) {
   return cat("[", join(views(names), ", ", "\""), "]");
 }
 
-// The [sweep] rows of `vibromap keys`: one per axis, then order, store and the intervals.
+// The [sweep] rows of `vibromap keys`: the axes (any numeric key), then order, store and the
+// intervals.
 std::vector<KeyRow> sweep_rows() {
   std::vector<KeyRow> rows;
-  for (const std::string_view name : sweep_axis_names()) {
-    const SceneKey& k = axis_key(name);
-    std::string meaning = cat("grid axis over [", k.section, "] ", name, ": ", kAxisForms, ", scale \"lin\" or \"log\"");
-    if (!k.partner.empty()) meaning += cat("; or give ", k.partner);
-    rows.push_back({cat(kSweep, ".", name), "(not swept)", std::string(k.unit), cat("values ", k.allowed()), meaning});
-  }
-  rows.push_back({"sweep.order", cat("(", join(sweep_axis_names(), ", "), ")"), "-", "every axis once",
-                  "axis order, the first axis slowest in the flat cell index"});
+  rows.push_back({"sweep.KEY", "(not swept)", "KEY's", "values KEY allows",
+                  cat("grid axis over any real or integer key above, named section.key (\"forcing.omega\" = ...) or "
+                      "by the key alone when only one section has it (E1 = ...): ", kAxisForms,
+                      ", scale \"lin\" or \"log\"; at most ", std::to_string(kMaxSweepAxes),
+                      " axes, not both keys of a pair (k2|omega2, ...); integer keys take whole values")});
+  rows.push_back({"sweep.order", cat("(", join(first_axes(), ", "), ", then schema order)"), "-",
+                  "every axis once", "axis order, the first axis slowest in the flat cell index; by any name of each axis"});
   rows.push_back({"sweep.store", store_text(SweepOptions{}.store), "-", "quantity names",
                   cat("optional per-cell quantities, any of ", join(views(quantity_names()), ", "),
                       " (status, regime, n, k, wall time and residual are always stored)")});
@@ -102,8 +103,8 @@ std::vector<KeyRow> sweep_rows() {
 // The [optimise] rows of `vibromap keys`: one per free parameter, then the options.
 std::vector<KeyRow> optimise_doc_rows() {
   std::vector<KeyRow> rows;
-  for (const std::string_view name : sweep_axis_names()) {
-    const SceneKey& k = axis_key(name);
+  for (const std::string_view name : free_parameter_names()) {
+    const SceneKey& k = free_parameter_key(name);
     std::string meaning = cat("free parameter [", k.section, "] ", name, " and its box: ", kVariableForm,
                               ", scale \"lin\" or \"log\"");
     if (!k.partner.empty()) meaning += cat("; or free ", k.partner);
@@ -117,6 +118,11 @@ std::vector<KeyRow> optimise_doc_rows() {
   return rows;
 }
 
+// One line of a commented example section: "# KEY = VALUE   # comment".
+void write_example_line(std::ostream& os, const std::string& lhs, std::string_view comment) {
+  os << "# " << column(lhs, 44) << "  # " << comment << "\n";
+}
+
 // A commented example [optimise] section: without the leading "# ", its lines parse.
 void write_reference_optimise(std::ostream& os) {
   os << "\n# An optimisation for `vibromap optimise`: the values above are the base point and the free\n"
@@ -128,36 +134,34 @@ void write_reference_optimise(std::ostream& os) {
         "# [optimise]\n"
         "# m2 = { min = 100.0, max = 310.0 }\n"
         "# E1 = { min = 2e4, max = 2.1e11, scale = \"log\" }\n";
-  const auto line = [&](const std::string& lhs, std::string_view comment) {
-    os << "# " << column(lhs, 44) << "  # " << comment << "\n";
-  };
   for (const OptimiseRow& row : optimise_rows()) {
     const SceneKey& k = row.info;
     const std::string lhs = k.key == "map" ? std::string("map = \"box.h5\"") : cat(k.key, " = ", k.default_text);
-    line(lhs, cat(k.meaning, unit_suffix(k.unit), ", ", row.allowed()));
+    write_example_line(os, lhs, cat(k.meaning, unit_suffix(k.unit), ", ", row.allowed()));
   }
 }
 
 // A commented example [sweep] section: without the leading "# ", its lines parse.
 void write_reference_sweep(std::ostream& os) {
-  os << "\n# A grid for `vibromap sweep` over some of E1, E2, R1, R2, m2, k2|omega2; a scene without\n"
-        "# [sweep] is one point, and the values above are the base of every cell. [sweep] has no\n"
-        "# default: uncomment and edit this example. An axis is { from, to, n[, scale] } (n points,\n"
-        "# ends exact, scale \"lin\" (default) or \"log\") or { values = [...][, scale] }; its values\n"
-        "# must be allowed for the parameter's key above (E1 > 0, ...). Give k2 or omega2, not both.\n"
+  os << "\n# A grid for `vibromap sweep` over up to 8 of the real or integer keys above; a scene\n"
+        "# without [sweep] is one point, and the values above are the base of every cell. [sweep] has\n"
+        "# no default: uncomment and edit this example. An axis is named section.key, quoted or dotted\n"
+        "# (\"forcing.omega\" = ... or forcing.omega = ...), or by the key alone when only one section\n"
+        "# has it (E1, omega2, F0). It is { from, to, n[, scale] } (n points, ends exact, scale \"lin\"\n"
+        "# (default) or \"log\") or { values = [...][, scale] }; its values must be allowed for its key\n"
+        "# above (E1 > 0, ...; whole numbers for an integer key). Give k2 or omega2, not both (and so\n"
+        "# for every pair).\n"
         "#\n"
         "# [sweep]\n"
         "# E1 = { from = 2e4, to = 2.1e11, n = 23, scale = \"log\" }\n"
         "# E2 = { values = [2e4, 1e6, 2.1e11] }\n";
-  const auto line = [&](const std::string& lhs, std::string_view comment) {
-    os << "# " << column(lhs, 44) << "  # " << comment << "\n";
-  };
-  line("order = [\"E1\", \"E2\"]", cat("axis order, first slowest; default ", join(sweep_axis_names(), ", ")));
-  line(cat("store = ", store_text(SweepOptions{}.store)),
+  write_example_line(os, "order = [\"E1\", \"E2\"]",
+       cat("axis order, first slowest; default ", join(first_axes(), ", "), ", then the order above"));
+  write_example_line(os, cat("store = ", store_text(SweepOptions{}.store)),
        cat("optional per-cell quantities, any of ", join(views(quantity_names()), ", ")));
   for (const SweepInterval& row : sweep_intervals()) {
     const SceneKey& k = row.info;
-    line(cat(k.key, " = ", k.default_text), cat(k.meaning, unit_suffix(k.unit), ", ", k.allowed()));
+    write_example_line(os, cat(k.key, " = ", k.default_text), cat(k.meaning, unit_suffix(k.unit), ", ", k.allowed()));
   }
 }
 
@@ -177,6 +181,7 @@ void write_scene_keys(std::ostream& os) {
 void write_scene_key_summary(std::ostream& os) {
   for (std::string_view section : all_sections()) {
     std::string line = cat("  ", column(cat("[", section, "]"), 11));
+    if (section == kSweep) line += " KEY (an axis: any real or integer key above)";
     const auto keys = keys_of(section);
     for (const std::string_view key : keys) {
       const std::string_view partner = partner_of(section, key);

@@ -22,23 +22,43 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // ---------------------------------------------------------------------------------------
-// Accessors: the field a key reads and writes, named by a chain of member pointers.
+// Accessors: the field a key reads and writes, named by a chain of member pointers that starts
+// at a member of Parameters or of PointOptions.
+
+template <class T, class C>
+C member_class(T C::*);
+
+// The object a chain starts from: `params` for a member of Parameters, else `options`.
+template <auto First, class P, class O>
+auto& chain_root(P& params, O& options) {
+  if constexpr (std::is_same_v<decltype(member_class(First)), Parameters>) {
+    return params;
+  } else {
+    return options;
+  }
+}
+
+template <auto First, auto... Rest, class P, class O>
+auto& member(P& params, O& options) {
+  return ((chain_root<First>(params, options).*First).*....*Rest);
+}
 
 template <auto... Members>
 constexpr Accessors field() {
-  using T = std::remove_cvref_t<decltype((std::declval<Scene&>().*....*Members))>;
+  using T = std::remove_cvref_t<decltype(member<Members...>(std::declval<Parameters&>(),
+                                                            std::declval<PointOptions&>()))>;
   static_assert(std::is_arithmetic_v<T>);
   Accessors a{};
-  a.set = [](SceneDraft& d, const KeyValue& v) {
-    auto& f = (d.scene.*....*Members);
+  a.set = [](Parameters& p, PointOptions& o, const KeyValue& v) {
+    auto& f = member<Members...>(p, o);
     if constexpr (std::is_floating_point_v<T>) {
       f = v.real;
     } else {
       f = static_cast<T>(v.integer);
     }
   };
-  a.get = [](const Scene& s) -> std::optional<KeyValue> {
-    const auto& f = (s.*....*Members);
+  a.get = [](const Parameters& p, const PointOptions& o) -> std::optional<KeyValue> {
+    const auto& f = member<Members...>(p, o);
     if constexpr (std::is_floating_point_v<T>) {
       return KeyValue{f, 0, 0};
     } else {
@@ -54,23 +74,29 @@ template <auto Member, auto Form>
 constexpr Accessors either_form() {
   using T = std::remove_cvref_t<decltype(std::declval<Parameters&>().*Member)>;
   Accessors a{};
-  a.set = [](SceneDraft& d, const KeyValue& v) { d.scene.params.*Member = T{Form, v.real}; };
-  a.get = [](const Scene& s) -> std::optional<KeyValue> {
-    const T& f = s.params.*Member;
+  a.set = [](Parameters& p, PointOptions&, const KeyValue& v) { p.*Member = T{Form, v.real}; };
+  a.get = [](const Parameters& p, const PointOptions&) -> std::optional<KeyValue> {
+    const T& f = p.*Member;
     if (f.form != Form) return std::nullopt;
     return KeyValue{f.value, 0, 0};
   };
   return a;
 }
 
+// Component I of the initial state; the first one set fills the others from the rest state
+// (0, D, 0, 0).
 template <int I>
 constexpr Accessors initial_component() {
   Accessors a{};
-  a.set = [](SceneDraft& d, const KeyValue& v) { d.initial[I] = v.real; };
-  a.get = [](const Scene& s) -> std::optional<KeyValue> {
-    if (!s.params.initial) return std::nullopt;
-    return KeyValue{(*s.params.initial)[I], 0, 0};
+  a.set = [](Parameters& p, PointOptions&, const KeyValue& v) {
+    if (!p.initial) p.initial = p.initial_state();
+    (*p.initial)[I] = v.real;
   };
+  a.get = [](const Parameters& p, const PointOptions&) -> std::optional<KeyValue> {
+    if (!p.initial) return std::nullopt;
+    return KeyValue{(*p.initial)[I], 0, 0};
+  };
+  a.component = I;
   return a;
 }
 
@@ -94,12 +120,12 @@ const std::vector<std::string>& enum_names() {
 template <auto Values, auto... Members>
 Accessors enum_field() {
   Accessors a{};
-  a.set = [](SceneDraft& d, const KeyValue& v) {
-    (d.scene.*....*Members) = Values.at(static_cast<std::size_t>(v.choice));
+  a.set = [](Parameters& p, PointOptions& o, const KeyValue& v) {
+    member<Members...>(p, o) = Values.at(static_cast<std::size_t>(v.choice));
   };
-  a.get = [](const Scene& s) -> std::optional<KeyValue> {
+  a.get = [](const Parameters& p, const PointOptions& o) -> std::optional<KeyValue> {
     for (std::size_t i = 0; i < Values.size(); ++i) {
-      if (Values[i] == (s.*....*Members)) return KeyValue{0.0, 0, static_cast<int>(i)};
+      if (Values[i] == member<Members...>(p, o)) return KeyValue{0.0, 0, static_cast<int>(i)};
     }
     return std::nullopt;
   };
@@ -141,8 +167,8 @@ Binding choice(std::string_view s, std::string_view k, std::string_view meaning,
 void add_system_keys(std::vector<Binding>& rows) {
   constexpr std::string_view s = "system";
   using P = Parameters;
-  rows.push_back(real(s, "m1", gt(0), "kg", "main body mass", field<&Scene::params, &P::m1>()));
-  rows.push_back(real(s, "m2", gt(0), "kg", "attached body mass", field<&Scene::params, &P::m2>()));
+  rows.push_back(real(s, "m1", gt(0), "kg", "main body mass", field<&P::m1>()));
+  rows.push_back(real(s, "m2", gt(0), "kg", "attached body mass", field<&P::m2>()));
   rows.push_back(real(s, "k1", gt(0), "N/m", "main spring stiffness",
                       either_form<&P::spring1, Spring::Form::stiffness>(), "omega1", "m1*omega1^2"));
   rows.push_back(real(s, "omega1", gt(0), "rad/s", "main spring as partial frequency sqrt(k1/m1)",
@@ -160,102 +186,100 @@ void add_system_keys(std::vector<Binding>& rows) {
   rows.push_back(real(s, "c2", ge(0), "N s/m", "coupling damper coefficient",
                       either_form<&P::damper2, Damper::Form::coefficient>(), "xi2", "2*xi2*sqrt(m2*k2)"));
   rows.push_back(real(s, "D", ge(0), "m", "clearance between the bodies at rest",
-                      field<&Scene::params, &P::D>()));
+                      field<&P::D>()));
 }
 
 void add_contact_keys(std::vector<Binding>& rows) {
   constexpr std::string_view s = "contact";
   using P = Parameters;
   const Bounds poisson = interval(-1.0, 0.5, true, true);
-  rows.push_back(real(s, "E1", gt(0), "Pa", "Young's modulus of body 1", field<&Scene::params, &P::E1>()));
-  rows.push_back(real(s, "E2", gt(0), "Pa", "Young's modulus of body 2", field<&Scene::params, &P::E2>()));
-  rows.push_back(real(s, "nu1", poisson, "-", "Poisson ratio of body 1", field<&Scene::params, &P::nu1>()));
-  rows.push_back(real(s, "nu2", poisson, "-", "Poisson ratio of body 2", field<&Scene::params, &P::nu2>()));
+  rows.push_back(real(s, "E1", gt(0), "Pa", "Young's modulus of body 1", field<&P::E1>()));
+  rows.push_back(real(s, "E2", gt(0), "Pa", "Young's modulus of body 2", field<&P::E2>()));
+  rows.push_back(real(s, "nu1", poisson, "-", "Poisson ratio of body 1", field<&P::nu1>()));
+  rows.push_back(real(s, "nu2", poisson, "-", "Poisson ratio of body 2", field<&P::nu2>()));
   rows.push_back(real(s, "R1", gt(0), "m", "radius of curvature of body 1 at the contact",
-                      field<&Scene::params, &P::R1>()));
+                      field<&P::R1>()));
   rows.push_back(real(s, "R2", gt(0), "m", "radius of curvature of body 2 at the contact",
-                      field<&Scene::params, &P::R2>()));
+                      field<&P::R2>()));
   rows.push_back(real(s, "q", gt(0), "-", "Hertz shape coefficient (0.319: circular contact)",
-                      field<&Scene::params, &P::q>()));
+                      field<&P::q>()));
 }
 
 void add_forcing_keys(std::vector<Binding>& rows) {
   constexpr std::string_view s = "forcing";
   using P = Parameters;
-  rows.push_back(real(s, "F0", ge(0), "N", "force amplitude", field<&Scene::params, &P::F0>()));
+  rows.push_back(real(s, "F0", ge(0), "N", "force amplitude", field<&P::F0>()));
   rows.push_back(real(s, "omega", gt(0), "rad/s", "forcing frequency (period T = 2 pi/omega)",
-                      field<&Scene::params, &P::omega>()));
+                      field<&P::omega>()));
   rows.push_back(real(s, "lambda", ge(0), "-", "amplitude factor: F(t) = lambda F0 cos(omega t + phi0)",
-                      field<&Scene::params, &P::lambda>()));
+                      field<&P::lambda>()));
   rows.push_back(real(s, "phi0", any_finite(), "rad", "forcing phase at t = 0",
-                      field<&Scene::params, &P::phi0>()));
+                      field<&P::phi0>()));
 }
 
 void add_solver_keys(std::vector<Binding>& rows) {
   constexpr std::string_view s = "solver";
   using O = IntegratorOptions;
-  constexpr auto opt = &Scene::options;
   constexpr auto integ = &PointOptions::integrator;
   rows.push_back(choice(s, "method",
                         "integration method: hybrid (closed-form free flight, dopri5 in contact), dopri5 "
                         "(adaptive, located contact events) or rk4 (the paper's fixed step)",
-                        enum_field<kMethodValues, opt, integ, &O::method>(), enum_names<kMethodValues>()));
+                        enum_field<kMethodValues, integ, &O::method>(), enum_names<kMethodValues>()));
   rows.push_back(real(s, "rtol", interval(0.0, 0.1, true, true), "-", "hybrid, dopri5: relative local error tolerance",
-                      field<opt, integ, &O::rtol>()));
+                      field<integ, &O::rtol>()));
   rows.push_back(real(s, "atol", gt(0), "m",
                       "hybrid, dopri5: absolute tolerance on x1 and z (on velocities: atol*omega)",
-                      field<opt, integ, &O::atol>()));
+                      field<integ, &O::atol>()));
   rows.push_back(real(s, "max_step", interval(0.0, 1.0, true, false), "-",
                       "hybrid, dopri5: largest step, as a fraction of the forcing period T",
-                      field<opt, integ, &O::max_step>()));
-  rows.push_back(integer(s, "rk4_steps", ge(1), "rk4: steps per forcing period", field<opt, integ, &O::rk4_steps>()));
+                      field<integ, &O::max_step>()));
+  rows.push_back(integer(s, "rk4_steps", ge(1), "rk4: steps per forcing period", field<integ, &O::rk4_steps>()));
   rows.push_back(integer(s, "max_steps", ge(1), "budget of steps (accepted + rejected) for the whole run",
-                         field<opt, integ, &O::max_steps>()));
+                         field<integ, &O::max_steps>()));
 }
 
 void add_analysis_keys(std::vector<Binding>& rows) {
   constexpr std::string_view s = "analysis";
   using A = AnalysisOptions;
-  constexpr auto opt = &Scene::options;
   constexpr auto an = &PointOptions::analysis;
   rows.push_back(choice(s, "steady",
                         "how the steady motion is found: shooting (Newton on the stroboscopic map; gives "
                         "Floquet multipliers; falls back to integrate) or integrate (until samples repeat)",
-                        enum_field<kSteadyValues, opt, an, &A::steady>(), enum_names<kSteadyValues>()));
+                        enum_field<kSteadyValues, an, &A::steady>(), enum_names<kSteadyValues>()));
   rows.push_back(integer(s, "transient_periods", ge(1), "shooting: forcing periods integrated before Newton starts",
-                         field<opt, an, &A::transient_periods>()));
+                         field<an, &A::transient_periods>()));
   rows.push_back(real(s, "newton_tol", ge(0), "-",
                       "shooting: scaled residual |P^n(y) - y| at which Newton stops; 0: auto, rtol",
-                      field<opt, an, &A::newton_tol>()));
+                      field<an, &A::newton_tol>()));
   rows.push_back(integer(s, "newton_max_iterations", interval(1, 1000, false, false),
                          "shooting: Newton iterations before falling back to integrate",
-                         field<opt, an, &A::newton_max_iterations>()));
+                         field<an, &A::newton_max_iterations>()));
   rows.push_back(boolean(s, "basin_check",
                          "shooting: accept an orbit only when the transient is seen closing in on it (slower; "
                          "where attractors coexist, follows the one reached from the initial state)",
-                         field<opt, an, &A::basin_check>()));
+                         field<an, &A::basin_check>()));
   rows.push_back(boolean(s, "lyapunov",
                          "estimate the largest Lyapunov exponent when no period is found (quasi-periodic "
                          "or chaotic); costs lyapunov_periods more periods",
-                         field<opt, an, &A::lyapunov>()));
+                         field<an, &A::lyapunov>()));
   rows.push_back(integer(s, "lyapunov_periods", ge(10), "forcing periods over which the Lyapunov exponent is averaged",
-                         field<opt, an, &A::lyapunov_periods>()));
+                         field<an, &A::lyapunov_periods>()));
   rows.push_back(integer(s, "n_max", interval(1, 64, false, false), "largest period looked for, in forcing periods",
-                         field<opt, an, &A::n_max>()));
+                         field<an, &A::n_max>()));
   rows.push_back(integer(s, "max_periods", ge(1), "budget of forcing periods to reach steady state",
-                         field<opt, an, &A::max_periods>()));
+                         field<an, &A::max_periods>()));
   rows.push_back(real(s, "steady_tol", ge(0), "-",
                       "steady-state tolerance (scaled max-norm); 0: auto, 100*rtol (rk4: 1e-9)",
-                      field<opt, an, &A::steady_tol>()));
+                      field<an, &A::steady_tol>()));
   rows.push_back(integer(s, "chatter_impacts", ge(1), "impacts per forcing period from which the motion is chatter",
-                         field<opt, an, &A::chatter_impacts>()));
+                         field<an, &A::chatter_impacts>()));
   rows.push_back(real(s, "hertz_limit", gt(0), "-", "z_max/R* above which Hertz theory is flagged invalid",
-                      field<opt, an, &A::hertz_limit>()));
+                      field<an, &A::hertz_limit>()));
   rows.push_back(integer(s, "trajectory_periods", ge(0),
                          "forcing periods of steady motion kept as a trajectory (used by run --trajectory)",
-                         field<opt, an, &A::trajectory_periods>()));
+                         field<an, &A::trajectory_periods>()));
   rows.push_back(integer(s, "trajectory_samples", ge(10), "uniform samples per forcing period in a kept trajectory",
-                         field<opt, an, &A::trajectory_samples>()));
+                         field<an, &A::trajectory_samples>()));
 }
 
 void add_initial_keys(std::vector<Binding>& rows) {
@@ -268,7 +292,7 @@ void add_initial_keys(std::vector<Binding>& rows) {
 }
 
 std::string default_text(const Binding& b, const Scene& defaults, bool& given) {
-  const auto v = b.access.get(defaults);
+  const auto v = b.access.get(defaults.params, defaults.options);
   given = v.has_value();
   return given ? value_text(b.info, *v) : std::string(b.unset_default);
 }
@@ -303,72 +327,36 @@ const Binding* find_binding(std::string_view section, std::string_view key) {
   return nullptr;
 }
 
-// ---------------------------------------------------------------------------------------
-// Sections and their keys.
-
-bool is_parameter_name(std::string_view name) {
-  const auto& names = variable_parameter_names();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-std::vector<std::string_view> all_sections() {
-  std::vector<std::string_view> sections = scene_sections();
-  sections.push_back(kOptimise);
-  return sections;
-}
-
-bool is_axis_name(std::string_view name) {
-  const auto& axes = sweep_axis_names();
-  return std::find(axes.begin(), axes.end(), name) != axes.end();
-}
-
-std::optional<std::string_view> section_of(std::string_view key) {
+const Binding* find_key(std::string_view name) {
+  if (const auto dot = name.find('.'); dot != std::string_view::npos)
+    return find_binding(name.substr(0, dot), name.substr(dot + 1));
+  const Binding* found = nullptr;
   for (const Binding& b : bindings()) {
-    if (b.info.key == key) return b.info.section;
+    if (b.info.key != name) continue;
+    if (found != nullptr) return nullptr;  // several sections have it: name the section
+    found = &b;
   }
-  const auto has = [&](const std::vector<std::string_view>& keys) {
-    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  return found;
+}
+
+std::size_t index_of(const Binding& b) { return static_cast<std::size_t>(&b - bindings().data()); }
+
+std::string full_key(const SceneKey& k) { return cat(k.section, ".", k.key); }
+
+std::string pair_advice(const SceneKey& a, const SceneKey& b) {
+  const auto in_unit = [](const SceneKey& k) {
+    return k.unit == "-" ? cat(k.key, " dimensionless") : cat(k.key, " in ", k.unit);
   };
-  if (has(sweep_option_keys())) return kSweep;
-  if (has(optimise_option_keys())) return kOptimise;
-  return std::nullopt;
+  return cat("(", in_unit(a), ", or ", in_unit(b), ")");
 }
 
-const SceneKey& axis_key(std::string_view name) { return find_binding(*section_of(name), name)->info; }
+bool is_numeric(const SceneKey& k) { return k.type == SceneKeyType::real || k.type == SceneKeyType::integer; }
 
-std::vector<std::string_view> schema_sections() {
-  std::vector<std::string_view> sections;
-  for (const Binding& b : bindings()) {
-    if (sections.empty() || sections.back() != b.info.section) sections.push_back(b.info.section);
-  }
-  return sections;
-}
-
-bool is_section(std::string_view name) {
-  const auto sections = all_sections();
-  return std::find(sections.begin(), sections.end(), name) != sections.end();
-}
-
-std::vector<std::string_view> keys_of(std::string_view section) {
-  if (section == kSweep) return sweep_keys();
-  if (section == kOptimise) return optimise_keys();
-  std::vector<std::string_view> keys;
-  for (const Binding& b : bindings()) {
-    if (b.info.section == section) keys.push_back(b.info.key);
-  }
-  return keys;
-}
-
-bool has_key(std::string_view section, std::string_view key) {
-  if (section == kSweep) return std::find(sweep_keys().begin(), sweep_keys().end(), key) != sweep_keys().end();
-  if (section == kOptimise) return std::find(optimise_keys().begin(), optimise_keys().end(), key) != optimise_keys().end();
-  return find_binding(section, key) != nullptr;
-}
-
-std::string_view partner_of(std::string_view section, std::string_view key) {
-  if (section == kSweep || section == kOptimise) return is_axis_name(key) ? axis_key(key).partner : std::string_view{};
-  const Binding* b = find_binding(section, key);
-  return b != nullptr ? b->info.partner : std::string_view{};
+KeyValue numeric_value(const SceneKey& k, double v) {
+  KeyValue kv;
+  kv.real = v;
+  if (k.type == SceneKeyType::integer) kv.integer = static_cast<long long>(v);
+  return kv;
 }
 
 }  // namespace detail
@@ -382,6 +370,15 @@ std::string parameter_override(std::string_view name, double value) {
   if (!home || (*home != "system" && *home != "contact" && *home != "forcing"))
     throw std::invalid_argument(cat("parameter_override: '", name, "' is not a parameter key"));
   return cat(*home, ".", name, "=", detail::toml_float(value));
+}
+
+PointSetter point_setter(std::string_view key) {
+  const auto dot = key.find('.');
+  const Binding* b = dot == std::string_view::npos ? nullptr : detail::find_key(key);
+  if (b == nullptr) throw std::invalid_argument(cat("point_setter: '", clip(key), "' is not a scene key (section.key)"));
+  if (!detail::is_numeric(b->info))
+    throw std::invalid_argument(cat("point_setter: ", key, " is not a real or integer key"));
+  return [b](Parameters& p, PointOptions& o, double v) { b->access.set(p, o, detail::numeric_value(b->info, v)); };
 }
 
 bool Bounds::contains(double v) const {

@@ -26,8 +26,13 @@ std::string where(const Context& ctx, const toml::node& node) {
 // "file:3: [system] m2 = -5" or "file: --set system.m2=-5".
 std::string locate(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
   const auto it = ctx.overrides.find(cat(section, ".", key));
-  if (it != ctx.overrides.end()) return ctx.path + ": " + it->second;
-  return cat(where(ctx, node), ": [", section, "] ", key, " = ", clipped_text(node));
+  if (it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second));
+  return cat(where(ctx, node), ": [", section, "] ", clip(key), " = ", clipped_text(node));
+}
+
+std::string origin(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
+  const auto it = ctx.overrides.find(cat(section, ".", key));
+  return it != ctx.overrides.end() ? cat(ctx.path, ": ", clip(it->second)) : where(ctx, node);
 }
 
 std::string locate(const Context& ctx, const SceneKey& k, const toml::node& node) {
@@ -86,12 +91,10 @@ namespace {
 // Structure: sections, keys, overrides.
 
 [[noreturn]] void fail_unknown_key(const std::string& loc, std::string_view section, std::string_view key) {
-  std::string msg = cat(loc, ": unknown key '", key, "' in [", section, "]");
+  std::string msg = cat(loc, ": unknown key '", clip(key), "' in [", section, "]");
   const auto keys = keys_of(section);
   const auto home = section_of(key);
-  if (home && section == kSweep) {
-    msg += cat(" (", key, " cannot be swept)");
-  } else if (home && section == kOptimise && is_parameter_name(key)) {
+  if (home && section == kOptimise && is_parameter_name(key)) {
     msg += cat(" (", key, " cannot be a free parameter)");
   } else if (home) {
     msg += cat(" (it belongs in [", *home, "])");
@@ -102,14 +105,14 @@ namespace {
 }
 
 [[noreturn]] void fail_unknown_section(const std::string& loc, std::string_view name) {
-  std::string msg = cat(loc, ": unknown section [", name, "]");
+  std::string msg = cat(loc, ": unknown section [", clip(name), "]");
   if (const auto hint = closest(name, all_sections())) msg += cat(" (did you mean [", *hint, "]?)");
   fail(cat(msg, "; sections: ", join(all_sections(), ", ")));
 }
 
 [[noreturn]] void fail_key_outside_section(const std::string& loc, std::string_view key) {
   if (const auto home = section_of(key)) {
-    fail(cat(loc, ": key '", key, "' is outside any section: put it under [", *home, "]"));
+    fail(cat(loc, ": key '", clip(key), "' is outside any section: put it under [", *home, "]"));
   }
   fail_unknown_section(loc, key);
 }
@@ -141,20 +144,22 @@ void assign_override_value(toml::table& section, std::string_view key, const std
 
 void apply_override(toml::table& table, const std::string& given, Context& ctx) {
   const std::string option = "--set " + given;
+  const std::string loc = cat(ctx.path, ": ", clip(option));
   const auto eq = given.find('=');
   const std::string name = trim(std::string_view(given).substr(0, std::min(eq, given.size())));
   const auto dot = name.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == name.size()) {
     const auto home = section_of(name);
     const std::string example = home ? cat(*home, ".", name, "=...") : std::string("system.m2=310");
-    fail(cat(ctx.path, ": ", option, ": expected section.key=value (e.g. --set ", example, ")"));
+    fail(cat(loc, ": expected section.key=value (e.g. --set ", example, ")"));
   }
   const std::string section = name.substr(0, dot), key = name.substr(dot + 1);
-  if (!is_section(section)) fail_unknown_section(ctx.path + ": " + option, section);
-  if (!has_key(section, key)) fail_unknown_key(ctx.path + ": " + option, section, key);
+  if (!is_section(section)) fail_unknown_section(loc, section);
+  if (section != kSweep && !has_key(section, key)) fail_unknown_key(loc, section, key);
   if (!table.contains(section)) table.insert(section, toml::table{});
   toml::table* sec = table.get_as<toml::table>(section);
-  if (sec == nullptr) fail(where(ctx, *table.get(section)) + ": '" + section + "' must be a section [" + section + "]");
+  if (sec == nullptr) fail(cat(where(ctx, *table.get(section)), ": '", section, "' must be a section [", section, "]"));
+  if (section == kSweep && !is_sweep_option(key)) erase_sweep_axis(*sec, key, loc);  // replaces every spelling
   assign_override_value(*sec, key, trim(std::string_view(given).substr(eq + 1)));
   if (const auto partner = partner_of(section, key); !partner.empty()) sec->erase(partner);  // --set replaces the other form
   ctx.overrides[name] = option;
@@ -171,6 +176,10 @@ void check_structure(const toml::table& table, const Context& ctx) {
     if (sec == nullptr) {
       fail(cat(where(ctx, node), ": '", name.str(), "' must be a section [", name.str(), "], not a value"));
     }
+    if (name.str() == kSweep) {
+      sweep_axis_entries(*sec, ctx);  // checks the axes' names; the options are known keys
+      continue;
+    }
     for (auto&& [key, value] : *sec) {
       if (!has_key(name.str(), key.str())) fail_unknown_key(where(ctx, value), name.str(), key.str());
     }
@@ -180,8 +189,8 @@ void check_structure(const toml::table& table, const Context& ctx) {
 void check_pair(const toml::table& section, const SceneKey& k, const Context& ctx, const toml::node& node) {
   if (k.partner.empty() || !section.contains(k.partner)) return;
   const Binding* other = find_binding(k.section, k.partner);
-  fail(cat(where(ctx, node), ": [", k.section, "] both ", k.key, " and ", k.partner, " given: give only one (",
-           k.key, " in ", k.unit, ", or ", k.partner, " in ", other->info.unit, ")"));
+  fail(cat(where(ctx, node), ": [", k.section, "] both ", k.key, " and ", k.partner, " given: give only one ",
+           pair_advice(k, other->info)));
 }
 
 // ---------------------------------------------------------------------------------------
@@ -214,18 +223,20 @@ KeyValue read_value(const Binding& b, const toml::node& node, const std::string&
   return v;
 }
 
-SceneDraft read_values(const toml::table& table, const Context& ctx) {
-  SceneDraft draft;
+// Every key in schema order ([initial] last, after D), then [sweep] and [optimise].
+Scene read_values(const toml::table& table, const Context& ctx) {
+  Scene scene;
   for (const Binding& b : bindings()) {
     const toml::table* sec = table.get_as<toml::table>(b.info.section);
     const toml::node* node = sec != nullptr ? sec->get(b.info.key) : nullptr;
     if (node == nullptr) continue;
     check_pair(*sec, b.info, ctx, *node);
-    b.access.set(draft, read_value(b, *node, locate(ctx, b.info, *node)));
+    b.access.set(scene.params, scene.options, read_value(b, *node, locate(ctx, b.info, *node)));
+    if (b.access.component >= 0) scene.initial_given.at(static_cast<std::size_t>(b.access.component)) = true;
   }
-  draft.scene.sweep = read_sweep(table, ctx);
-  draft.scene.optimise = read_optimise(table, ctx);
-  return draft;
+  scene.sweep = read_sweep(table, ctx);
+  scene.optimise = read_optimise(table, ctx);
+  return scene;
 }
 
 // The scene as TOML, keys in schema order, preceded by its source and overrides.
@@ -241,6 +252,9 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
     const toml::table* sec = table.get_as<toml::table>(section);
     if (sec == nullptr || sec->empty()) continue;
     os << "\n[" << section << "]\n";
+    if (section == kSweep) {  // the axes as given, in the default order, then the options
+      for (const SweepAxisEntry& e : sweep_axis_entries(*sec, ctx)) os << e.text_key << " = " << node_text(*e.node) << "\n";
+    }
     for (std::string_view key : keys_of(section)) {
       if (const toml::node* node = sec->get(key)) os << key << " = " << node_text(*node) << "\n";
     }
@@ -248,20 +262,12 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
   return os.str();
 }
 
-Scene finish(SceneDraft draft, const toml::table& table, const Context& ctx) {
-  Scene& scene = draft.scene;
-  const auto& init = draft.initial;
-  if (std::any_of(init.begin(), init.end(), [](const auto& v) { return v.has_value(); })) {
-    const Eigen::Vector4d rest(0.0, scene.params.D, 0.0, 0.0);
-    Eigen::Vector4d x;
-    for (int i = 0; i < 4; ++i) x[i] = init[static_cast<std::size_t>(i)].value_or(rest[i]);
-    scene.params.initial = x;
-  }
+Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
   // The schema's checks cover validate(); this keeps the two in step if the core adds one.
   if (const auto errors = validate(scene.params); !errors.empty()) fail(ctx.path + ": " + errors.front());
   scene.path = ctx.path;
   scene.text = scene_text(table, ctx);
-  return std::move(draft.scene);
+  return scene;
 }
 
 std::string read_file(const std::string& path) {

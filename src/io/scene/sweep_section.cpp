@@ -1,7 +1,8 @@
-// The [sweep] section of a scene: its keys are the axes (sweep_axis_names(), each an inline
-// table) and the options order, store, checkpoint_interval and progress_interval. They are not
-// schema rows (an axis is a table, order and store are arrays): read_sweep() reads them, and
-// an axis's values are checked against the range of the parameter's own row.
+// The [sweep] section of a scene: its keys are the axes (any numeric key, each an inline table;
+// sweep_axes.cpp names them) and the options order, store, checkpoint_interval and
+// progress_interval. They are not schema rows (an axis is a table, order and store are
+// arrays): read_sweep() reads them, and an axis's values are checked against the range of the
+// key's own row.
 
 #include <algorithm>
 #include <cmath>
@@ -19,15 +20,6 @@ constexpr double kMaxCells = 1e12;         // far beyond any run; keeps the flat
 
 const std::vector<std::string_view>& sweep_option_keys() {
   static const std::vector<std::string_view> keys = {"order", "store", "checkpoint_interval", "progress_interval"};
-  return keys;
-}
-
-const std::vector<std::string_view>& sweep_keys() {
-  static const std::vector<std::string_view> keys = [] {
-    std::vector<std::string_view> k = sweep_axis_names();
-    k.insert(k.end(), sweep_option_keys().begin(), sweep_option_keys().end());
-    return k;
-  }();
   return keys;
 }
 
@@ -92,7 +84,7 @@ const toml::table& axis_table(std::string_view name, const toml::node& node, con
   const std::vector<std::string_view> fields = {"from", "to", "n", "values", "scale"};
   for (auto&& [key, value] : *t) {
     if (std::find(fields.begin(), fields.end(), key.str()) != fields.end()) continue;
-    std::string msg = cat(loc, ": unknown field '", key.str(), "' in axis ", name);
+    std::string msg = cat(loc, ": unknown field '", clip(key.str()), "' in axis ", name);
     if (const auto hint = closest(key.str(), fields)) msg += cat(" (did you mean '", *hint, "'?)");
     fail(cat(msg, "; an axis is ", kAxisForms));
   }
@@ -120,7 +112,7 @@ std::vector<double> listed_points(const toml::node& node, const std::string& loc
   std::vector<double> v;
   for (const toml::node& e : *a) {
     const std::optional<double> x = number_of(e);
-    if (!x || !std::isfinite(*x)) fail(cat(loc, ": values must be finite numbers, not ", node_text(e)));
+    if (!x || !std::isfinite(*x)) fail(cat(loc, ": values must be finite numbers, not ", clipped_text(e)));
     v.push_back(*x);
   }
   std::vector<double> sorted = v;
@@ -131,71 +123,83 @@ std::vector<double> listed_points(const toml::node& node, const std::string& loc
   return v;
 }
 
-// Every point within the range the parameter's own key allows (E1 > 0, ...).
-void check_axis_range(const Axis& axis, const std::string& loc) {
-  const SceneKey& k = axis_key(axis.name);
+// Every point within the range the key allows (E1 > 0, ...), and whole for an integer key.
+void check_axis_range(const Axis& axis, std::string_view name, const Binding& b, const std::string& loc) {
+  const SceneKey& k = b.info;
   for (const double v : axis.values) {
     if (axis.scale == AxisScale::log && v <= 0.0) fail(cat(loc, ": a log axis needs values > 0"));
     if (!k.bounds.contains(v)) {
-      fail(cat(loc, ": axis ", axis.name, " reaches ", shortest(v), ", outside the range of [", k.section, "] ",
-               k.key, ": must be ", k.allowed(), unit_suffix(k.unit)));
+      fail(cat(loc, ": axis ", name, " reaches ", shortest(v), ", outside the range of [", k.section, "] ", k.key,
+               ": must be ", k.allowed(), unit_suffix(k.unit)));
+    }
+    if (k.type == SceneKeyType::integer && v != std::trunc(v)) {
+      fail(cat(loc, ": axis ", name, " reaches ", shortest(v), ", not an integer: [", k.section, "] ", k.key,
+               " must be ", k.allowed()));
+    }
+    if (k.type == SceneKeyType::integer && v > static_cast<double>(b.access.int_max)) {
+      fail(cat(loc, ": axis ", name, " reaches ", shortest(v), ": [", k.section, "] ", k.key, " must be at most ",
+               std::to_string(b.access.int_max)));
     }
   }
 }
 
-Axis read_axis(std::string_view name, const toml::node& node, const std::string& loc) {
+// One axis over key `b`, named `given` in the scene.
+Axis read_axis(const Binding& b, std::string_view given, const toml::node& node, const std::string& loc) {
+  const std::string name = clip(given);
   const toml::table& t = axis_table(name, node, loc);
-  Axis axis{std::string(name), {}, axis_scale(t, loc)};
+  const SceneKey& k = b.info;
+  Axis axis{full_key(k), std::string(k.key), k.unit == "-" ? "1" : std::string(k.unit), std::string(k.meaning),
+            {}, axis_scale(t, loc)};
   const toml::node* values = t.get("values");
   if (values != nullptr && (t.contains("from") || t.contains("to") || t.contains("n"))) {
     fail(cat(loc, ": axis ", name, " gives both values and from/to/n: an axis is ", kAxisForms));
   }
   axis.values = values != nullptr ? listed_points(*values, loc) : range_points(name, t, axis.scale, loc);
-  check_axis_range(axis, loc);
+  check_axis_range(axis, name, b, loc);
   if (const std::string err = validate_axis(axis); !err.empty()) fail(cat(loc, ": ", err));
   return axis;
 }
 
-// The axes given, in the canonical order.
-std::vector<Axis> read_axes(const toml::table& sweep, const Context& ctx) {
-  if (sweep.contains("k2") && sweep.contains("omega2")) {
-    fail(cat(where(ctx, *sweep.get("omega2")), ": [sweep] both k2 and omega2 given as axes: sweep only one "
-             "(k2 in N/m, or omega2 in rad/s)"));
-  }
+// The axes given, in the default order; `given` receives their names as the scene gives them.
+std::vector<Axis> read_axes(const toml::table& sweep, const Context& ctx, std::vector<std::string>& given) {
   std::vector<Axis> axes;
-  for (const std::string_view name : sweep_axis_names()) {
-    if (const toml::node* node = sweep.get(name)) axes.push_back(read_axis(name, *node, locate(ctx, kSweep, name, *node)));
+  for (const SweepAxisEntry& e : sweep_axis_entries(sweep, ctx)) {
+    axes.push_back(read_axis(*e.binding, e.given, *e.node, locate(ctx, kSweep, e.given, *e.node)));
+    given.push_back(e.given);
   }
   if (axes.empty()) {
-    fail(cat(where(ctx, sweep), ": [sweep] has no axes: give at least one of ",
-             join(sweep_axis_names(), ", "), " as NAME = ", kAxisForms));
+    fail(cat(where(ctx, sweep), ": [sweep] has no axes: give at least one real or integer key (E1, \"forcing.omega\", "
+             "...) as KEY = ", kAxisForms));
   }
   return axes;
 }
 
-// Reorders the axes as `order` lists them: each axis exactly once.
-void apply_order(std::vector<Axis>& axes, const toml::node& node, const std::string& loc) {
-  std::vector<std::string_view> given;
-  for (const Axis& a : axes) given.push_back(a.name);
-  const std::string axes_text = join(given, ", ");
-  std::vector<Axis> ordered;
+// Reorders the axes as `order` lists them, by any of their names: each axis exactly once.
+void apply_order(std::vector<Axis>& axes, const std::vector<std::string>& given, const toml::node& node,
+                 const std::string& loc) {
+  const std::vector<std::string_view> names = views(given);
+  const std::string axes_text = clip(join(names, ", "), 200);
+  std::vector<std::size_t> order;  // indices into axes
   for (const std::string& name : string_list(node, loc, cat("the axes: ", axes_text))) {
-    const auto is_named = [&](const Axis& a) { return a.name == name; };
-    const auto it = std::find_if(axes.begin(), axes.end(), is_named);
+    const Binding* b = find_key(name);
+    const auto it = std::find_if(axes.begin(), axes.end(),
+                                 [&](const Axis& a) { return b != nullptr && a.key == full_key(b->info); });
     if (it == axes.end()) {
-      std::string msg = cat(loc, ": '", name, "' is not an axis of this sweep");
-      if (const auto hint = closest(name, given)) msg += cat(" (did you mean '", *hint, "'?)");
+      std::string msg = cat(loc, ": '", clip(name), "' is not an axis of this sweep");
+      if (const auto hint = closest(name, names)) msg += cat(" (did you mean '", *hint, "'?)");
       fail(cat(msg, "; axes: ", axes_text));
     }
-    if (std::any_of(ordered.begin(), ordered.end(), is_named)) fail(cat(loc, ": axis ", name, " is listed twice"));
-    ordered.push_back(*it);
+    const auto index = static_cast<std::size_t>(it - axes.begin());
+    if (std::find(order.begin(), order.end(), index) != order.end()) fail(cat(loc, ": axis ", clip(name), " is listed twice"));
+    order.push_back(index);
   }
-  for (const std::string_view name : given) {
-    const auto named = [&](const Axis& a) { return a.name == name; };
-    if (std::none_of(ordered.begin(), ordered.end(), named)) {
-      fail(cat(loc, ": axis ", name, " is missing: order must list every axis once (", axes_text, ")"));
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (std::find(order.begin(), order.end(), i) == order.end()) {
+      fail(cat(loc, ": axis ", clip(given[i]), " is missing: order must list every axis once (", axes_text, ")"));
     }
   }
+  std::vector<Axis> ordered;
+  for (const std::size_t i : order) ordered.push_back(std::move(axes[i]));
   axes = std::move(ordered);
 }
 
@@ -205,7 +209,7 @@ std::vector<Quantity> read_store(const toml::node& node, const std::string& loc)
   for (const std::string& name : string_list(node, loc, cat("quantities: ", allowed))) {
     const auto& names = quantity_names();
     if (std::find(names.begin(), names.end(), name) == names.end()) {
-      std::string msg = cat(loc, ": unknown quantity '", name, "'");
+      std::string msg = cat(loc, ": unknown quantity '", clip(name), "'");
       if (const auto hint = closest(name, views(names))) msg += cat(" (did you mean '", *hint, "'?)");
       fail(cat(msg, "; allowed: ", allowed));
     }
@@ -230,8 +234,9 @@ std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& 
   const toml::table* sec = table.get_as<toml::table>(kSweep);
   if (sec == nullptr) return std::nullopt;
   SweepOptions sweep;
-  sweep.axes = read_axes(*sec, ctx);
-  if (const toml::node* node = sec->get("order")) apply_order(sweep.axes, *node, locate(ctx, kSweep, "order", *node));
+  std::vector<std::string> given;
+  sweep.axes = read_axes(*sec, ctx, given);
+  if (const toml::node* node = sec->get("order")) apply_order(sweep.axes, given, *node, locate(ctx, kSweep, "order", *node));
   if (const toml::node* node = sec->get("store")) sweep.store = read_store(*node, locate(ctx, kSweep, "store", *node));
   for (const SweepInterval& row : sweep_intervals()) {
     if (const toml::node* node = sec->get(row.info.key)) sweep.*row.field = read_real(row.info, *node, locate(ctx, row.info, *node));

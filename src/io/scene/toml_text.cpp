@@ -89,6 +89,8 @@ std::optional<std::string_view> closest(std::string_view name, const std::vector
   std::optional<std::string_view> best;
   std::size_t best_d = limit + 1;
   for (std::string_view c : candidates) {
+    const std::size_t gap = name.size() > c.size() ? name.size() - c.size() : c.size() - name.size();
+    if (gap > limit) continue;  // the distance is at least the length difference (and a long name costs no time)
     const std::size_t d = edit_distance(name, c);
     if (d < best_d) {
       best_d = d;

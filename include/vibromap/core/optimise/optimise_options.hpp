@@ -55,9 +55,13 @@ std::string to_string(StabilityRule r);              // "if_known", "required", 
 StabilityRule parse_stability_rule(std::string_view s);  // throws std::invalid_argument
 const std::vector<StabilityRule>& all_stability_rules();
 
+// The parameters an optimisation may free (set_parameter's names): E1, E2, R1, R2, m2, k2,
+// omega2, in this order.
+const std::vector<std::string_view>& free_parameter_names();
+
 // One free parameter and its box.
 struct FreeVariable {
-  std::string name;                  // E1, E2, R1, R2, m2, k2 or omega2 (set_parameter's names)
+  std::string name;                  // one of free_parameter_names()
   double min = 0.0;                  // lower bound, SI units
   double max = 0.0;                  // upper bound, SI units (> min; both > 0 on a log scale)
   AxisScale scale = AxisScale::lin;  // lin: u = (x - min)/(max - min); log: the same in log x

@@ -6,9 +6,13 @@
 // [optimise] keys are not rows of it (an axis or a free parameter is a table, some options
 // are arrays); their sections document them apart (docs.hpp).
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/model/parameters.hpp"
 
 namespace vibromap {
 
@@ -52,5 +56,14 @@ std::vector<std::string_view> scene_sections();
 // "contact.E1=20000" or "system.omega2=4.5529". Throws std::invalid_argument when `name`
 // is not a key of [system], [contact] or [forcing].
 std::string parameter_override(std::string_view name, double value);
+
+// Sets one numeric key of a parameter point exactly as the scene reader would: k2 and omega2
+// (k1, omega1) replace the spring in their own form, xi and c the damper (a swept m2 keeps a
+// given xi2 a ratio), integer keys take the value as an integer (it must be whole), and an
+// [initial] component fills the components not yet set from the rest state (0, D, 0, 0).
+using PointSetter = std::function<void(Parameters&, PointOptions&, double)>;
+// The setter of a real or integer key named in full ("forcing.omega", "solver.rtol"). Throws
+// std::invalid_argument for an unknown key, a short name, or a choice or boolean key.
+PointSetter point_setter(std::string_view key);
 
 }  // namespace vibromap

@@ -22,18 +22,26 @@
 // replaces whichever of the pair the file gave; giving both in the file is an error.
 //
 // An optional [sweep] section makes the scene a grid (the values above are then the base of
-// every cell; a swept k2 or omega2 replaces the scene's spring2 in its own form):
+// every cell; a swept key replaces the base value as --set would, so a swept k2 or omega2
+// replaces the scene's spring2 in its own form, and a given xi2 stays a ratio):
 //   [sweep]
 //   E1 = { from = 2e4, to = 2.1e11, n = 23, scale = "log" }  # n points, ends exact; scale "lin" default
 //   E2 = { values = [2e4, 1e6, 2.1e11] }                     # explicit points
-//   order = ["E1", "E2"]         # first axis slowest; default E1, E2, R1, R2, m2, k2, omega2
+//   "forcing.omega" = { from = 5.0, to = 9.0, n = 41 }       # any numeric key, by its full name
+//   order = ["E1", "E2", "omega"]  # first axis slowest; default E1, E2, R1, R2, m2, k2, omega2,
+//                                  # then the schema's order
 //   store = ["T_con", "k_con"]   # optional quantities (cell_result.hpp); default SweepOptions'
 //   checkpoint_interval = 60.0   # s, > 0
 //   progress_interval = 10.0     # s, > 0
-// Axes are sweep_axis_names() (not both k2 and omega2); every axis value must lie in the
-// range of the parameter's own key (E1 > 0, ...). Its keys are not rows of scene_keys() (an
-// axis is a table, order and store are arrays); write_scene_keys documents them apart.
-// `--set sweep.checkpoint_interval=5` and `--set 'sweep.E1={from=1e5,to=1e9,n=5}'` work.
+// An axis is any real or integer key of [system] ... [initial], named in full ("forcing.omega",
+// also as TOML's dotted key forcing.omega = {...}) or by the key alone when only one section
+// has it (E1, omega2, F0, omega). Every axis value must lie in the range of the key (E1 > 0,
+// ...); an integer key's values must be integers. At most kMaxSweepAxes axes, never both keys
+// of a pair (k2 | omega2, ...) nor one key twice; choice and boolean keys cannot be axes.
+// [sweep]'s keys are not rows of scene_keys() (an axis is a table, order and store are
+// arrays); write_scene_keys documents them apart. `--set sweep.checkpoint_interval=5`,
+// `--set 'sweep.E1={from=1e5,to=1e9,n=5}'` and `--set 'sweep.forcing.omega={values=[6,7]}'`
+// work; an axis set so replaces every spelling of its key and of its pair partner.
 //
 // An optional [optimise] section makes the scene an optimisation (`vibromap optimise`,
 // optimise_options.hpp): the values above are the base point, the free parameters move.
@@ -53,6 +61,7 @@
 // documents them apart, and they take --set (`--set optimise.algorithm=cobyla`,
 // `--set 'optimise.E1={min=1e5,max=1e9,scale="log"}'`).
 
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -80,6 +89,8 @@ struct Scene {
   PointOptions options;
   std::optional<SweepOptions> sweep;  // nullopt: no [sweep] section (a single point)
   std::optional<OptimiseOptions> optimise;  // nullopt: no [optimise] section
+  std::array<bool, 4> initial_given{};  // the [initial] keys given (x1, x2, v1, v2); the others
+                                        // follow the rest state (0, D, 0, 0)
   std::string path;  // the scene file as named by the user
   std::string text;  // the scene after overrides as TOML (keys as given, schema order);
                      // parse_scene(text, path) gives this Scene back. For provenance.
