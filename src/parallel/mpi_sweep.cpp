@@ -17,9 +17,11 @@
 
 #include "mpi_messages.hpp"
 #include "progress.hpp"
+#include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/scene/cell_maker.hpp"
+#include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/sweep_runner.hpp"
 
 namespace vibromap {
@@ -260,19 +262,30 @@ class Coordinator {
   Clock::time_point last_checkpoint_;
 };
 
-// The scene text without the run-control keys that may change between a run and its resume.
-std::string cell_defining_text(const std::string& text) {
-  std::string out, line;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    const std::size_t end = std::min(text.find('\n', pos), text.size());
-    line = text.substr(pos, end - pos);
-    const auto first = line.find_first_not_of(" \t");
-    const std::string_view body = first == std::string::npos ? std::string_view{} : std::string_view(line).substr(first);
-    if (!body.starts_with("checkpoint_interval") && !body.starts_with("progress_interval") && !body.starts_with("#"))
-      out += line + '\n';
-    pos = end + 1;
+// Why a map cannot be resumed with this scene: the keys whose values differ (none when the
+// run is the same), from the scene the map records, parsed as a scene is.
+std::vector<std::string> resume_differences(const SweepMap& map, const Scene& scene, const std::string& output) {
+  Scene recorded;
+  try {
+    recorded = parse_scene(map.scene_text, output);
+  } catch (const SceneError& e) {
+    throw SceneError(cat(output, ": --resume: the scene the map records does not read: ", e.what()));
   }
+  std::vector<std::string> diff =
+      canonical_differences(canonical_text(recorded, IdentityScope::sweep), canonical_text(scene, IdentityScope::sweep));
+  bool same_grid = map.grid.axes().size() == scene.sweep->axes.size() && map.stored == scene.sweep->store;
+  for (std::size_t d = 0; same_grid && d < map.grid.axes().size(); ++d)
+    same_grid = map.grid.axes()[d].name == scene.sweep->axes[d].name && map.grid.axes()[d].values == scene.sweep->axes[d].values;
+  if (diff.empty() && !same_grid) diff.push_back("the map's own grid or stored quantities");
+  return diff;
+}
+
+// "a, b, c" of the first few entries, and how many more.
+std::string listed(const std::vector<std::string>& items) {
+  constexpr std::size_t kShown = 4;
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < kShown; ++i) out += cat(i > 0 ? ", " : "", items[i]);
+  if (items.size() > kShown) out += cat(" and ", std::to_string(items.size() - kShown), " more");
   return out;
 }
 
@@ -282,13 +295,9 @@ SweepMap prepare_map(const Scene& scene, const SweepRunConfig& config, int ranks
   const bool exists = std::filesystem::exists(config.output);
   if (config.resume && exists) {
     SweepMap map = read_map(config.output);
-    bool same = map.grid.axes().size() == grid.axes().size() && map.stored == scene.sweep->store &&
-                cell_defining_text(map.scene_text) == cell_defining_text(scene.text);
-    for (std::size_t d = 0; same && d < grid.axes().size(); ++d)
-      same = map.grid.axes()[d].name == grid.axes()[d].name && map.grid.axes()[d].values == grid.axes()[d].values;
-    if (!same)
-      throw SceneError(config.output + ": --resume: the map was made from a different scene or grid than " +
-                       scene.path + " (compare its 'scene' attribute); use another --output");
+    if (const auto diff = resume_differences(map, scene, config.output); !diff.empty())
+      throw SceneError(cat(config.output, ": --resume: the map was made from a different scene or grid than ",
+                           scene.path, ": ", listed(diff), "; use another --output"));
     map.grid = grid;  // the scene's axes: the same values, with their keys, units and meanings
     map.scene_text = scene.text;
     map.ranks = ranks;
