@@ -3,7 +3,7 @@
 #include <new>
 
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap {
 

@@ -17,7 +17,7 @@
 #include "vibromap/core/analysis/accuracy.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
 namespace {

@@ -12,7 +12,8 @@
 
 #include "commands.hpp"
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/exit_code.hpp"
@@ -81,16 +82,19 @@ CLI::App* add_run(CLI::App& app, cli::RunArgs& args) {
 }
 
 std::string sweep_footer() {
-  return "The scene's [sweep] section gives the axes (any of E1, E2, R1, R2, m2, k2, omega2), the\n"
-         "quantities to store and the checkpoint interval ('vibromap keys' documents them).\n"
+  return "The scene's [sweep] section gives the axes, the quantities to store and the checkpoint\n"
+         "interval ('vibromap keys' documents them). An axis can be any real or integer scene key,\n"
+         "up to 8: \"forcing.omega\" = { from = 5, to = 9, n = 41 } (or forcing.omega = ..., or\n"
+         "omega = ... when only one section has the key), E1 = { values = [...] }.\n"
          "Run on MPI ranks with: mpirun -n N vibromap sweep SCENE (as root add --allow-run-as-root,\n"
          "and --oversubscribe for more ranks than cores). Cells are handed out dynamically; rank 0\n"
          "computes too and writes the map. Progress goes to stderr: a live line on a terminal,\n"
          "plain lines every [sweep] progress_interval seconds otherwise.\n\n"
          "The map is rewritten atomically every [sweep] checkpoint_interval seconds, so a run\n"
-         "killed at any moment leaves a map that opens; --resume continues it (the scene and grid\n"
-         "must be the same; checkpoint and progress intervals may differ). SIGINT, SIGTERM or\n"
-         "SIGUSR1 write a checkpoint and stop (exit code 3).\n\n" +
+         "killed at any moment leaves a map that opens; --resume continues it. The run must be the\n"
+         "same, judged key by key from the parsed scenes: formatting, comments and the checkpoint\n"
+         "and progress intervals may differ, and an error names the keys that do. SIGINT, SIGTERM\n"
+         "or SIGUSR1 write a checkpoint and stop (exit code 3).\n\n" +
          main_footer();
 }
 

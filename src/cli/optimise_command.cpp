@@ -10,7 +10,8 @@
 
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/campaigns/multistart/optimise_run.hpp"
 #include "vibromap/parallel/mpi_session.hpp"
 #include "vibromap/parallel/signals.hpp"

@@ -11,7 +11,8 @@
 #include "commands.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
 #include "vibromap/io/summary_output.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 

@@ -8,7 +8,7 @@
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 #include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {

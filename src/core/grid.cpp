@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include "vibromap/core/text.hpp"
 
 namespace vibromap {
 
@@ -12,20 +15,6 @@ AxisScale parse_axis_scale(std::string_view s) {
   if (s == "lin") return AxisScale::lin;
   if (s == "log") return AxisScale::log;
   throw std::invalid_argument("unknown axis scale '" + std::string(s) + "' (allowed: lin, log)");
-}
-
-const std::vector<std::string_view>& sweep_axis_names() {
-  static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2"};
-  return names;
-}
-
-std::string_view axis_units(std::string_view name) {
-  if (name == "E1" || name == "E2") return "Pa";
-  if (name == "R1" || name == "R2") return "m";
-  if (name == "m2") return "kg";
-  if (name == "k2") return "N/m";
-  if (name == "omega2") return "rad/s";
-  return "1";
 }
 
 std::vector<double> axis_points(double from, double to, int n, AxisScale scale) {
@@ -44,9 +33,7 @@ std::vector<double> axis_points(double from, double to, int n, AxisScale scale) 
 }
 
 std::string validate_axis(const Axis& axis) {
-  const auto& names = sweep_axis_names();
-  if (std::find(names.begin(), names.end(), axis.name) == names.end())
-    return "unknown axis '" + axis.name + "' (allowed: E1, E2, R1, R2, m2, k2, omega2)";
+  if (axis.name.empty()) return "an axis has no name";
   if (axis.values.empty()) return "axis " + axis.name + " has no values";
   for (double v : axis.values) {
     if (!std::isfinite(v)) return "axis " + axis.name + " has a non-finite value";
@@ -62,6 +49,8 @@ std::string validate_axis(const Axis& axis) {
 Grid::Grid(std::vector<Axis> axes) : axes_(std::move(axes)) {
   for (const Axis& a : axes_) {
     if (std::string err = validate_axis(a); !err.empty()) throw std::invalid_argument(err);
+    if (size_ > std::numeric_limits<std::size_t>::max() / a.values.size())
+      throw std::invalid_argument("the grid has more cells than a flat index can count");
     size_ *= a.values.size();
   }
 }
@@ -88,11 +77,15 @@ std::size_t Grid::ravel(const std::vector<std::size_t>& index) const {
   return flat;
 }
 
-Parameters Grid::cell(const Parameters& base, std::size_t flat) const {
-  Parameters p = base;
-  const auto index = unravel(flat);
-  for (std::size_t d = 0; d < axes_.size(); ++d) set_parameter(p, axes_[d].name, axes_[d].values[index[d]]);
-  return p;
+void Grid::coordinates(std::size_t flat, std::span<double> out) const {
+  if (out.size() != axes_.size())
+    throw std::invalid_argument(cat("Grid::coordinates: ", std::to_string(out.size()), " slots for ",
+                                    std::to_string(axes_.size()), " axes"));
+  for (std::size_t d = axes_.size(); d-- > 0;) {
+    const std::vector<double>& v = axes_[d].values;
+    out[d] = v[flat % v.size()];
+    flat /= v.size();
+  }
 }
 
 }  // namespace vibromap

@@ -169,7 +169,7 @@ void write_best(Group& g, const VerifiedPoint& v, double sense) {
   g.set_attribute("start", v.start);
   g.set_attribute("evaluation", static_cast<std::int64_t>(v.evaluation));
   g.set_attribute("objective", sense * v.value);
-  for (const std::string_view name : sweep_axis_names()) g.set_attribute(name, get_parameter(v.params, name));
+  for (const std::string_view name : free_parameter_names()) g.set_attribute(name, get_parameter(v.params, name));
   g.write_dataset("x", v.x);
   write_solve(g.create_group("integrate"), v.integrate);
   write_solve(g.create_group("shooting"), v.shooting);

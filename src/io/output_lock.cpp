@@ -13,7 +13,7 @@
 
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap {
 namespace {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "vibromap/core/analysis/steady_state.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/core/model/system.hpp"
 
 namespace vibromap::bench {

@@ -34,7 +34,7 @@
 #include "cvode_solver.hpp"
 #include "odeint_solver.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::bench {
 namespace {

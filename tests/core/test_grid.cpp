@@ -1,7 +1,8 @@
-// Sweep grids: axis points, flat index <-> per-axis index, cells as parameter points, and
-// the fixed-size cell record.
+// Sweep grids: axis points, flat index <-> per-axis index, a cell's coordinates, and the
+// fixed-size cell record.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -28,8 +29,17 @@ TEST(Grid, AxisPointsHitTheEndsExactlyWithConstantSpacing) {
   EXPECT_EQ(axis_points(5.0, 9.0, 1, AxisScale::lin), std::vector<double>{5.0});
 }
 
+namespace {
+
+// An axis by its coordinate name alone (the Grid needs no key, unit or meaning).
+Axis axis(std::string name, std::vector<double> values, AxisScale scale = AxisScale::lin) {
+  return {"", std::move(name), "", "", std::move(values), scale};
+}
+
+}  // namespace
+
 TEST(Grid, FlatIndexRoundTripsRowMajorFirstAxisSlowest) {
-  const Grid g({{"E1", {1, 2, 3}, AxisScale::lin}, {"R1", {0.1, 0.2}, AxisScale::lin}, {"m2", {100, 200, 300, 400}, AxisScale::lin}});
+  const Grid g({axis("E1", {1, 2, 3}), axis("R1", {0.1, 0.2}), axis("m2", {100, 200, 300, 400})});
   EXPECT_EQ(g.size(), 24u);
   EXPECT_EQ(g.shape(), (std::vector<std::size_t>{3, 2, 4}));
   EXPECT_EQ(g.unravel(0), (std::vector<std::size_t>{0, 0, 0}));
@@ -39,26 +49,40 @@ TEST(Grid, FlatIndexRoundTripsRowMajorFirstAxisSlowest) {
   for (std::size_t i = 0; i < g.size(); ++i) EXPECT_EQ(g.ravel(g.unravel(i)), i);
 }
 
-TEST(Grid, CellsSetTheSweptParametersAndKeepTheRest) {
-  Parameters base;
-  base.E2 = 7e9;
-  const Grid g({{"E1", {1e5, 1e9}, AxisScale::log}, {"omega2", {3.606, 5.646}, AxisScale::lin}});
-  const Parameters p = g.cell(base, 3);  // E1 index 1, omega2 index 1
-  EXPECT_EQ(p.E1, 1e9);
-  EXPECT_EQ(get_parameter(p, "omega2"), 5.646);
-  EXPECT_EQ(p.E2, 7e9);
-  EXPECT_NEAR(get_parameter(p, "xi2"), 0.01, 1e-15);  // the ratio form is kept
-  const Grid gk({{"k2", {4031.0}, AxisScale::lin}});
-  EXPECT_EQ(get_parameter(gk.cell(base, 0), "k2"), 4031.0);
+TEST(Grid, CoordinatesAreTheCellsValueOnEachAxis) {
+  const Grid g({axis("E1", {1e5, 1e9}, AxisScale::log), axis("omega", {5.0, 7.0, 9.0}), axis("n_max", {8, 16})});
+  std::array<double, 3> x{};
+  g.coordinates(0, x);
+  EXPECT_EQ(x, (std::array<double, 3>{1e5, 5.0, 8}));
+  g.coordinates(9, x);  // (1, 1, 1): row-major, first axis slowest
+  EXPECT_EQ(x, (std::array<double, 3>{1e9, 7.0, 16}));
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    g.coordinates(i, x);
+    const auto index = g.unravel(i);
+    for (std::size_t d = 0; d < 3; ++d) EXPECT_EQ(x[d], g.axes()[d].values[index[d]]) << i << " " << d;
+  }
+  std::array<double, 2> short_out{};
+  EXPECT_THROW(g.coordinates(0, short_out), std::invalid_argument);
+}
+
+TEST(Grid, MoreCellsThanAFlatIndexCountsAreRefused) {
+  std::vector<double> v(8192);  // 2^13 points: five such axes make 2^65 cells
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = static_cast<double>(i);
+  std::vector<Axis> axes;
+  for (const char* name : {"a", "b", "c", "d"}) axes.push_back(axis(name, v));
+  EXPECT_EQ(Grid(axes).size(), std::size_t{1} << 52);
+  axes.push_back(axis("e", v));
+  EXPECT_THROW(Grid{axes}, std::invalid_argument);
 }
 
 TEST(Grid, BadAxesAreRefusedWithAReason) {
-  EXPECT_NE(validate_axis({"E3", {1.0}, AxisScale::lin}).find("unknown axis 'E3'"), std::string::npos);
-  EXPECT_NE(validate_axis({"E1", {}, AxisScale::lin}).find("no values"), std::string::npos);
-  EXPECT_NE(validate_axis({"E1", {0.0, 1.0}, AxisScale::log}).find("> 0"), std::string::npos);
-  EXPECT_NE(validate_axis({"E1", {1.0, 1.0}, AxisScale::lin}).find("repeats"), std::string::npos);
-  EXPECT_NE(validate_axis({"E1", {NAN}, AxisScale::lin}).find("non-finite"), std::string::npos);
-  EXPECT_THROW(Grid({{"E1", {}, AxisScale::lin}}), std::invalid_argument);
+  EXPECT_NE(validate_axis(axis("", {1.0})).find("no name"), std::string::npos);
+  EXPECT_EQ(validate_axis(axis("anything", {1.0})), "");  // the Grid does not know scene keys
+  EXPECT_NE(validate_axis(axis("E1", {})).find("no values"), std::string::npos);
+  EXPECT_NE(validate_axis(axis("E1", {0.0, 1.0}, AxisScale::log)).find("> 0"), std::string::npos);
+  EXPECT_NE(validate_axis(axis("E1", {1.0, 1.0})).find("repeats"), std::string::npos);
+  EXPECT_NE(validate_axis(axis("E1", {NAN})).find("non-finite"), std::string::npos);
+  EXPECT_THROW(Grid({axis("E1", {})}), std::invalid_argument);
 }
 
 TEST(CellResult, SummarizesTheLongestImpact) {

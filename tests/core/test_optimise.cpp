@@ -371,7 +371,8 @@ TEST(PointObjective, StabilityRulesAndImpactIndex) {
 // Seeds, plans and best points
 
 TEST(Multistart, SeedsAreTheBestQualifyingCellsInsideTheBox) {
-  const Grid grid({{"m2", {100.0, 200.0, 310.0, 400.0}, AxisScale::lin}, {"omega2", {4.0, 5.0}, AxisScale::lin}});
+  const Grid grid({{"system.m2", "m2", "kg", "attached body mass", {100.0, 200.0, 310.0, 400.0}, AxisScale::lin},
+                   {"system.omega2", "omega2", "rad/s", "coupling spring frequency", {4.0, 5.0}, AxisScale::lin}});
   std::vector<CellResult> cells(grid.size());
   std::vector<std::uint8_t> done(grid.size(), 1);
   const double kcon[] = {5.0, 4.0, 3.0, 2.0, 1.5, 6.0, 0.5, 0.4};
@@ -408,6 +409,23 @@ TEST(Multistart, SeedsAreTheBestQualifyingCellsInsideTheBox) {
   o.hertz_valid = false;
   o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}};  // omega2 is an axis but not free
   EXPECT_THROW(select_seeds(grid, cells, done, stored, Parameters{}, o), std::invalid_argument);
+}
+
+// A map axis over a key that can never be free (the forcing frequency) is refused by name.
+TEST(Multistart, AMapAxisThatCannotBeFreeIsRefused) {
+  const Grid grid({{"forcing.omega", "omega", "rad/s", "forcing frequency", {6.0, 7.0}, AxisScale::lin}});
+  const std::vector<CellResult> cells(grid.size());
+  const std::vector<std::uint8_t> done(grid.size(), 1);
+  OptimiseOptions o;
+  o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}};
+  try {
+    select_seeds(grid, cells, done, {Quantity::k_con}, Parameters{}, o);
+    ADD_FAILURE() << "no error for a map axis over omega";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "map axis omega is not a free parameter of [optimise], nor can it be one (free parameters: E1, E2, R1, "
+              "R2, m2, k2, omega2): seed from a map without it");
+  }
 }
 
 TEST(Multistart, PlansEverySeedWithEveryAlgorithm) {

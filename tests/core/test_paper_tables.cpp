@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "vibromap/core/analysis/point_solver.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 using namespace vibromap;
 

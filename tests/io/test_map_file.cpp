@@ -68,25 +68,6 @@ CellResult sample_cell(std::size_t i) {
   return c;
 }
 
-// An axis as the scene reader makes it: the key, units and meaning of its scene key.
-Axis axis(std::string name, std::vector<double> values, AxisScale scale) {
-  static const std::map<std::string, std::array<std::string, 3>> keys = {
-      {"E1", {"contact.E1", "Pa", "Young's modulus of body 1"}},
-      {"E2", {"contact.E2", "Pa", "Young's modulus of body 2"}},
-      {"R1", {"contact.R1", "m", "radius of curvature of body 1 at the contact"}},
-      {"m2", {"system.m2", "kg", "attached body mass"}},
-      {"omega2", {"system.omega2", "rad/s", "coupling spring as partial frequency sqrt(k2/m2)"}}};
-  const auto& k = keys.at(name);
-  Axis a;
-  a.name = std::move(name);
-  a.values = std::move(values);
-  a.scale = scale;
-  a.key = k[0];
-  a.units = k[1];
-  a.long_name = k[2];
-  return a;
-}
-
 SweepMap sample_map(std::vector<Axis> axes, std::vector<Quantity> stored) {
   SweepMap map;
   map.grid = Grid(std::move(axes));
@@ -102,15 +83,17 @@ SweepMap sample_map(std::vector<Axis> axes, std::vector<Quantity> stored) {
 
 // 3 x 4 over E1 (log) and R1 (lin): the map the Python test reads.
 SweepMap sample_map_2d() {
-  return sample_map({axis("E1", {2e4, 1e7, 2.1e11}, AxisScale::log), axis("R1", {0.09, 0.5, 1.0, 2.0}, AxisScale::lin)},
+  return sample_map({{"contact.E1", "E1", "Pa", "Young's modulus of body 1", {2e4, 1e7, 2.1e11}, AxisScale::log},
+                     {"contact.R1", "R1", "m", "radius of curvature of body 1", {0.09, 0.5, 1.0, 2.0}, AxisScale::lin}},
                     {Quantity::T_con, Quantity::k_con, Quantity::hertz_valid, Quantity::periods,
                      Quantity::max_multiplier, Quantity::lyapunov});
 }
 
 SweepMap sample_map_3d() {
-  return sample_map({axis("m2", {100.0, 205.0, 310.0}, AxisScale::lin),
-                     axis("E2", axis_points(2e4, 2.1e11, 5, AxisScale::log), AxisScale::log),
-                     axis("omega2", {3.606, 5.646}, AxisScale::lin)},
+  return sample_map({{"system.m2", "m2", "kg", "attached body mass", {100.0, 205.0, 310.0}, AxisScale::lin},
+                     {"contact.E2", "E2", "Pa", "Young's modulus of body 2", axis_points(2e4, 2.1e11, 5, AxisScale::log),
+                      AxisScale::log},
+                     {"system.omega2", "omega2", "rad/s", "coupling spring frequency", {3.606, 5.646}, AxisScale::lin}},
                     all_quantities());
 }
 
@@ -437,7 +420,8 @@ TEST_F(MapFile, InconsistentMapIsRefusedBeforeAnyFileIsMade) {
   map = sample_map_2d();
   map.stored.push_back(Quantity::k_con);
   expect_refused(map, "quantity 'k_con' is stored twice");
-  expect_refused(sample_map({{"E1", {1.0, 2.0}}, {"E1", {3.0}}}, {}), "axis 'E1' appears twice");
+  expect_refused(sample_map({{"contact.E1", "E1", "Pa", "", {1.0, 2.0}}, {"contact.E1", "E1", "Pa", "", {3.0}}}, {}),
+                 "axis 'E1' appears twice");
   SweepMap no_axes;
   no_axes.cells.resize(1);
   no_axes.done.resize(1);

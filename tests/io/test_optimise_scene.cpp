@@ -1,4 +1,4 @@
-// The [optimise] section of a scene (io/scene.hpp): free parameters and their boxes, the
+// The [optimise] section of a scene (io/scene/): free parameters and their boxes, the
 // objective, the kept regime, algorithms, seeds and stopping rules, overrides, one-line
 // errors, provenance, the documentation, and the optimisation job in jobs/paper/.
 
@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "support/scene_testing.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
 
 namespace vibromap {
@@ -285,7 +287,7 @@ TEST(OptimiseScene, KeysListingDocumentsTheOptimiseKeys) {
   std::ostringstream os;
   write_scene_keys(os);
   const std::string text = os.str();
-  for (const std::string_view name : sweep_axis_names()) {
+  for (const std::string_view name : free_parameter_names()) {
     EXPECT_NE(text.find(concat({"optimise.", name, " "})), std::string::npos) << name;
   }
   for (const char* key : {"optimise.objective ", "optimise.regime ", "optimise.algorithm ", "optimise.seeds ",

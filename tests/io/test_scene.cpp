@@ -1,4 +1,4 @@
-// Scenes (io/scene.hpp): defaults, every key, pairs, overrides, one-line errors, the paper's
+// Scenes (io/scene/): defaults, every key, pairs, overrides, one-line errors, the paper's
 // scenes and the reference scene. Also the JSON writer and the summary output, which have
 // no test file of their own yet.
 
@@ -16,7 +16,9 @@
 
 #include "vibromap/io/json_writer.hpp"
 #include "support/scene_testing.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/io/summary_output.hpp"
 
 namespace vibromap {

@@ -1,4 +1,4 @@
-// The [sweep] section of a scene (io/scene.hpp): axes, order, store, intervals, overrides,
+// The [sweep] section of a scene (io/scene/): axes, order, store, intervals, overrides,
 // one-line errors, provenance, the reference scene's example and the sweep jobs in jobs/.
 
 #include <cmath>
@@ -13,7 +13,10 @@
 #include <gtest/gtest.h>
 
 #include "support/scene_testing.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
+#include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/core/grid.hpp"
 
 namespace vibromap {
@@ -46,7 +49,10 @@ std::vector<std::string> axis_names(const SweepOptions& s) {
 void expect_same_sweep(const SweepOptions& a, const SweepOptions& b) {
   ASSERT_EQ(a.axes.size(), b.axes.size());
   for (std::size_t i = 0; i < a.axes.size(); ++i) {
+    EXPECT_EQ(a.axes[i].key, b.axes[i].key);
     EXPECT_EQ(a.axes[i].name, b.axes[i].name);
+    EXPECT_EQ(a.axes[i].units, b.axes[i].units);
+    EXPECT_EQ(a.axes[i].long_name, b.axes[i].long_name);
     EXPECT_EQ(a.axes[i].values, b.axes[i].values) << a.axes[i].name;  // exact: the text round-trips
     EXPECT_EQ(a.axes[i].scale, b.axes[i].scale) << a.axes[i].name;
   }
@@ -156,9 +162,120 @@ TEST(SweepScene, SweptSpringReplacesTheBaseSpringPerCell) {
   ASSERT_TRUE(s.sweep.has_value());
   EXPECT_EQ(s.params.spring2.form, Spring::Form::frequency);  // the base keeps its own value
   EXPECT_EQ(s.params.spring2.value, 3.606);
-  const Parameters cell = Grid(s.sweep->axes).cell(s.params, 1);
-  EXPECT_EQ(cell.spring2.form, Spring::Form::stiffness);
-  EXPECT_EQ(cell.spring2.value, 4000.0);
+  const CellPoint cell = CellMaker(s, Grid(s.sweep->axes))(1);
+  EXPECT_EQ(cell.params.spring2.form, Spring::Form::stiffness);
+  EXPECT_EQ(cell.params.spring2.value, 4000.0);
+}
+
+// ---------------------------------------------------------------------------------------
+// Any numeric key as an axis
+
+const std::string kOmegaAxis = "{ from = 5.0, to = 9.0, n = 41 }";
+const std::string kF0Axis = "{ values = [0, 250, 500] }";
+
+TEST(SweepScene, AnyNumericKeyIsAnAxisByItsFullOrShortName) {
+  const SweepOptions quoted =
+      sweep_of(concat({"[sweep]\n\"forcing.omega\" = ", kOmegaAxis, "\n\"forcing.F0\" = ", kF0Axis, "\n"}));
+  const SweepOptions dotted = sweep_of(concat({"[sweep]\nforcing.omega = ", kOmegaAxis, "\nforcing.F0 = ", kF0Axis, "\n"}));
+  const SweepOptions section = sweep_of(concat({"[sweep.forcing]\nomega = ", kOmegaAxis, "\nF0 = ", kF0Axis, "\n"}));
+  const SweepOptions short_names = sweep_of(concat({"[sweep]\nomega = ", kOmegaAxis, "\nF0 = ", kF0Axis, "\n"}));
+  expect_same_sweep(quoted, dotted);
+  expect_same_sweep(quoted, section);
+  expect_same_sweep(quoted, short_names);
+  ASSERT_EQ(quoted.axes.size(), 2u);
+  const Axis& f0 = quoted.axes[0];  // default order: the schema's, F0 before omega in [forcing]
+  EXPECT_EQ(f0.key, "forcing.F0");
+  EXPECT_EQ(f0.name, "F0");
+  EXPECT_EQ(f0.units, "N");
+  EXPECT_EQ(f0.long_name, "force amplitude");
+  EXPECT_EQ(f0.values, (std::vector<double>{0.0, 250.0, 500.0}));
+  const Axis& omega = quoted.axes[1];
+  EXPECT_EQ(omega.key, "forcing.omega");
+  EXPECT_EQ(omega.name, "omega");
+  EXPECT_EQ(omega.units, "rad/s");
+  EXPECT_EQ(omega.long_name, "forcing frequency (period T = 2 pi/omega)");
+  ASSERT_EQ(omega.values.size(), 41u);
+  EXPECT_EQ(omega.values.front(), 5.0);
+  EXPECT_EQ(omega.values.back(), 9.0);
+  EXPECT_NEAR(omega.values[20], 7.0, 1e-15);
+}
+
+TEST(SweepScene, FirstAxesComeFirstThenTheSchemaOrder) {
+  const SweepOptions s = sweep_of(
+      "[sweep]\nomega = { values = [7.0] }\nxi2 = { values = [0.01] }\nm2 = { values = [310] }\n"
+      "E1 = { values = [1e9] }\n\"initial.v1\" = { values = [0.0] }\n");
+  EXPECT_EQ(axis_names(s), (std::vector<std::string>{"E1", "m2", "xi2", "omega", "v1"}));
+  EXPECT_EQ(s.axes[2].units, "1");  // a dimensionless key's unit ("-" in the catalogue)
+  EXPECT_EQ(s.axes[4].units, "m/s");
+  const SweepOptions ordered = sweep_of(
+      "[sweep]\nomega = { values = [7.0] }\nE1 = { values = [1e9] }\nF0 = { values = [500] }\n"
+      "order = [\"forcing.omega\", \"F0\", \"contact.E1\"]\n");
+  EXPECT_EQ(axis_names(ordered), (std::vector<std::string>{"omega", "F0", "E1"}));
+}
+
+TEST(SweepScene, IntegerKeyAxisTakesWholeValues) {
+  const SweepOptions s = sweep_of("[sweep]\n\"analysis.n_max\" = { from = 4, to = 16, n = 4 }\nrk4_steps = { values = [2048.0] }\n");
+  ASSERT_EQ(s.axes.size(), 2u);
+  EXPECT_EQ(s.axes[0].key, "solver.rk4_steps");
+  EXPECT_EQ(s.axes[0].values, (std::vector<double>{2048.0}));
+  EXPECT_EQ(s.axes[1].key, "analysis.n_max");
+  EXPECT_EQ(s.axes[1].values, (std::vector<double>{4.0, 8.0, 12.0, 16.0}));
+  EXPECT_EQ(s.axes[1].units, "1");
+}
+
+TEST(SweepScene, EightAxesAreAllowed) {
+  const SweepOptions s = sweep_of(
+      "[sweep]\nE1 = { values = [1e9] }\nE2 = { values = [1e9] }\nR1 = { values = [1] }\nR2 = { values = [1] }\n"
+      "m2 = { values = [100] }\nk2 = { values = [3000] }\nF0 = { values = [500] }\nomega = { values = [7] }\n");
+  EXPECT_EQ(s.axes.size(), kMaxSweepAxes);
+}
+
+TEST(SweepScene, SetOfAnAxisReplacesEverySpellingOfItsKey) {
+  const std::string dotted = concat({"[sweep]\nforcing.omega = ", kOmegaAxis, "\nF0 = ", kF0Axis, "\n"});
+  for (const char* set : {"sweep.forcing.omega={values=[6, 7]}", "sweep.omega={values=[6, 7]}"}) {
+    const SweepOptions s = sweep_of(dotted, {set});
+    ASSERT_EQ(s.axes.size(), 2u) << set;
+    EXPECT_EQ(s.axes[1].key, "forcing.omega") << set;
+    EXPECT_EQ(s.axes[1].values, (std::vector<double>{6.0, 7.0})) << set;
+  }
+  const SweepOptions quoted = sweep_of("[sweep]\n\"system.xi2\" = { values = [0.01] }\n", {"sweep.c2={values=[10]}"});
+  EXPECT_EQ(axis_names(quoted), (std::vector<std::string>{"c2"}));  // the pair partner goes too
+}
+
+TEST(SweepScene, TextOfAnyKeyAxesReadsBack) {
+  const Scene s = parse(concat({"[sweep]\nforcing.omega = ", kOmegaAxis, "\n\"forcing.F0\" = ", kF0Axis,
+                                "\nn_max = { values = [8, 16] }\norder = [\"omega\", \"F0\", \"n_max\"]\n"}));
+  EXPECT_NE(s.text.find("\nforcing.omega = { from = 5.0, to = 9.0, n = 41 }\n"), std::string::npos) << s.text;
+  EXPECT_NE(s.text.find("\n\"forcing.F0\" = { values = [0, 250, 500] }\n"), std::string::npos) << s.text;
+  const Scene again = parse_scene(s.text, s.path);
+  ASSERT_TRUE(again.sweep.has_value());
+  expect_same_sweep(*again.sweep, *s.sweep);
+  EXPECT_EQ(axis_names(*again.sweep), (std::vector<std::string>{"omega", "F0", "n_max"}));
+}
+
+// A megabyte of user input (a key, a value, a name in a list) reaches a message clipped.
+TEST(SweepScene, AMegabyteKeyOrValueNeverReachesAMessageWhole) {
+  const std::string big(std::size_t{1} << 20, 'x');
+  const std::vector<std::pair<std::string, std::vector<std::string>>> inputs = {
+      {concat({"[sweep]\n\"", big, "\" = { values = [1.0] }\n"}), {}},
+      {concat({"[sweep]\n", big, " = { values = [1.0] }\n"}), {}},
+      {concat({"[sweep]\nforcing.", big, " = { values = [1.0] }\n"}), {}},
+      {concat({"[sweep]\nE1 = { values = [1.0] }\norder = [\"", big, "\"]\n"}), {}},
+      {concat({"[sweep]\nE1 = { values = [1.0, \"", big, "\"] }\n"}), {}},
+      {concat({"[sweep]\nE1 = { values = [1.0], ", big, " = 2 }\n"}), {}},
+      {concat({"[sweep]\nE1 = { values = [1.0] }\nstore = [\"", big, "\"]\n"}), {}},
+      {concat({"[", big, "]\n"}), {}},
+      {concat({"[system]\n", big, " = 1\n"}), {}},
+      {"", {concat({"sweep.", big, "={values=[1]}"})}},
+      {"", {concat({"system.", big, "=1"})}},
+      {"", {concat({"system.m2=", big})}},
+  };
+  for (const auto& [text, sets] : inputs) {
+    const std::string message = error_of(text, sets);
+    EXPECT_FALSE(message.empty());
+    EXPECT_LT(message.size(), 1000u) << message.substr(0, 300);
+    EXPECT_NE(message.find("... (104"), std::string::npos) << message.substr(0, 300);  // "... (1048576 characters)"
+  }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -196,10 +313,13 @@ const std::string kAxisForms = "{ from, to, n[, scale] } or { values[, scale] }"
 const std::vector<BadSweep>& bad_sweeps() {
   static const std::vector<BadSweep> cases = {
       {"unknown axis", "[sweep]\nE3 = { values = [1.0] }\n", {},
-       {"jobs/x.toml:2: unknown key 'E3' in [sweep]", "(did you mean 'E1'?)",
-        "keys of [sweep]: E1, E2, R1, R2, m2, k2, omega2, order, store, checkpoint_interval, progress_interval"}},
-      {"parameter that is no axis", "[sweep]\nm1 = { values = [1.0] }\n", {},
-       {"jobs/x.toml:2: unknown key 'm1' in [sweep] (m1 cannot be swept)", "keys of [sweep]: E1"}},
+       {"jobs/x.toml:2: unknown key 'E3' in [sweep] (did you mean 'E1'?)",
+        "; an axis is any real or integer key of [system], [contact], [forcing], [solver], [analysis], [initial], "
+        "as section.key or by the key alone when only one section has it; the options are order, store, "
+        "checkpoint_interval, progress_interval"}},
+      {"choice key as axis", "[sweep]\nmethod = { values = [1.0] }\n", {},
+       {"jobs/x.toml:2: [sweep] solver.method cannot be an axis: it is one of "
+        "\"hybrid\", \"dopri5\", \"rk4\", not a number; run one sweep per value"}},
       {"unknown key", "[sweep]\nE1 = { values = [1e9] }\nchekpoint_interval = 5.0\n", {},
        {"jobs/x.toml:3: unknown key 'chekpoint_interval' in [sweep]", "did you mean 'checkpoint_interval'?"}},
       {"sweep key elsewhere", "[system]\norder = [\"E1\"]\n", {},
@@ -265,7 +385,8 @@ const std::vector<BadSweep>& bad_sweeps() {
       {"store not an array", "[sweep]\nE1 = { values = [1e9] }\nstore = \"T_con\"\n", {},
        {"must be an array of strings (quantities: T_con, k_con"}},
       {"zero axes", "[sweep]\ncheckpoint_interval = 5.0\n", {},
-       {"jobs/x.toml:1: [sweep] has no axes: give at least one of E1, E2, R1, R2, m2, k2, omega2 as NAME = ", kAxisForms}},
+       {"jobs/x.toml:1: [sweep] has no axes: give at least one real or integer key (E1, \"forcing.omega\", ...) as "
+        "KEY = ", kAxisForms}},
       {"empty section", "[sweep]\n", {}, {"jobs/x.toml:1: [sweep] has no axes"}},
       {"checkpoint zero", "[sweep]\nE1 = { values = [1e9] }\ncheckpoint_interval = 0\n", {},
        {"jobs/x.toml:3: [sweep] checkpoint_interval = 0: must be > 0 (s)"}},
@@ -282,6 +403,39 @@ const std::vector<BadSweep>& bad_sweeps() {
       {"set axis to zero", "", {"sweep.E1={from=0,to=1,n=2}"},
        {"jobs/x.toml: --set sweep.E1={from=0,to=1,n=2}: axis E1 reaches 0", "must be > 0 (Pa)"}},
       {"set unknown key", "", {"sweep.E3=5"}, {"jobs/x.toml: --set sweep.E3=5: unknown key 'E3' in [sweep]"}},
+      {"boolean key as axis", "[sweep]\nlyapunov = { values = [0, 1] }\n", {},
+       {"jobs/x.toml:2: [sweep] analysis.lyapunov cannot be an axis: it is true or false, not a number"}},
+      {"choice key as dotted axis", "[sweep]\nsolver.method = { values = [1] }\n", {},
+       {"[sweep] solver.method cannot be an axis: it is one of \"hybrid\""}},
+      {"unknown full key", "[sweep]\n\"forcing.omgea\" = { values = [6.0] }\n", {},
+       {"jobs/x.toml:2: unknown key 'forcing.omgea' in [sweep] (did you mean 'forcing.omega'?)"}},
+      {"unknown dotted key", "[sweep]\nforcing.omgea = { values = [6.0] }\n", {},
+       {"jobs/x.toml:2: unknown key 'forcing.omgea' in [sweep] (did you mean 'forcing.omega'?)"}},
+      {"key of another section", "[sweep]\n\"system.E1\" = { values = [1e9] }\n", {},
+       {"unknown key 'system.E1' in [sweep]", "an axis is any real or integer key of [system]"}},
+      {"integer axis not whole", "[sweep]\n\"analysis.n_max\" = { from = 1, to = 8, n = 3 }\n", {},
+       {"jobs/x.toml:2: [sweep] analysis.n_max = { from = 1, to = 8, n = 3 }: axis analysis.n_max reaches 4.5, not "
+        "an integer: [analysis] n_max must be an integer in [1, 64]"}},
+      {"integer axis out of range", "[sweep]\nn_max = { values = [8, 65] }\n", {},
+       {"axis n_max reaches 65, outside the range of [analysis] n_max: must be an integer in [1, 64]"}},
+      {"new axis below range", "[sweep]\n\"forcing.omega\" = { values = [0, 1] }\n", {},
+       {"axis forcing.omega reaches 0, outside the range of [forcing] omega: must be > 0 (rad/s)"}},
+      {"one key twice", "[sweep]\nomega = { values = [6.0] }\n\"forcing.omega\" = { values = [7.0] }\n", {},
+       {"jobs/x.toml:2: [sweep] forcing.omega is given twice (as forcing.omega and omega): give each axis once"}},
+      {"dotted and quoted twice", "[sweep]\nforcing.omega = { values = [6.0] }\n\"forcing.omega\" = { values = [7.0] }\n", {},
+       {"[sweep] forcing.omega is given twice (as forcing.omega and forcing.omega)"}},
+      {"damper pair", "[sweep]\nxi1 = { values = [0.01] }\n\"system.c1\" = { values = [100] }\n", {},
+       {"jobs/x.toml:2: [sweep] both c1 and xi1 given as axes: sweep only one (c1 in N s/m, or xi1 dimensionless)"}},
+      {"nine axes",
+       "[sweep]\nE1 = { values = [1e9] }\nE2 = { values = [1e9] }\nR1 = { values = [1] }\nR2 = { values = [1] }\n"
+       "m2 = { values = [100] }\nk2 = { values = [3000] }\nF0 = { values = [500] }\nomega = { values = [7] }\n"
+       "D = { values = [0.05] }\n",
+       {},
+       {"jobs/x.toml:1: [sweep] has 9 axes: at most 8"}},
+      {"order by an unknown full name", "[sweep]\nomega = { values = [6.0] }\norder = [\"forcing.omegaa\"]\n", {},
+       {"'forcing.omegaa' is not an axis of this sweep; axes: omega"}},
+      {"set a choice axis", "", {"sweep.solver.method={values=[1]}"},
+       {"jobs/x.toml: --set sweep.solver.method={values=[1]}: [sweep] solver.method cannot be an axis"}},
       {"set sweep without axes", "", {"sweep.checkpoint_interval=5"}, {"jobs/x.toml: [sweep] has no axes"}},
       {"unknown section lists sweep", "[swep]\n", {},
        {"unknown section [swep] (did you mean [sweep]?)", "sections: system, contact, forcing, solver, analysis, initial, sweep"}},
@@ -351,21 +505,21 @@ TEST(SweepScene, KeysListingDocumentsTheSweepKeys) {
   std::ostringstream os;
   write_scene_keys(os);
   const std::string text = os.str();
-  for (const std::string_view name : sweep_axis_names()) {
-    EXPECT_NE(text.find(concat({"sweep.", name, " "})), std::string::npos) << name;
-  }
-  for (const char* key : {"sweep.order ", "sweep.store ", "sweep.checkpoint_interval ", "sweep.progress_interval "}) {
+  for (const char* key : {"sweep.KEY ", "sweep.order ", "sweep.store ", "sweep.checkpoint_interval ",
+                          "sweep.progress_interval "}) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
   }
   EXPECT_NE(text.find("[\"T_con\", \"k_con\", \"F_max\", \"z_max\"]"), std::string::npos);  // store's default
-  EXPECT_NE(text.find("values > 0"), std::string::npos);                                  // E1's range
-  EXPECT_NE(text.find("or give omega2"), std::string::npos);
+  EXPECT_NE(text.find("grid axis over any real or integer key above"), std::string::npos);
+  EXPECT_NE(text.find("at most 8 axes, not both keys of a pair"), std::string::npos);
+  EXPECT_NE(text.find("(E1, E2, R1, R2, m2, k2, omega2, then schema order)"), std::string::npos);  // order's default
 }
 
 TEST(SweepScene, HelpSummaryListsTheSweepKeys) {
   std::ostringstream os;
   write_scene_key_summary(os);
-  EXPECT_NE(os.str().find("[sweep]     E1 E2 R1 R2 m2 k2|omega2 order store checkpoint_interval progress_interval\n"),
+  EXPECT_NE(os.str().find("  [sweep]     KEY (an axis: any real or integer key above) order store checkpoint_interval "
+                          "progress_interval\n"),
             std::string::npos)
       << os.str();
 }

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::test {
 

@@ -20,7 +20,7 @@
 #include <iosfwd>
 
 #include "vibromap/core/analysis/point_solver.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap {
 

@@ -18,6 +18,8 @@
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/optimise_file.hpp"
+#include "vibromap/io/scene/identity.hpp"
+#include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
@@ -46,13 +48,15 @@ void check_outputs(const OptimiseRunConfig& config) {
                          "--overwrite starts again"));
 }
 
-// What a journal must match to be resumed: the scene and the seeds.
+// What a journal must match to be resumed: the scene's result-defining values (every
+// [optimise] key included) and the seeds, one "key = value" line each.
 std::string run_identity(const Scene& scene, const std::vector<Seed>& seeds) {
   std::ostringstream os;
   os.precision(17);
-  os << scene.text << "\n# seeds\n";
-  for (const Seed& s : seeds) {
-    for (const double x : s.x) os << x << " ";
+  os << canonical_text(scene, IdentityScope::optimise);
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    os << "seed." << i << " =";
+    for (const double x : seeds[i].x) os << " " << x;
     os << "\n";
   }
   return os.str();
@@ -62,9 +66,13 @@ Journal open_journal(const Scene& scene, const OptimiseRunConfig& config, const 
   const std::string identity = run_identity(scene, seeds);
   if (config.resume && std::filesystem::exists(config.journal)) {
     Journal j = Journal::open(config.journal);
-    if (j.identity() != identity)
-      throw SceneError(cat(config.journal, ": --resume: the journal belongs to another scene or seeding map than ",
-                           scene.path, "; use --overwrite to start again"));
+    if (const auto diff = canonical_differences(j.identity(), identity); !diff.empty()) {
+      std::string keys;
+      for (std::size_t i = 0; i < diff.size() && i < 4; ++i) keys += cat(i ? ", " : "", diff[i]);
+      if (diff.size() > 4) keys += cat(" and ", std::to_string(diff.size() - 4), " more");
+      throw SceneError(cat(config.journal, ": --resume: the journal belongs to another run than ", scene.path, ": ",
+                           keys, "; use --overwrite to start again"));
+    }
     return j;
   }
   return Journal::create(config.journal, identity);

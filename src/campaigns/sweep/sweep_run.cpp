@@ -13,6 +13,8 @@
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/output_lock.hpp"
+#include "vibromap/io/scene/cell_maker.hpp"
+#include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
 namespace vibromap {
@@ -24,24 +26,17 @@ std::string gigabytes(std::uint64_t bytes) {
   return text;
 }
 
-// The scene text without the run-control keys that may change between a run and its resume.
-std::string cell_defining_text(const std::string& text) {
-  std::string out, line;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    const std::size_t end = std::min(text.find('\n', pos), text.size());
-    line = text.substr(pos, end - pos);
-    const auto first = line.find_first_not_of(" \t");
-    const std::string_view body = first == std::string::npos ? std::string_view{} : std::string_view(line).substr(first);
-    if (!body.starts_with("checkpoint_interval") && !body.starts_with("progress_interval") && !body.starts_with("#"))
-      out += line + '\n';
-    pos = end + 1;
-  }
+// The map's identity: what a resume must match (every cell-defining value, io/scene/identity.hpp).
+std::string map_identity(const Scene& scene) { return canonical_text(scene, IdentityScope::sweep); }
+
+// "a, b, c" of the first few entries, and how many more.
+std::string listed(const std::vector<std::string>& items) {
+  constexpr std::size_t kShown = 4;
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < kShown; ++i) out += cat(i > 0 ? ", " : "", items[i]);
+  if (items.size() > kShown) out += cat(" and ", std::to_string(items.size() - kShown), " more");
   return out;
 }
-
-// The map's identity: what a resume must match (every cell-defining value).
-std::string map_identity(const Scene& scene) { return cell_defining_text(scene.text); }
 
 // Refuses, before the file is made, a map the disk cannot hold.
 void check_space(const std::string& output, const MapLayout& layout) {
@@ -66,17 +61,19 @@ void report_repair(const MapWriter& w) {
             << " (checksum failed in " << datasets << ") wiped; their " << r.cells << " cells are computed again\n";
 }
 
-// Checks that a map being resumed is this scene's.
+// Checks that a map being resumed is this scene's: the same canonical values key by key (the
+// error names the keys that differ), the same grid and stored quantities.
 void check_same_run(const MapWriter& w, const MapLayout& wanted, const Scene& scene) {
   const MapLayout& have = w.layout();
-  bool same = have.grid.axes().size() == wanted.grid.axes().size() && have.stored == wanted.stored &&
-              have.identity == wanted.identity;
-  for (std::size_t d = 0; same && d < wanted.grid.axes().size(); ++d)
-    same = have.grid.axes()[d].name == wanted.grid.axes()[d].name &&
-           have.grid.axes()[d].values == wanted.grid.axes()[d].values;
-  if (!same)
+  std::vector<std::string> diff = canonical_differences(have.identity, wanted.identity);
+  bool same_grid = have.grid.axes().size() == wanted.grid.axes().size() && have.stored == wanted.stored;
+  for (std::size_t d = 0; same_grid && d < wanted.grid.axes().size(); ++d)
+    same_grid = have.grid.axes()[d].name == wanted.grid.axes()[d].name &&
+                have.grid.axes()[d].values == wanted.grid.axes()[d].values;
+  if (diff.empty() && !same_grid) diff.push_back("the map's own grid or stored quantities");
+  if (!diff.empty())
     throw SceneError(cat(w.path(), ": --resume: the map was made from a different scene or grid than ", scene.path,
-                         " (compare its 'scene' attribute); use another --output"));
+                         ": ", listed(diff), "; use another --output"));
 }
 
 // Rank 0: the lock, and the map to fill (new, or opened for --resume), with its regime counts.
@@ -100,9 +97,10 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
                                            ranks);
 }
 
-CellResult solve_cell(const Scene& scene, const Grid& grid, std::uint64_t flat) {
+CellResult solve_cell(const CellMaker& cells, std::uint64_t flat) {
   try {
-    return summarize(solve_point(grid.cell(scene.params, static_cast<std::size_t>(flat)), scene.options));
+    const CellPoint point = cells(static_cast<std::size_t>(flat));
+    return summarize(solve_point(point.params, point.options));
   } catch (const std::exception&) {  // a cell's trouble is its status, never the run's
     CellResult c;
     c.status = status_code(SolveStatus::failed);
@@ -129,9 +127,9 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   std::unique_ptr<OutputLock> lock;
   std::unique_ptr<detail::MapSink> sink;
   mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, lock); }, exit_status_of);
-  const Grid grid(scene.sweep->axes);
+  const CellMaker cells(scene, Grid(scene.sweep->axes));
   Campaign<CellResult> campaign;
-  campaign.solve = [&](std::uint64_t flat) { return solve_cell(scene, grid, flat); };
+  campaign.solve = [&](std::uint64_t flat) { return solve_cell(cells, flat); };
   campaign.codec = &codec;
   campaign.sink = sink.get();
   SweepReport report;

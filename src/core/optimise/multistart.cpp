@@ -16,14 +16,30 @@ bool is_free(const OptimiseOptions& o, std::string_view name) {
   return std::any_of(o.variables.begin(), o.variables.end(), [&](const FreeVariable& v) { return v.name == name; });
 }
 
-// Every map axis is free, or the other form of a free spring.
+// Every map axis is free, or the other form of a free spring (matched by Axis::name, the
+// parameter's name in maps).
 void check_axes(const Grid& grid, const OptimiseOptions& o) {
   for (const Axis& a : grid.axes()) {
     const bool spring_pair = (a.name == "k2" && is_free(o, "omega2")) || (a.name == "omega2" && is_free(o, "k2"));
-    if (!is_free(o, a.name) && !spring_pair)
+    if (is_free(o, a.name) || spring_pair) continue;
+    const auto& names = free_parameter_names();
+    if (std::find(names.begin(), names.end(), a.name) != names.end())
       throw std::invalid_argument(cat("map axis ", a.name, " is not a free parameter of [optimise]: free it (",
                                       a.name, " = { min, max }) or seed from a map without it"));
+    std::string allowed;
+    for (const std::string_view n : names) allowed += cat(allowed.empty() ? "" : ", ", n);
+    throw std::invalid_argument(cat("map axis ", clip(a.name), " is not a free parameter of [optimise], nor can it be one ",
+                                    "(free parameters: ", allowed, "): seed from a map without it"));
   }
+}
+
+// The base parameters with cell `flat`'s axis values set (each axis names a free parameter or
+// its spring partner, so k2 and omega2 keep their form); `x` holds one value per axis.
+Parameters cell_parameters(const Grid& grid, const Parameters& base, std::size_t flat, std::vector<double>& x) {
+  grid.coordinates(flat, x);
+  Parameters p = base;
+  for (std::size_t d = 0; d < x.size(); ++d) set_parameter(p, grid.axes()[d].name, x[d]);
+  return p;
 }
 
 Quantity ranking_quantity(ObjectiveKind k) {
@@ -71,10 +87,11 @@ std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& 
   check_axes(grid, o);
   const Box box(o.variables);
   std::vector<Seed> candidates;
+  std::vector<double> x(grid.axes().size());
   for (std::size_t i = 0; i < grid.size() && i < cells.size() && i < done.size(); ++i) {
     if (!done[i] || !cell_qualifies(cells[i], o)) continue;
     if (o.hertz_valid && !cell_hertz_valid(cells[i], stored, hertz_limit)) continue;
-    const Parameters p = grid.cell(base, i);
+    const Parameters p = cell_parameters(grid, base, i, x);
     Seed s{{}, static_cast<long>(i), objective_sense(o.objective) * cells[i].value(q)};
     for (const FreeVariable& v : o.variables) s.x.push_back(get_parameter(p, v.name));
     if (!std::isfinite(s.value) || !box.contains(s.x)) continue;

@@ -94,8 +94,13 @@ const std::vector<StabilityRule>& all_stability_rules() {
   return v;
 }
 
+const std::vector<std::string_view>& free_parameter_names() {
+  static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2"};
+  return names;
+}
+
 std::string validate(const FreeVariable& v) {
-  const auto& names = sweep_axis_names();
+  const auto& names = free_parameter_names();
   if (std::find(names.begin(), names.end(), v.name) == names.end())
     return "unknown free parameter '" + v.name + "' (allowed: E1, E2, R1, R2, m2, k2, omega2)";
   if (!std::isfinite(v.min) || !std::isfinite(v.max)) return v.name + ": bounds must be finite";

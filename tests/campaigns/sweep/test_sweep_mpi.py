@@ -128,6 +128,18 @@ def test_killed_sweep_resumes_to_the_same_map(tmp_path):
     assert_same_map(reference, out)
 
 
+def test_resume_takes_the_same_scene_written_otherwise(tmp_path):
+    scene = write_scene(tmp_path)
+    out = tmp_path / "map.h5"
+    sweep(1, scene, out)
+    same = tmp_path / "same.toml"  # 310 for 310.0, comments, other key order and intervals
+    same.write_text("# the same run\n" + scene.read_text()
+                    .replace("m2 = 310.0\nomega2 = 3.606", "omega2 = 3.606  # rad/s\nm2 = 310")
+                    .replace("progress_interval = 0.5", "progress_interval = 2"))
+    report = json.loads(sweep(1, same, out, "--resume", "--format", "json").stdout)
+    assert report["cells_resumed"] == 12 and report["cells_computed"] == 0
+
+
 def test_bad_sweeps_exit_2_with_one_line(tmp_path):
     scene = write_scene(tmp_path)
     out = tmp_path / "map.h5"
@@ -141,6 +153,13 @@ def test_bad_sweeps_exit_2_with_one_line(tmp_path):
     resumed = sweep(1, other, out, "--resume", check=False)
     assert resumed.returncode == 2
     assert "different scene" in resumed.stderr
+    assert "sweep.axis.0 (contact.E1 log [20000, " in resumed.stderr  # the differing key, named
+
+    heavier = tmp_path / "heavier.toml"
+    heavier.write_text(scene.read_text().replace("m2 = 310.0", "m2 = 320.0"))
+    resumed = sweep(1, heavier, out, "--resume", check=False)
+    assert resumed.returncode == 2
+    assert "system.m2 (310 in the file, 320 in the scene)" in resumed.stderr
 
     no_sweep = tmp_path / "point.toml"
     no_sweep.write_text("[system]\nm2 = 310.0\n")

@@ -17,7 +17,7 @@
 #include <string>
 
 #include "vibromap/core/optimise/multistart.hpp"
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
 
 namespace vibromap {

@@ -11,7 +11,7 @@
 #include <map>
 #include <string>
 
-#include "vibromap/io/scene.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
 
 namespace vibromap {

@@ -1,7 +1,7 @@
 #pragma once
 // What `vibromap optimise` does (issue #5): the objective, the regime kept as a constraint,
 // the free parameters and their box, where the starts come from, and the local algorithm
-// with its stopping rules. The [optimise] section of a scene (io/scene.hpp) fills it; every
+// with its stopping rules. The [optimise] section of a scene (io/scene/) fills it; every
 // field has a valid default except the free variables, which a scene must name.
 //
 // Scaled variables: each free parameter is mapped to u in [0, 1] over its box, linearly or in
@@ -55,9 +55,13 @@ std::string to_string(StabilityRule r);              // "if_known", "required", 
 StabilityRule parse_stability_rule(std::string_view s);  // throws std::invalid_argument
 const std::vector<StabilityRule>& all_stability_rules();
 
+// The parameters an optimisation may free (set_parameter's names): E1, E2, R1, R2, m2, k2,
+// omega2, in this order.
+const std::vector<std::string_view>& free_parameter_names();
+
 // One free parameter and its box.
 struct FreeVariable {
-  std::string name;                  // E1, E2, R1, R2, m2, k2 or omega2 (set_parameter's names)
+  std::string name;                  // one of free_parameter_names()
   double min = 0.0;                  // lower bound, SI units
   double max = 0.0;                  // upper bound, SI units (> min; both > 0 on a log scale)
   AxisScale scale = AxisScale::lin;  // lin: u = (x - min)/(max - min); log: the same in log x

@@ -4,10 +4,10 @@
 // A scene has the sections [system], [contact], [forcing], [solver], [analysis] and
 // [initial]; every key is optional and defaults to the struct defaults of Parameters,
 // IntegratorOptions and AnalysisOptions (Table 1 of SPEC.md with its calibration). All
-// values are in SI units. One schema table in scene.cpp lists every key with its type,
+// values are in SI units. One schema table (keys.hpp) lists every key with its type,
 // allowed range, unit and meaning; it drives parsing, validation, `vibromap keys`,
-// `vibromap run --help` and the reference scene (jobs/reference.toml), so a key is added
-// in one place.
+// `vibromap run --help` and the reference scene (docs.hpp, jobs/reference.toml), so a key
+// is added in one place.
 //
 // Contract: load_scene() either returns a Scene whose values all passed the schema's
 // checks and validate(Parameters), or throws SceneError with a one-line message naming the
@@ -22,18 +22,26 @@
 // replaces whichever of the pair the file gave; giving both in the file is an error.
 //
 // An optional [sweep] section makes the scene a grid (the values above are then the base of
-// every cell; a swept k2 or omega2 replaces the scene's spring2 in its own form):
+// every cell; a swept key replaces the base value as --set would, so a swept k2 or omega2
+// replaces the scene's spring2 in its own form, and a given xi2 stays a ratio):
 //   [sweep]
 //   E1 = { from = 2e4, to = 2.1e11, n = 23, scale = "log" }  # n points, ends exact; scale "lin" default
 //   E2 = { values = [2e4, 1e6, 2.1e11] }                     # explicit points
-//   order = ["E1", "E2"]         # first axis slowest; default E1, E2, R1, R2, m2, k2, omega2
+//   "forcing.omega" = { from = 5.0, to = 9.0, n = 41 }       # any numeric key, by its full name
+//   order = ["E1", "E2", "omega"]  # first axis slowest; default E1, E2, R1, R2, m2, k2, omega2,
+//                                  # then the schema's order
 //   store = ["T_con", "k_con"]   # optional quantities (cell_result.hpp); default SweepOptions'
 //   checkpoint_interval = 60.0   # s, > 0
 //   progress_interval = 10.0     # s, > 0
-// Axes are sweep_axis_names() (not both k2 and omega2); every axis value must lie in the
-// range of the parameter's own key (E1 > 0, ...). Its keys are not rows of scene_keys() (an
-// axis is a table, order and store are arrays); write_scene_keys documents them apart.
-// `--set sweep.checkpoint_interval=5` and `--set 'sweep.E1={from=1e5,to=1e9,n=5}'` work.
+// An axis is any real or integer key of [system] ... [initial], named in full ("forcing.omega",
+// also as TOML's dotted key forcing.omega = {...}) or by the key alone when only one section
+// has it (E1, omega2, F0, omega). Every axis value must lie in the range of the key (E1 > 0,
+// ...); an integer key's values must be integers. At most kMaxSweepAxes axes, never both keys
+// of a pair (k2 | omega2, ...) nor one key twice; choice and boolean keys cannot be axes.
+// [sweep]'s keys are not rows of scene_keys() (an axis is a table, order and store are
+// arrays); write_scene_keys documents them apart. `--set sweep.checkpoint_interval=5`,
+// `--set 'sweep.E1={from=1e5,to=1e9,n=5}'` and `--set 'sweep.forcing.omega={values=[6,7]}'`
+// work; an axis set so replaces every spelling of its key and of its pair partner.
 //
 // An optional [optimise] section makes the scene an optimisation (`vibromap optimise`,
 // optimise_options.hpp): the values above are the base point, the free parameters move.
@@ -53,7 +61,7 @@
 // documents them apart, and they take --set (`--set optimise.algorithm=cobyla`,
 // `--set 'optimise.E1={min=1e5,max=1e9,scale="log"}'`).
 
-#include <iosfwd>
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -63,7 +71,7 @@
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
-#include "vibromap/io/sweep_options.hpp"
+#include "vibromap/io/scene/sweep_section.hpp"
 
 namespace vibromap {
 
@@ -81,6 +89,8 @@ struct Scene {
   PointOptions options;
   std::optional<SweepOptions> sweep;  // nullopt: no [sweep] section (a single point)
   std::optional<OptimiseOptions> optimise;  // nullopt: no [optimise] section
+  std::array<bool, 4> initial_given{};  // the [initial] keys given (x1, x2, v1, v2); the others
+                                        // follow the rest state (0, D, 0, 0)
   std::string path;  // the scene file as named by the user
   std::string text;  // the scene after overrides as TOML (keys as given, schema order);
                      // parse_scene(text, path) gives this Scene back. For provenance.
@@ -92,57 +102,5 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 // As load_scene, from TOML text; `path` only names the source in messages and Scene::path.
 Scene parse_scene(std::string_view text, const std::string& path,
                   const std::vector<std::string>& overrides = {});
-
-// "section.key=value" for `--set` that sets parameter `name` (E1, m2, omega2, ... as
-// set_parameter names them), the value in its shortest round-trip form, e.g.
-// "contact.E1=20000" or "system.omega2=4.5529". Throws std::invalid_argument when `name`
-// is not a key of [system], [contact] or [forcing].
-std::string parameter_override(std::string_view name, double value);
-
-enum class SceneKeyType { real, integer, choice, boolean };
-
-// Allowed interval of a numeric key; infinite ends are unbounded. Values must be finite.
-struct Bounds {
-  double lo;
-  double hi;
-  bool lo_open;
-  bool hi_open;
-  bool contains(double v) const;
-  std::string to_string() const;  // "> 0", ">= 1", "in (-1, 0.5)", "in [1, 64]"
-};
-
-// One key of the scene schema (documentation view).
-struct SceneKey {
-  std::string_view section;            // e.g. "system"
-  std::string_view key;                // e.g. "m1"
-  SceneKeyType type;                   // real (TOML float or integer), integer, choice (string), boolean (true/false)
-  Bounds bounds;                       // numeric keys
-  std::vector<std::string_view> choices;  // choice keys: the allowed strings
-  std::string_view unit;               // SI unit, "-" when dimensionless
-  std::string_view meaning;            // one line
-  std::string_view partner;            // other key of an either-or pair, or empty
-  std::string default_text;            // default as TOML text, or how it is derived
-  bool default_given;                  // default_text is a TOML value (not a derivation)
-
-  std::string allowed() const;         // "> 0", "one of \"hybrid\", \"dopri5\", \"rk4\"", "an integer in [1, 64]", "true or false"
-};
-
-// The schema, in documentation order (sections in order, keys in order within a section).
-// The [sweep] and [optimise] keys are not in it (see the file comment).
-const std::vector<SceneKey>& scene_keys();
-// The section names in schema order, then "sweep". ([optimise] comes after "sweep" in
-// messages, the scene text and the key summary.)
-std::vector<std::string_view> scene_sections();
-
-// `vibromap keys`: every key with its default, unit, allowed values and meaning; the
-// [sweep] keys and the [optimise] keys follow in tables of their own.
-void write_scene_keys(std::ostream& os);
-// A compact list of sections and keys (for --help); pairs shown as "k1|omega1".
-void write_scene_key_summary(std::ostream& os);
-// A scene giving every key its default with a comment (meaning, unit, allowed); keys
-// without a plain default (the other form of a pair, [initial]) appear commented out, and
-// so do an example [optimise] and an example [sweep] section (uncommented, each parses).
-// jobs/reference.toml is this output.
-void write_reference_scene(std::ostream& os);
 
 }  // namespace vibromap

@@ -1,7 +1,9 @@
 #pragma once
 // The [sweep] section of a scene: the grid's axes, what to store, and how often to
-// checkpoint and report.
+// checkpoint and report. scene.hpp's file comment shows the section; `vibromap keys`
+// documents its keys.
 
+#include <cstddef>
 #include <vector>
 
 #include "vibromap/core/quantities.hpp"
@@ -9,8 +11,11 @@
 
 namespace vibromap {
 
+// The most axes a [sweep] may have.
+inline constexpr std::size_t kMaxSweepAxes = 8;
+
 struct SweepOptions {
-  std::vector<Axis> axes;  // the swept parameters (order: first axis slowest in the flat index)
+  std::vector<Axis> axes;  // the swept keys, at most kMaxSweepAxes (order: first axis slowest in the flat index)
   std::vector<Quantity> store = {Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max};  // optional quantities to store
   double checkpoint_interval = 60.0;  // seconds between checkpoints of the map file, s
   double progress_interval = 10.0;    // seconds between progress lines when stderr is not a terminal, s

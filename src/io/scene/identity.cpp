@@ -1,0 +1,96 @@
+#include "vibromap/io/scene/identity.hpp"
+
+#include <algorithm>
+#include <map>
+#include <utility>
+
+#include "scene_internal.hpp"
+#include "vibromap/core/text.hpp"
+
+namespace vibromap {
+namespace {
+
+using detail::Binding;
+using detail::KeyValue;
+using detail::shortest;
+
+constexpr std::size_t kShownValue = 40;  // characters of a value (or key) shown in a difference
+
+std::string canonical_value(const SceneKey& k, const KeyValue& v) {
+  switch (k.type) {
+    case SceneKeyType::real: return shortest(v.real);
+    case SceneKeyType::integer: return std::to_string(v.integer);
+    case SceneKeyType::choice: return std::string(k.choices.at(static_cast<std::size_t>(v.choice)));
+    case SceneKeyType::boolean: return v.integer != 0 ? "true" : "false";
+  }
+  return {};
+}
+
+void add_point_lines(const Scene& scene, std::vector<std::string>& lines) {
+  for (const Binding& b : detail::bindings()) {
+    const int component = b.access.component;
+    if (component >= 0 && !scene.initial_given.at(static_cast<std::size_t>(component))) continue;
+    if (const auto v = b.access.get(scene.params, scene.options))
+      lines.push_back(cat(detail::full_key(b.info), " = ", canonical_value(b.info, *v)));
+  }
+}
+
+void add_sweep_lines(const SweepOptions& sweep, std::vector<std::string>& lines) {
+  for (std::size_t d = 0; d < sweep.axes.size(); ++d) {
+    const Axis& a = sweep.axes[d];
+    std::string values;
+    for (const double v : a.values) values += cat(values.empty() ? "" : ", ", shortest(v));
+    lines.push_back(cat("sweep.axis.", std::to_string(d), " = ", a.key, " ", to_string(a.scale), " [", values, "]"));
+  }
+  std::string store;
+  for (const Quantity q : sweep.store) store += cat(store.empty() ? "" : ", ", to_string(q));
+  lines.push_back(cat("sweep.store = [", store, "]"));
+}
+
+// "key = value" lines as a map from key to value.
+std::map<std::string, std::string, std::less<>> parse_lines(std::string_view text) {
+  std::map<std::string, std::string, std::less<>> out;
+  while (!text.empty()) {
+    const std::size_t end = std::min(text.find('\n'), text.size());
+    const std::string_view line = text.substr(0, end);
+    text.remove_prefix(std::min(end + 1, text.size()));
+    const std::size_t eq = line.find(" = ");
+    if (eq != std::string_view::npos) out.emplace(line.substr(0, eq), line.substr(eq + 3));
+  }
+  return out;
+}
+
+std::string shown(const std::string* value, std::string_view where) {
+  return value == nullptr ? cat("not in ", where) : cat(clip(*value, kShownValue), " in ", where);
+}
+
+}  // namespace
+
+std::string canonical_text(const Scene& scene, IdentityScope scope) {
+  std::vector<std::string> lines;
+  add_point_lines(scene, lines);
+  if (scene.sweep) add_sweep_lines(*scene.sweep, lines);
+  if (scope == IdentityScope::optimise && scene.optimise) {
+    for (std::string& line : detail::optimise_lines(*scene.optimise)) lines.push_back(std::move(line));
+  }
+  std::sort(lines.begin(), lines.end());
+  std::string text;
+  for (const std::string& line : lines) text += cat(line, "\n");
+  return text;
+}
+
+std::vector<std::string> canonical_differences(std::string_view recorded, std::string_view current) {
+  const auto file = parse_lines(recorded), scene = parse_lines(current);
+  std::map<std::string_view, std::pair<const std::string*, const std::string*>> keys;
+  for (const auto& [k, v] : file) keys[k].first = &v;
+  for (const auto& [k, v] : scene) keys[k].second = &v;
+  std::vector<std::string> out;
+  for (const auto& [key, values] : keys) {
+    const auto& [in_file, in_scene] = values;
+    if (in_file != nullptr && in_scene != nullptr && *in_file == *in_scene) continue;
+    out.push_back(cat(clip(key, kShownValue), " (", shown(in_file, "the file"), ", ", shown(in_scene, "the scene"), ")"));
+  }
+  return out;
+}
+
+}  // namespace vibromap

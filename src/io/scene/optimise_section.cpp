@@ -1,0 +1,337 @@
+// The [optimise] section of a scene: its keys are the free parameters (free_parameter_names(),
+// each an inline table { min, max[, scale] }) and the options of optimise_rows(). Like
+// [sweep]'s, they are not schema rows: read_optimise() reads them into OptimiseOptions, and a
+// free parameter's box is checked against the range of the parameter's own row.
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "scene_internal.hpp"
+#include "vibromap/core/text.hpp"
+
+namespace vibromap::detail {
+namespace {
+
+template <auto... Members>
+void read_real_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
+  (o.*....*Members) = read_real(k, node, loc);
+}
+
+template <auto... Members>
+void read_integer_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
+  const std::optional<double> x = number_of(node);  // a whole float such as 200.0 is accepted
+  const bool whole = x && std::isfinite(*x) && *x == std::trunc(*x);
+  if (!whole || !k.bounds.contains(*x)) fail(cat(loc, ": must be ", k.allowed()));
+  using T = std::remove_cvref_t<decltype((o.*....*Members))>;
+  (o.*....*Members) = static_cast<T>(*x);
+}
+
+template <auto Member>
+void read_bool_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
+  o.*Member = read_boolean(k, node, loc) != 0;
+}
+
+template <auto Parse, auto Member>
+void read_choice_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
+  o.*Member = Parse(k.choices.at(static_cast<std::size_t>(read_choice(k, node, loc))));
+}
+
+// How a row reads its key, and writes back the value read as canonical text (identity.cpp).
+struct RowAccess {
+  void (*read)(OptimiseOptions&, const SceneKey&, const toml::node&, const std::string&);
+  std::string (*text)(const OptimiseOptions&, const SceneKey&);
+};
+
+template <auto... Members>
+RowAccess real_field() {
+  return {read_real_field<Members...>, [](const OptimiseOptions& o, const SceneKey&) { return shortest((o.*....*Members)); }};
+}
+
+template <auto... Members>
+RowAccess integer_field() {
+  return {read_integer_field<Members...>,
+          [](const OptimiseOptions& o, const SceneKey&) { return std::to_string((o.*....*Members)); }};
+}
+
+template <auto Member>
+RowAccess bool_field() {
+  return {read_bool_field<Member>,
+          [](const OptimiseOptions& o, const SceneKey&) { return std::string(o.*Member ? "true" : "false"); }};
+}
+
+template <auto Parse, auto Member>
+RowAccess choice_field() {
+  return {read_choice_field<Parse, Member>, [](const OptimiseOptions& o, const SceneKey&) { return to_string(o.*Member); }};
+}
+
+std::string regime_allowed() { return "\"(n,k)\" with n, k >= 1, or \"any\" (any motion with an impact)"; }
+
+void read_regime(OptimiseOptions& o, const SceneKey&, const toml::node& node, const std::string& loc) {
+  const auto* s = node.as_string();
+  if (s != nullptr && s->get() == "any") {
+    o.regime.reset();
+    return;
+  }
+  try {
+    if (s != nullptr) {
+      const Regime r = parse_regime(s->get());
+      if (r.kind == RegimeKind::periodic && r.n >= 1 && r.k >= 1) {
+        o.regime = r;
+        return;
+      }
+    }
+  } catch (const std::invalid_argument&) {
+    // falls through to the message
+  }
+  fail(cat(loc, ": must be ", regime_allowed()));
+}
+
+std::string algorithm_names_text() {
+  std::vector<std::string> names;
+  for (const Algorithm a : all_algorithms()) names.push_back(to_string(a));
+  return join(views(names), ", ");
+}
+
+Algorithm read_algorithm_name(const std::string& name, const std::string& loc) {
+  std::vector<std::string> names;
+  for (const Algorithm a : all_algorithms()) names.push_back(to_string(a));
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string msg = cat(loc, ": unknown algorithm '", clip(name), "'");
+    if (const auto hint = closest(name, views(names))) msg += cat(" (did you mean '", *hint, "'?)");
+    fail(cat(msg, "; allowed: ", algorithm_names_text()));
+  }
+  return parse_algorithm(name);
+}
+
+void read_algorithms(OptimiseOptions& o, const SceneKey&, const toml::node& node, const std::string& loc) {
+  std::vector<std::string> names;
+  if (const auto* s = node.as_string()) {
+    names.push_back(s->get());
+  } else {
+    names = string_list(node, loc, cat("algorithms: ", algorithm_names_text()));
+  }
+  if (names.empty()) fail(cat(loc, ": give at least one algorithm (", algorithm_names_text(), ")"));
+  o.algorithms.clear();
+  for (const std::string& name : names) {
+    const Algorithm a = read_algorithm_name(name, loc);
+    if (std::find(o.algorithms.begin(), o.algorithms.end(), a) != o.algorithms.end())
+      fail(cat(loc, ": algorithm ", name, " is listed twice"));
+    o.algorithms.push_back(a);
+  }
+}
+
+void read_map_path(OptimiseOptions& o, const SceneKey&, const toml::node& node, const std::string& loc) {
+  const auto* s = node.as_string();
+  if (s == nullptr || s->get().empty()) fail(cat(loc, ": must be the path of a map file (HDF5), a non-empty string"));
+  o.map = s->get();
+}
+
+std::string regime_text(const OptimiseOptions& o, const SceneKey&) { return o.regime ? o.regime->label() : "any"; }
+
+std::string algorithms_text(const OptimiseOptions& o, const SceneKey&) {
+  std::vector<std::string> names;
+  for (const Algorithm a : o.algorithms) names.push_back(to_string(a));
+  return join(views(names), ", ");
+}
+
+std::string map_text(const OptimiseOptions& o, const SceneKey&) { return o.map.empty() ? "(none)" : toml_string(o.map); }
+
+// A documentation row: type, allowed range, unit, meaning, default as text.
+OptimiseRow optimise_row(std::string_view key, SceneKeyType type, Bounds bounds, std::string_view unit,
+                         std::string_view meaning, std::string default_text, RowAccess access) {
+  return {{kOptimise, key, type, bounds, {}, unit, meaning, {}, std::move(default_text), true}, access.read, access.text, {}};
+}
+
+template <class Enum>
+OptimiseRow optimise_choice(std::string_view key, std::string_view meaning, const std::vector<Enum>& values, Enum def,
+                            RowAccess read) {
+  static const std::vector<std::string> names = [&] {  // static storage: SceneKey::choices holds views
+    std::vector<std::string> n;
+    for (const Enum v : values) n.push_back(to_string(v));
+    return n;
+  }();
+  OptimiseRow r = optimise_row(key, SceneKeyType::choice, any_finite(), "-", meaning, toml_string(to_string(def)), read);
+  for (const std::string& n : names) r.info.choices.push_back(n);
+  return r;
+}
+
+void add_optimise_goal_rows(std::vector<OptimiseRow>& rows, const OptimiseOptions& d) {
+  using O = OptimiseOptions;
+  rows.push_back(optimise_choice(
+      "objective",
+      "what to optimise: min_k_con (the softest impact: k_con = T/T_con of the longest), max_T_con (the duration "
+      "of impact `impact`), min_F_max (the peak contact force)",
+      all_objective_kinds(), d.objective, choice_field<parse_objective_kind, &O::objective>()));
+  rows.push_back(optimise_row("impact", SceneKeyType::integer, interval(0, 1000, false, false), "-",
+                              "max_T_con: which impact of the steady cycle, in time order (0: the first)",
+                              std::to_string(d.impact), integer_field<&O::impact>()));
+  rows.push_back(optimise_row("regime", SceneKeyType::choice, any_finite(), "-",
+                              "the regime to keep, a constraint (never traded for a better objective); \"any\": "
+                              "any motion with an impact",
+                              toml_string(d.regime->label()), {read_regime, regime_text}));
+  rows.back().allowed_text = "\"(n,k)\" or \"any\"";
+  rows.push_back(optimise_choice(
+      "stability",
+      "the kept orbit's Floquet stability: if_known (an orbit found unstable is infeasible), required (only one "
+      "known stable is feasible) or ignored",
+      all_stability_rules(), d.stability, choice_field<parse_stability_rule, &O::stability>()));
+  rows.push_back(optimise_row("hertz_valid", SceneKeyType::boolean, any_finite(), "-",
+                              "also keep Hertz theory valid, z_max/R* <= [analysis] hertz_limit, as a constraint "
+                              "(seeding needs hertz_valid or z_ratio in the map)",
+                              d.hertz_valid ? "true" : "false", bool_field<&O::hertz_valid>()));
+  rows.push_back(optimise_row("algorithm", SceneKeyType::choice, any_finite(), "-",
+                              "local algorithm, or a list of them, each started from every seed: bobyqa, cobyla, "
+                              "sbplx (NLopt, derivative-free), slsqp, mma (NLopt, finite-difference gradients), "
+                              "gradient_projection (the source paper's method)",
+                              toml_string(to_string(d.algorithms.front())), {read_algorithms, algorithms_text}));
+  rows.back().allowed_text = "a name or a list of names";
+  rows.push_back(optimise_row("seeds", SceneKeyType::integer, interval(1, 1e6, false, false), "-",
+                              "starts per algorithm: the best cells of the seeding map that keep the regime inside "
+                              "the box", std::to_string(d.seeds), integer_field<&O::seeds>()));
+  rows.push_back(optimise_row("map", SceneKeyType::choice, any_finite(), "-",
+                              "seeding map (HDF5 from vibromap sweep; a path from the current directory); not "
+                              "given: the scene's [sweep] runs first into OUTPUT_map.h5, or, without [sweep], the "
+                              "scene's point is the one seed",
+                              "(none)", {read_map_path, map_text}));
+  rows.back().allowed_text = "a path";
+}
+
+void add_optimise_stopping_rows(std::vector<OptimiseRow>& rows, const OptimiseOptions& d) {
+  using O = OptimiseOptions;
+  using L = LocalOptions;
+  constexpr auto local = &O::local;
+  const LocalOptions& l = d.local;
+  const auto real_row = [&](std::string_view key, Bounds b, std::string_view unit, std::string_view meaning,
+                            double def, RowAccess read) {
+    rows.push_back(optimise_row(key, SceneKeyType::real, b, unit, meaning, toml_float(def), read));
+  };
+  real_row("xtol_rel", interval(0.0, 1.0, true, true), "-",
+           "stop when a step moves every scaled variable by less than this fraction of its box", l.xtol_rel,
+           real_field<local, &L::xtol_rel>());
+  real_row("ftol_rel", interval(0.0, 1.0, false, true), "-",
+           "stop when a step changes the objective by less than this, relative (0: off)", l.ftol_rel,
+           real_field<local, &L::ftol_rel>());
+  rows.push_back(optimise_row("max_evaluations", SceneKeyType::integer, interval(1, 1e9, false, false), "-",
+                              "point solves per start, finite-difference ones included (cache hits are free)",
+                              std::to_string(l.max_evaluations), integer_field<local, &L::max_evaluations>()));
+  real_row("max_time", ge(0), "s", "wall time per start; 0: no limit (a limit makes results depend on the machine)",
+           l.max_time, real_field<local, &L::max_time>());
+  real_row("initial_step", interval(0.0, 1.0, true, false), "-",
+           "first step, a fraction of the box (NLopt initial_step, BOBYQA's rhobeg)", l.initial_step,
+           real_field<local, &L::initial_step>());
+  real_row("fd_step", interval(0.0, 0.1, true, false), "-",
+           "finite-difference step of the gradients (slsqp, mma, gradient_projection), a fraction of the box",
+           l.fd_step, real_field<local, &L::fd_step>());
+  real_row("barrier", gt(0), "-",
+           "bobyqa, sbplx: the objective given for a point outside the kept regime (plus its violation; finite, "
+           "as BOBYQA needs)",
+           l.barrier, real_field<local, &L::barrier>());
+  rows.push_back(optimise_row("best", SceneKeyType::integer, interval(1, 1000, false, false), "-",
+                              "best distinct points re-solved from scratch (integrate from rest and shooting) and "
+                              "reported", std::to_string(d.best), integer_field<&O::best>()));
+  real_row("verify_rtol", interval(0.0, 0.1, true, true), "-", "rtol of those re-solves", d.verify_rtol,
+           real_field<&O::verify_rtol>());
+}
+
+}  // namespace
+
+const std::vector<OptimiseRow>& optimise_rows() {
+  static const std::vector<OptimiseRow> rows = [] {
+    const OptimiseOptions defaults;
+    std::vector<OptimiseRow> r;
+    add_optimise_goal_rows(r, defaults);
+    add_optimise_stopping_rows(r, defaults);
+    return r;
+  }();
+  return rows;
+}
+
+const std::vector<std::string_view>& optimise_option_keys() {
+  static const std::vector<std::string_view> keys = [] {
+    std::vector<std::string_view> k;
+    for (const OptimiseRow& row : optimise_rows()) k.push_back(row.info.key);
+    return k;
+  }();
+  return keys;
+}
+
+const std::vector<std::string_view>& optimise_keys() {
+  static const std::vector<std::string_view> keys = [] {
+    std::vector<std::string_view> k = free_parameter_names();
+    k.insert(k.end(), optimise_option_keys().begin(), optimise_option_keys().end());
+    return k;
+  }();
+  return keys;
+}
+
+namespace {
+
+// A free parameter's box: { min, max[, scale] }, inside the range of the parameter's own key.
+FreeVariable read_variable(std::string_view name, const toml::node& node, const std::string& loc) {
+  const toml::table* t = node.as_table();
+  if (t == nullptr) fail(cat(loc, ": free parameter ", name, " must be an inline table ", kVariableForm));
+  const std::vector<std::string_view> fields = {"min", "max", "scale"};
+  for (auto&& [key, value] : *t) {
+    if (std::find(fields.begin(), fields.end(), key.str()) != fields.end()) continue;
+    std::string msg = cat(loc, ": unknown field '", key.str(), "' in free parameter ", name);
+    if (const auto hint = closest(key.str(), fields)) msg += cat(" (did you mean '", *hint, "'?)");
+    fail(cat(msg, "; a free parameter is ", kVariableForm));
+  }
+  for (const std::string_view field : {"min", "max"}) {
+    if (!t->contains(field)) fail(cat(loc, ": free parameter ", name, " lacks '", field, "': give ", kVariableForm));
+  }
+  FreeVariable v{std::string(name), axis_end(*t, "min", loc), axis_end(*t, "max", loc), axis_scale(*t, loc)};
+  if (!(v.min < v.max)) fail(cat(loc, ": min must be < max"));
+  if (v.scale == AxisScale::log && v.min <= 0.0) fail(cat(loc, ": a log scale needs min > 0"));
+  const SceneKey& k = free_parameter_key(name);
+  for (const double x : {v.min, v.max}) {
+    if (!k.bounds.contains(x)) {
+      fail(cat(loc, ": the box of ", name, " reaches ", shortest(x), ", outside the range of [", k.section, "] ", k.key,
+               ": must be ", k.allowed(), unit_suffix(k.unit)));
+    }
+  }
+  return v;
+}
+
+std::vector<FreeVariable> read_variables(const toml::table& sec, const Context& ctx) {
+  if (sec.contains("k2") && sec.contains("omega2")) {
+    fail(cat(where(ctx, *sec.get("omega2")), ": [optimise] both k2 and omega2 given as free parameters: free only "
+             "one (k2 in N/m, or omega2 in rad/s)"));
+  }
+  std::vector<FreeVariable> vars;
+  for (const std::string_view name : free_parameter_names()) {
+    if (const toml::node* node = sec.get(name)) vars.push_back(read_variable(name, *node, locate(ctx, kOptimise, name, *node)));
+  }
+  if (vars.empty()) {
+    fail(cat(where(ctx, sec), ": [optimise] has no free parameters: give at least one of ",
+             join(free_parameter_names(), ", "), " as NAME = ", kVariableForm));
+  }
+  return vars;
+}
+
+}  // namespace
+
+std::optional<OptimiseOptions> read_optimise(const toml::table& table, const Context& ctx) {
+  const toml::table* sec = table.get_as<toml::table>(kOptimise);
+  if (sec == nullptr) return std::nullopt;
+  OptimiseOptions o;
+  o.variables = read_variables(*sec, ctx);
+  for (const OptimiseRow& row : optimise_rows()) {
+    if (const toml::node* node = sec->get(row.info.key)) row.read(o, row.info, *node, locate(ctx, row.info, *node));
+  }
+  if (const std::string err = validate(o); !err.empty()) fail(cat(ctx.path, ": [optimise] ", err));
+  return o;
+}
+
+std::vector<std::string> optimise_lines(const OptimiseOptions& o) {
+  std::vector<std::string> lines;
+  for (const FreeVariable& v : o.variables) {
+    lines.push_back(cat("optimise.", v.name, " = { min = ", shortest(v.min), ", max = ", shortest(v.max),
+                        ", scale = ", to_string(v.scale), " }"));
+  }
+  for (const OptimiseRow& row : optimise_rows()) lines.push_back(cat("optimise.", row.info.key, " = ", row.text(o, row.info)));
+  return lines;
+}
+
+}  // namespace vibromap::detail

@@ -1,0 +1,300 @@
+#include "vibromap/io/scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene_internal.hpp"
+#include "vibromap/core/text.hpp"
+
+// Reading a scene: parse the TOML, apply the overrides, check the structure (sections and
+// keys), read and check each key's value, then the [sweep] and [optimise] sections, and
+// write the Scene's text.
+
+namespace vibromap {
+namespace detail {
+
+[[noreturn]] void fail(const std::string& message) { throw SceneError(message); }
+
+std::string where(const Context& ctx, const toml::node& node) {
+  const auto line = node.source().begin.line;
+  return line > 0 ? ctx.path + ":" + std::to_string(line) : ctx.path;
+}
+
+// "file:3: [system] m2 = -5" or "file: --set system.m2=-5".
+std::string locate(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
+  const auto it = ctx.overrides.find(cat(section, ".", key));
+  if (it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second));
+  return cat(where(ctx, node), ": [", section, "] ", clip(key), " = ", clipped_text(node));
+}
+
+std::string origin(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
+  const auto it = ctx.overrides.find(cat(section, ".", key));
+  return it != ctx.overrides.end() ? cat(ctx.path, ": ", clip(it->second)) : where(ctx, node);
+}
+
+std::string locate(const Context& ctx, const SceneKey& k, const toml::node& node) {
+  return locate(ctx, k.section, k.key, node);
+}
+
+std::optional<double> number_of(const toml::node& node) {
+  if (const auto* f = node.as_floating_point()) return f->get();
+  if (const auto* i = node.as_integer()) return static_cast<double>(i->get());
+  return std::nullopt;
+}
+
+double read_real(const SceneKey& k, const toml::node& node, const std::string& loc) {
+  const std::optional<double> x = number_of(node);
+  const bool unbounded = !std::isfinite(k.bounds.lo) && !std::isfinite(k.bounds.hi);
+  const std::string requirement = unbounded ? "a finite number" : cat("a finite number ", k.allowed());
+  if (!x || !std::isfinite(*x)) fail(cat(loc, ": must be ", requirement, unit_suffix(k.unit)));
+  if (!k.bounds.contains(*x)) fail(loc + ": must be " + k.allowed() + unit_suffix(k.unit));
+  return *x;
+}
+
+int read_choice(const SceneKey& k, const toml::node& node, const std::string& loc) {
+  const auto* s = node.as_string();
+  if (s != nullptr) {
+    for (std::size_t i = 0; i < k.choices.size(); ++i) {
+      if (k.choices[i] == s->get()) return static_cast<int>(i);
+    }
+  }
+  std::string msg = loc + ": must be " + k.allowed();
+  if (s != nullptr) {
+    if (const auto hint = closest(s->get(), k.choices)) msg += cat(" (did you mean \"", *hint, "\"?)");
+  }
+  fail(msg);
+}
+
+long long read_boolean(const SceneKey& k, const toml::node& node, const std::string& loc) {
+  if (const auto* b = node.as_boolean()) return b->get() ? 1 : 0;
+  fail(loc + ": must be " + k.allowed());
+}
+
+std::vector<std::string> string_list(const toml::node& node, const std::string& loc, std::string_view what) {
+  const toml::array* a = node.as_array();
+  std::vector<std::string> out;
+  for (std::size_t i = 0; a != nullptr && i < a->size(); ++i) {
+    const auto* s = a->get(i)->as_string();
+    if (s == nullptr) break;
+    out.push_back(s->get());
+  }
+  if (a == nullptr || out.size() != a->size()) fail(cat(loc, ": must be an array of strings (", what, ")"));
+  return out;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Structure: sections, keys, overrides.
+
+[[noreturn]] void fail_unknown_key(const std::string& loc, std::string_view section, std::string_view key) {
+  std::string msg = cat(loc, ": unknown key '", clip(key), "' in [", section, "]");
+  const auto keys = keys_of(section);
+  const auto home = section_of(key);
+  if (home && section == kOptimise && is_parameter_name(key)) {
+    msg += cat(" (", key, " cannot be a free parameter)");
+  } else if (home) {
+    msg += cat(" (it belongs in [", *home, "])");
+  } else if (const auto hint = closest(key, keys)) {
+    msg += cat(" (did you mean '", *hint, "'?)");
+  }
+  fail(cat(msg, "; keys of [", section, "]: ", join(keys, ", ")));
+}
+
+[[noreturn]] void fail_unknown_section(const std::string& loc, std::string_view name) {
+  std::string msg = cat(loc, ": unknown section [", clip(name), "]");
+  if (const auto hint = closest(name, all_sections())) msg += cat(" (did you mean [", *hint, "]?)");
+  fail(cat(msg, "; sections: ", join(all_sections(), ", ")));
+}
+
+[[noreturn]] void fail_key_outside_section(const std::string& loc, std::string_view key) {
+  if (const auto home = section_of(key)) {
+    fail(cat(loc, ": key '", clip(key), "' is outside any section: put it under [", *home, "]"));
+  }
+  fail_unknown_section(loc, key);
+}
+
+toml::table parse_toml(std::string_view text, const std::string& path) {
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& pos = e.source().begin;
+    fail(cat(path, ":", std::to_string(pos.line), ":", std::to_string(pos.column), ": malformed TOML: ",
+             e.description()));
+  }
+}
+
+// Reads an override's value as TOML ("310", "1e-8", "\"rk4\""), else as a string ("rk4").
+void assign_override_value(toml::table& section, std::string_view key, const std::string& raw) {
+  try {
+    const toml::table parsed = toml::parse("v = " + raw);
+    const toml::node* node = parsed.get("v");
+    if (parsed.size() == 1 && node != nullptr) {
+      node->visit([&](const auto& n) { section.insert_or_assign(key, n); });
+      return;
+    }
+  } catch (const toml::parse_error&) {
+    // not a TOML value: a bare string
+  }
+  section.insert_or_assign(key, raw);
+}
+
+void apply_override(toml::table& table, const std::string& given, Context& ctx) {
+  const std::string option = "--set " + given;
+  const std::string loc = cat(ctx.path, ": ", clip(option));
+  const auto eq = given.find('=');
+  const std::string name = trim(std::string_view(given).substr(0, std::min(eq, given.size())));
+  const auto dot = name.find('.');
+  if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == name.size()) {
+    const auto home = section_of(name);
+    const std::string example = home ? cat(*home, ".", name, "=...") : std::string("system.m2=310");
+    fail(cat(loc, ": expected section.key=value (e.g. --set ", example, ")"));
+  }
+  const std::string section = name.substr(0, dot), key = name.substr(dot + 1);
+  if (!is_section(section)) fail_unknown_section(loc, section);
+  if (section != kSweep && !has_key(section, key)) fail_unknown_key(loc, section, key);
+  if (!table.contains(section)) table.insert(section, toml::table{});
+  toml::table* sec = table.get_as<toml::table>(section);
+  if (sec == nullptr) fail(cat(where(ctx, *table.get(section)), ": '", section, "' must be a section [", section, "]"));
+  if (section == kSweep && !is_sweep_option(key)) erase_sweep_axis(*sec, key, loc);  // replaces every spelling
+  assign_override_value(*sec, key, trim(std::string_view(given).substr(eq + 1)));
+  if (const auto partner = partner_of(section, key); !partner.empty()) sec->erase(partner);  // --set replaces the other form
+  ctx.overrides[name] = option;
+  ctx.override_list.push_back(option);
+}
+
+void check_structure(const toml::table& table, const Context& ctx) {
+  for (auto&& [name, node] : table) {
+    if (!is_section(name.str())) {
+      if (node.is_table() || node.is_array_of_tables()) fail_unknown_section(where(ctx, node), name.str());
+      fail_key_outside_section(where(ctx, node), name.str());
+    }
+    const toml::table* sec = node.as_table();
+    if (sec == nullptr) {
+      fail(cat(where(ctx, node), ": '", name.str(), "' must be a section [", name.str(), "], not a value"));
+    }
+    if (name.str() == kSweep) {
+      sweep_axis_entries(*sec, ctx);  // checks the axes' names; the options are known keys
+      continue;
+    }
+    for (auto&& [key, value] : *sec) {
+      if (!has_key(name.str(), key.str())) fail_unknown_key(where(ctx, value), name.str(), key.str());
+    }
+  }
+}
+
+void check_pair(const toml::table& section, const SceneKey& k, const Context& ctx, const toml::node& node) {
+  if (k.partner.empty() || !section.contains(k.partner)) return;
+  const Binding* other = find_binding(k.section, k.partner);
+  fail(cat(where(ctx, node), ": [", k.section, "] both ", k.key, " and ", k.partner, " given: give only one ",
+           pair_advice(k, other->info)));
+}
+
+// ---------------------------------------------------------------------------------------
+// Values.
+
+long long read_integer(const Binding& b, const toml::node& node, const std::string& loc) {
+  const SceneKey& k = b.info;
+  std::optional<long long> n;
+  if (const auto* i = node.as_integer()) n = i->get();
+  if (const auto* f = node.as_floating_point()) {
+    const double v = f->get();  // a whole float such as 2000.0 is accepted
+    if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9.0e18) n = static_cast<long long>(v);
+  }
+  if (!n || !k.bounds.contains(static_cast<double>(*n))) fail(loc + ": must be " + k.allowed());
+  if (*n > b.access.int_max) fail(loc + ": must be at most " + std::to_string(b.access.int_max));
+  return *n;
+}
+
+KeyValue read_value(const Binding& b, const toml::node& node, const std::string& loc) {
+  KeyValue v;
+  switch (b.info.type) {
+    case SceneKeyType::real: v.real = read_real(b.info, node, loc); break;
+    case SceneKeyType::integer:
+      v.integer = read_integer(b, node, loc);
+      v.real = static_cast<double>(v.integer);
+      break;
+    case SceneKeyType::choice: v.choice = read_choice(b.info, node, loc); break;
+    case SceneKeyType::boolean: v.integer = read_boolean(b.info, node, loc); break;
+  }
+  return v;
+}
+
+// Every key in schema order ([initial] last, after D), then [sweep] and [optimise].
+Scene read_values(const toml::table& table, const Context& ctx) {
+  Scene scene;
+  for (const Binding& b : bindings()) {
+    const toml::table* sec = table.get_as<toml::table>(b.info.section);
+    const toml::node* node = sec != nullptr ? sec->get(b.info.key) : nullptr;
+    if (node == nullptr) continue;
+    check_pair(*sec, b.info, ctx, *node);
+    b.access.set(scene.params, scene.options, read_value(b, *node, locate(ctx, b.info, *node)));
+    if (b.access.component >= 0) scene.initial_given.at(static_cast<std::size_t>(b.access.component)) = true;
+  }
+  scene.sweep = read_sweep(table, ctx);
+  scene.optimise = read_optimise(table, ctx);
+  return scene;
+}
+
+// The scene as TOML, keys in schema order, preceded by its source and overrides.
+std::string scene_text(const toml::table& table, const Context& ctx) {
+  std::ostringstream os;
+  os << "# scene: " << ctx.path << "\n";
+  if (!ctx.override_list.empty()) {
+    os << "# overrides:";
+    for (const std::string& o : ctx.override_list) os << " " << o;
+    os << "\n";
+  }
+  for (std::string_view section : all_sections()) {
+    const toml::table* sec = table.get_as<toml::table>(section);
+    if (sec == nullptr || sec->empty()) continue;
+    os << "\n[" << section << "]\n";
+    if (section == kSweep) {  // the axes as given, in the default order, then the options
+      for (const SweepAxisEntry& e : sweep_axis_entries(*sec, ctx)) os << e.text_key << " = " << node_text(*e.node) << "\n";
+    }
+    for (std::string_view key : keys_of(section)) {
+      if (const toml::node* node = sec->get(key)) os << key << " = " << node_text(*node) << "\n";
+    }
+  }
+  return os.str();
+}
+
+Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
+  // The schema's checks cover validate(); this keeps the two in step if the core adds one.
+  if (const auto errors = validate(scene.params); !errors.empty()) fail(ctx.path + ": " + errors.front());
+  scene.path = ctx.path;
+  scene.text = scene_text(table, ctx);
+  return scene;
+}
+
+std::string read_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path + ": cannot read scene: no such file");
+  if (fs::is_directory(path, ec)) fail(path + ": cannot read scene: is a directory");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  if (!in) fail(path + ": cannot read scene file");
+  return os.str();
+}
+
+}  // namespace
+}  // namespace detail
+
+Scene parse_scene(std::string_view text, const std::string& path, const std::vector<std::string>& overrides) {
+  detail::Context ctx{path, {}, {}};
+  toml::table table = detail::parse_toml(text, path);
+  for (const std::string& o : overrides) detail::apply_override(table, o, ctx);
+  detail::check_structure(table, ctx);
+  return detail::finish(detail::read_values(table, ctx), table, ctx);
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  return parse_scene(detail::read_file(path), path, overrides);
+}
+
+}  // namespace vibromap
