@@ -43,6 +43,7 @@ try:
         MapSliceError,
         SweepMap,
         VibromapFileError,
+        axis_name,
         cell_edges,
         parse_fix,
         read_map,
@@ -137,6 +138,7 @@ def choose_slice(sweep: SweepMap, x: str | None, y: str | None, fixed: dict[str,
     """slice2d with the scripts' defaults: x the first axis, y the first other axis (a strip
     for a 1-D map)."""
     names = sweep.axis_names
+    x, y = axis_name(sweep, x), axis_name(sweep, y)
     if x is None:
         x = next((name for name in names if name != y), names[0])
     if y is None:

@@ -167,11 +167,12 @@ class MapSliceError(ValueError):
 class MapAxis:
     """One swept parameter of a map: its grid values (SI units) and how they were spaced."""
 
-    name: str  # E1, E2, R1, R2, m2, k2 or omega2
+    name: str  # the coordinate's name: the scene key within its section (E1, omega, F0, ...)
     values: np.ndarray  # 1-D float64, the grid points
     scale: str  # "lin" or "log" (plots use a log axis for "log")
     units: str  # e.g. "Pa"
     long_name: str  # e.g. "Young's modulus of body 1"
+    key: str = ""  # the full scene key, e.g. "forcing.omega" ("" in maps written before it was kept)
 
     @property
     def is_log(self) -> bool:
@@ -312,8 +313,19 @@ def _map_axes(f: h5py.File, path: str) -> dict[str, MapAxis]:
             scale=spacing,
             units=_text(scale.attrs.get("units", "")),
             long_name=_text(scale.attrs.get("long_name", "")),
+            key=_text(scale.attrs.get("key", "")),
         )
     return axes
+
+
+def axis_name(sweep: "SweepMap", name: str | None) -> str | None:
+    """The map's name of an axis given by its name (omega) or its full scene key (forcing.omega)."""
+    if name is None or name in sweep.axes:
+        return name
+    for axis in sweep.axes.values():
+        if axis.key and axis.key == name:
+            return axis.name
+    return name
 
 
 def read_map(path: str) -> SweepMap:
@@ -434,7 +446,8 @@ def slice2d(sweep: SweepMap, x: str, y: str | None = None, fixed: dict[str, floa
     """The slice of `sweep` over axes x (columns) and y (rows; None for a 1-D strip), with every
     other axis held at the grid value nearest to fixed[name], or at its middle index (len // 2)
     when not given. Raises MapSliceError for unknown or repeated axis names."""
-    fixed = dict(fixed or {})
+    x, y = axis_name(sweep, x), axis_name(sweep, y)
+    fixed = {axis_name(sweep, name): value for name, value in (fixed or {}).items()}
     names = sweep.axis_names
     known = ", ".join(names)
     for role, name in (("x", x), ("y", y)):

@@ -3,13 +3,23 @@
 # then its pictures. Usage: jobs/demo/run.sh [OUTDIR] [RANKS]
 #   OUTDIR  where the map and the PNGs go (default: demo-out)
 #   RANKS   MPI ranks (default: the number of cores)
-set -euo pipefail
+# Ctrl-C (or SIGTERM) stops the sweep after a final checkpoint (exit 3); running the script
+# again resumes the map.
+set -uo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 top="$(cd "$here/../.." && pwd)"
 out="${1:-demo-out}"
 ranks="${2:-$(nproc)}"
 exe="${VIBROMAP_EXE:-$top/build/vibromap}"
-mkdir -p "$out"
+mkdir -p "$out" || exit 4
+
+# Open MPI on one node, started in a fraction of a second wherever it runs: shared memory only
+# (the TCP transport's start-up grows with the number of network interfaces: 13-22 s with 300,
+# as on a container host), and no hwloc GL probe (it tries X displays :0-:9 and can hang on a
+# port 6000-6009 held by something else). A value already in the environment wins.
+export OMPI_MCA_pml="${OMPI_MCA_pml:-ob1}"
+export OMPI_MCA_btl="${OMPI_MCA_btl:-self,vader}"
+export HWLOC_COMPONENTS="${HWLOC_COMPONENTS:--gl,-opencl}"
 
 # Root may run mpirun only when it says so (a container or CI machine); more ranks than
 # cores need oversubscription.
@@ -18,10 +28,28 @@ mpi_flags=(-n "$ranks")
 [ "$ranks" -gt "$(nproc)" ] && mpi_flags+=(--oversubscribe)
 
 map="$out/e1_e2.h5"
-resume=()
-[ -f "$map" ] && resume=(--resume)   # continue an interrupted run; a finished map is left as it is
-mpirun "${mpi_flags[@]}" "$exe" sweep "$here/e1_e2.toml" -o "$map" "${resume[@]}"
+args=(sweep "$here/e1_e2.toml" -o "$map")
+[ -f "$map" ] && args+=(--resume)   # continue an interrupted run; a finished map is left as it is
 
-"$top/postprocess/vmpy" plot_regime_map "$map" --x E1 --y E2 -o "$out/e1_e2_regimes.png"
-"$top/postprocess/vmpy" plot_kcon_map "$map" --x E1 --y E2 -o "$out/e1_e2_kcon.png"
+# mpirun turns SIGINT and SIGTERM into SIGTERM for the ranks a second later and SIGKILL a second
+# after that, and exits 1; it forwards SIGUSR1 and returns the ranks' exit code. So Ctrl-C is
+# passed on as SIGUSR1: the sweep checkpoints and every rank exits 3.
+pid=""
+trap '[ -n "$pid" ] && kill -s USR1 "$pid" 2>/dev/null' INT TERM
+mpirun "${mpi_flags[@]}" "$exe" "${args[@]}" &
+pid=$!
+status=0
+while :; do
+  wait "$pid"
+  status=$?
+  if [ "$status" -le 128 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
+done
+trap - INT TERM
+if [ "$status" -ne 0 ]; then
+  [ "$status" -eq 3 ] && echo "demo: stopped with a checkpoint in $map; run jobs/demo/run.sh again to go on" >&2
+  exit "$status"
+fi
+
+"$top/postprocess/vmpy" plot_regime_map "$map" --x E1 --y E2 -o "$out/e1_e2_regimes.png" || exit $?
+"$top/postprocess/vmpy" plot_kcon_map "$map" --x E1 --y E2 -o "$out/e1_e2_kcon.png" || exit $?
 echo "demo: map $map, pictures $out/e1_e2_regimes.png $out/e1_e2_kcon.png"

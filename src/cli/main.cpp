@@ -3,6 +3,7 @@
 // "vibromap: error: ...", with the exit code of commands.hpp.
 
 #include <csignal>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <sstream>
@@ -265,10 +266,25 @@ bool is_campaign(int argc, char** argv) {
   return command == "sweep" || command == "optimise";
 }
 
+// Without a launcher (no mpirun, no srun) vibromap is an MPI singleton on one node: Open MPI
+// then needs no network transport and no X display probe, which are what can make its start-up
+// take seconds (the TCP transport grows with the number of network interfaces; hwloc's GL
+// plugin tries displays :0-:9). A value already set in the environment wins. (Under a launcher
+// the launcher's environment decides: jobs/demo/run.sh and jobs/cluster/sweep.slurm set it.)
+void single_node_mpi_defaults() {
+  if (std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr) return;
+  ::setenv("OMPI_MCA_pml", "ob1", 0);
+  ::setenv("OMPI_MCA_btl", "self,vader", 0);
+  ::setenv("HWLOC_COMPONENTS", "-gl,-opencl", 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (is_campaign(argc, argv)) install_stop_handlers();
+  if (is_campaign(argc, argv)) {
+    install_stop_handlers();
+    single_node_mpi_defaults();
+  }
   // A file-size limit (ulimit -f, a batch system's) must fail a write with EFBIG, which the
   // I/O layer reports as one line, not kill the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -8,6 +8,33 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
            OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
+# Table 2 of SPEC.md with E1 x E2 axes. Brute-force integration (not the default shooting)
+# makes cells cost ~0.02-0.05 s each, so a sweep runs long enough to be stopped or killed mid-way.
+SLOW_SCENE = """
+[system]
+m2 = 310.0
+omega2 = 3.606
+
+[solver]
+method = "dopri5"
+
+[analysis]
+steady = "integrate"
+
+[sweep]
+E1 = {{ from = 2e4, to = 2.1e11, n = {n1}, scale = "log" }}
+E2 = {{ from = 2e4, to = 2.1e11, n = {n2}, scale = "log" }}
+store = ["T_con", "k_con", "F_max", "z_max", "periods"]
+checkpoint_interval = {checkpoint}
+progress_interval = {progress}
+"""
+
+
+def slow_scene(n1=4, n2=3, checkpoint=60.0, progress=0.5):
+    """SLOW_SCENE's text for an n1 x n2 grid."""
+    return SLOW_SCENE.format(n1=n1, n2=n2, checkpoint=checkpoint, progress=progress)
+
+
 def descendants(pid):
     """Every process below pid (Open MPI puts each rank in a process group of its own)."""
     children = {}

@@ -61,17 +61,7 @@ class MemorySink : public ResultSink<Value> {
     return n;
   }
   std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) override {
-    std::uint64_t taken = 0, i = from;
-    for (; i < items() && taken < max; ++i) {
-      if (done_[i]) continue;
-      if (!out.empty() && out.back().end == i) {
-        ++out.back().end;
-      } else {
-        out.push_back({i, i + 1});
-      }
-      ++taken;
-    }
-    return i;
+    return scan_pending(from, max, items(), [&](std::uint64_t i) { return done_[i] != 0; }, out);
   }
   void store_results(const ItemRange& range, std::vector<Value>& results) override {
     if (fail_after_ >= 0 && stores_++ >= fail_after_) throw std::runtime_error("disk full (made up)");

@@ -30,6 +30,7 @@
 // waiting: every worker is answered before run_farm returns or throws.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,25 @@ class FarmSink {
   virtual void finish(bool complete) = 0;     // the last checkpoint; complete: every item done
   virtual std::string note() const { return {}; }  // appended to progress lines
 };
+
+// FarmSink::pending for a sink that can say of each item whether it is done: appends the items
+// of [from, items) with !is_done(i), ascending and merged into ranges, at most `max` of them,
+// and returns where the scan stopped.
+template <class IsDone>
+std::uint64_t scan_pending(std::uint64_t from, std::uint64_t max, std::uint64_t items, IsDone is_done,
+                           std::vector<ItemRange>& out) {
+  std::uint64_t taken = 0, i = from;
+  for (; i < items && taken < max; ++i) {
+    if (is_done(i)) continue;
+    if (!out.empty() && out.back().end == i) {
+      ++out.back().end;
+    } else {
+      out.push_back({i, i + 1});
+    }
+    ++taken;
+  }
+  return i;
+}
 
 // Appends the result of `item` to `out`. Runs on every rank; must not throw for an item's own
 // trouble (a campaign turns that into a result with a status).

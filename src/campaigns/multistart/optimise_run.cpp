@@ -18,6 +18,7 @@
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/optimise_file.hpp"
+#include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
@@ -93,12 +94,13 @@ Scene sweep_scene(const Scene& scene) {
   return s;
 }
 
-// Rank 0: the best cells of a map file as seeds.
+// Rank 0: the best cells of a map file as seeds, read a chunk at a time (any map size).
 std::vector<Seed> seeds_from_map(const Scene& scene, const std::string& path, bool made_here) {
-  const SweepMap map = read_map(path);
+  const MapLayout layout = read_map_layout(path);
   try {
-    return select_seeds(map.grid, map.cells, map.done, map.stored, scene.params, *scene.optimise,
-                        scene.options.analysis.hertz_limit);
+    SeedSelector selector(layout.grid, layout.stored, scene.params, *scene.optimise, scene.options.analysis.hertz_limit);
+    scan_map(path, [&](std::uint64_t flat, const CellResult& c) { selector.offer(flat, c); });
+    return selector.seeds();
   } catch (const std::invalid_argument& e) {
     throw SceneError(cat(scene.path, ": [optimise] seeds from ", path, ": ", e.what(),
                          made_here ? cat("; the seeding map ", path, " is kept for the next run") : std::string()));
@@ -228,9 +230,11 @@ OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const Optimi
   const auto t0 = Clock::now();
   OptimiseRun run;
   run.report.ranks = mpi.size();
+  std::unique_ptr<OutputLock> lock;  // rank 0, for the whole run: one optimisation per output
   mpi.agree([&] {
     if (!scene.optimise) throw SceneError(scene.path + ": no [optimise] section: nothing to optimise (see 'vibromap keys')");
     check_outputs(config);
+    lock = std::make_unique<OutputLock>(config.output);
   }, exit_status_of);
   std::vector<Seed> seeds;
   if ((run.stop_signal = make_seeds(mpi, scene, config, run, seeds)) != 0) return run;

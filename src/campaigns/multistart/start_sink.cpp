@@ -51,17 +51,8 @@ void StartSink::keep(StartRecord record) {
 }
 
 std::uint64_t StartSink::pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) {
-  std::uint64_t taken = 0, i = from;
-  for (; i < items() && taken < max; ++i) {
-    if (results_[static_cast<std::size_t>(i)]) continue;
-    if (!out.empty() && out.back().end == i) {
-      ++out.back().end;
-    } else {
-      out.push_back({i, i + 1});
-    }
-    ++taken;
-  }
-  return i;
+  return scan_pending(from, max, items(), [&](std::uint64_t i) { return results_[static_cast<std::size_t>(i)].has_value(); },
+                      out);
 }
 
 void StartSink::store_results(const ItemRange& range, std::vector<StartRecord>& results) {

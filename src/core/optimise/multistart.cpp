@@ -74,37 +74,53 @@ bool cell_qualifies(const CellResult& c, const OptimiseOptions& o) {
 
 }  // namespace
 
-std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& cells,
-                               const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
-                               const Parameters& base, const OptimiseOptions& o, double hertz_limit) {
-  const Quantity q = ranking_quantity(o.objective);
-  if (!is_stored(stored, q))
-    throw std::invalid_argument(cat("the map does not store ", to_string(q), ", which ranks the cells for ",
+SeedSelector::SeedSelector(const Grid& grid, const std::vector<Quantity>& stored, const Parameters& base,
+                           const OptimiseOptions& o, double hertz_limit)
+    : grid_(grid), stored_(stored), base_(base), o_(o), hertz_limit_(hertz_limit), box_(o.variables),
+      quantity_(ranking_quantity(o.objective)), x_(grid.axes().size()) {
+  if (!is_stored(stored, quantity_))
+    throw std::invalid_argument(cat("the map does not store ", to_string(quantity_), ", which ranks the cells for ",
                                     to_string(o.objective), ": add it to [sweep] store"));
   if (o.hertz_valid && !is_stored(stored, Quantity::hertz_valid) && !is_stored(stored, Quantity::z_ratio))
     throw std::invalid_argument("the map stores neither hertz_valid nor z_ratio, which hertz_valid = true needs: "
                                 "add one to [sweep] store");
   check_axes(grid, o);
-  const Box box(o.variables);
-  std::vector<Seed> candidates;
-  std::vector<double> x(grid.axes().size());
-  for (std::size_t i = 0; i < grid.size() && i < cells.size() && i < done.size(); ++i) {
-    if (!done[i] || !cell_qualifies(cells[i], o)) continue;
-    if (o.hertz_valid && !cell_hertz_valid(cells[i], stored, hertz_limit)) continue;
-    const Parameters p = cell_parameters(grid, base, i, x);
-    Seed s{{}, static_cast<long>(i), objective_sense(o.objective) * cells[i].value(q)};
-    for (const FreeVariable& v : o.variables) s.x.push_back(get_parameter(p, v.name));
-    if (!std::isfinite(s.value) || !box.contains(s.x)) continue;
-    s.x = box.to_physical(box.to_scaled(s.x));  // a hair outside the box (rounding) comes inside
-    candidates.push_back(std::move(s));
-  }
-  if (candidates.empty())
-    throw std::invalid_argument(cat("no cell of the map keeps the regime ", o.regime ? o.regime->label() : "(any)",
-                                    " (stability ", to_string(o.stability), o.hertz_valid ? ", Hertz theory valid" : "",
+}
+
+void SeedSelector::offer(std::uint64_t flat, const CellResult& c) {
+  if (!cell_qualifies(c, o_)) return;
+  if (o_.hertz_valid && !cell_hertz_valid(c, stored_, hertz_limit_)) return;
+  const Parameters p = cell_parameters(grid_, base_, static_cast<std::size_t>(flat), x_);
+  Seed s{{}, static_cast<long>(flat), objective_sense(o_.objective) * c.value(quantity_)};
+  for (const FreeVariable& v : o_.variables) s.x.push_back(get_parameter(p, v.name));
+  if (!std::isfinite(s.value) || !box_.contains(s.x)) return;
+  s.x = box_.to_physical(box_.to_scaled(s.x));  // a hair outside the box (rounding) comes inside
+  best_.push_back(std::move(s));
+  if (best_.size() > 4 * static_cast<std::size_t>(o_.seeds) + 64) trim();
+}
+
+// Keeps the best o.seeds candidates: by value, ties by cell index (the order cells were offered).
+void SeedSelector::trim() {
+  std::stable_sort(best_.begin(), best_.end(), [](const Seed& a, const Seed& b) { return a.value < b.value; });
+  best_.resize(std::min(best_.size(), static_cast<std::size_t>(o_.seeds)));
+}
+
+std::vector<Seed> SeedSelector::seeds() {
+  if (best_.empty())
+    throw std::invalid_argument(cat("no cell of the map keeps the regime ", o_.regime ? o_.regime->label() : "(any)",
+                                    " (stability ", to_string(o_.stability), o_.hertz_valid ? ", Hertz theory valid" : "",
                                     ") inside the box: nothing to seed from"));
-  std::stable_sort(candidates.begin(), candidates.end(), [](const Seed& a, const Seed& b) { return a.value < b.value; });
-  candidates.resize(std::min(candidates.size(), static_cast<std::size_t>(o.seeds)));
-  return candidates;
+  trim();
+  return best_;
+}
+
+std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& cells,
+                               const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
+                               const Parameters& base, const OptimiseOptions& o, double hertz_limit) {
+  SeedSelector selector(grid, stored, base, o, hertz_limit);
+  for (std::size_t i = 0; i < grid.size() && i < cells.size() && i < done.size(); ++i)
+    if (done[i]) selector.offer(i, cells[i]);
+  return selector.seeds();
 }
 
 Seed scene_seed(const Parameters& base, const OptimiseOptions& o) {

@@ -17,7 +17,7 @@ import time
 import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC  # noqa: E402
+from campaign_helpers import ENV, EXE, MPIEXEC, slow_scene  # noqa: E402
 
 CHEAP = """
 [forcing]
@@ -29,22 +29,7 @@ E2 = {{ from = 2e4, to = 2.1e11, n = {n2}, scale = "log" }}
 progress_interval = 0.2
 """
 
-SLOW = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[solver]
-method = "dopri5"
-
-[analysis]
-steady = "integrate"
-
-[sweep]
-E1 = { from = 2e4, to = 2.1e11, n = 12, scale = "log" }
-E2 = { from = 2e4, to = 2.1e11, n = 8, scale = "log" }
-progress_interval = 0.2
-"""
+SLOW = slow_scene(12, 8, progress=0.2)
 
 
 def scene(tmp_path, text, name="scene.toml"):

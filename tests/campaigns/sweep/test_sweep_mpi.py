@@ -19,34 +19,15 @@ import h5py
 import numpy as np
 import pytest
 
+import pathlib
+
+REPO = pathlib.Path(__file__).resolve().parents[3]
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC, kill_all  # noqa: E402
-
-# Table 2 of SPEC.md with E1 x E2 axes. Brute-force integration (not the default shooting)
-# makes cells cost ~0.02-0.05 s each, so a sweep runs long enough to be killed mid-way.
-SCENE = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[solver]
-method = "dopri5"
-
-[analysis]
-steady = "integrate"
-
-[sweep]
-E1 = {{ from = 2e4, to = 2.1e11, n = {n1}, scale = "log" }}
-E2 = {{ from = 2e4, to = 2.1e11, n = {n2}, scale = "log" }}
-store = ["T_con", "k_con", "F_max", "z_max", "periods"]
-checkpoint_interval = {checkpoint}
-progress_interval = 0.5
-"""
-
+from campaign_helpers import ENV, EXE, MPIEXEC, kill_all, slow_scene  # noqa: E402
 
 def write_scene(tmp_path, n1=4, n2=3, checkpoint=60.0, name="scene.toml"):
     path = tmp_path / name
-    path.write_text(SCENE.format(n1=n1, n2=n2, checkpoint=checkpoint))
+    path.write_text(slow_scene(n1, n2, checkpoint))
     return path
 
 
@@ -242,3 +223,33 @@ def test_a_signal_to_mpiexec_checkpoints_every_rank(tmp_path, sig):
     assert 5 <= held < 96
     sweep(2, scene, out, "--resume")
     assert_same_map(reference, out)
+
+
+def test_a_frequency_response_map_over_forcing_keys(tmp_path):
+    """forcing.omega x forcing.F0 axes (any numeric key): the map's coordinates carry their
+    units (rad/s, N), long names and keys, and the regime picture is drawn over them."""
+    text = (REPO / "jobs" / "demo" / "frequency_response.toml").read_text()
+    text = text.replace("n = 46", "n = 5").replace("n = 20", "n = 3")
+    path = tmp_path / "fr.toml"
+    path.write_text(text)
+    out = tmp_path / "fr.h5"
+    sweep(2, path, out)
+    with h5py.File(out, "r") as f:
+        assert f["regime"].shape == (3, 5)  # rows F0, columns omega
+        assert f["omega"].attrs["units"] == "rad/s" and f["omega"].attrs["key"] == "forcing.omega"
+        assert f["F0"].attrs["units"] == "N" and f["F0"].attrs["key"] == "forcing.F0"
+        assert f["omega"].attrs["long_name"].startswith("forcing frequency")
+        np.testing.assert_array_equal(f["omega"][()], [3.0, 5.25, 7.5, 9.75, 12.0])
+        assert f["done"][()].all()
+    sys.path.insert(0, str(REPO / "postprocess"))
+    import matplotlib
+    matplotlib.use("Agg")
+    import plot_regime_map
+    import vibromap_h5
+    m = vibromap_h5.read_map(str(out))
+    sl = plot_regime_map.choose_slice(m, "forcing.omega", "forcing.F0", {})
+    fig = plot_regime_map.plot(m, sl)
+    ax = fig.axes[0]
+    assert ax.get_xlabel().startswith("omega (forcing frequency") and ax.get_xlabel().endswith("rad/s")
+    assert ax.get_ylabel().startswith("F0 (force amplitude") and ax.get_ylabel().endswith(", N")
+    assert ax.get_yscale() == "log"

@@ -12,6 +12,7 @@
 
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
+#include "vibromap/core/optimise/box.hpp"
 #include "vibromap/core/optimise/local_optimiser.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
 #include "vibromap/core/quantities.hpp"
@@ -39,6 +40,29 @@ std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& 
                                const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
                                const Parameters& base, const OptimiseOptions& o,
                                double hertz_limit = AnalysisOptions{}.hertz_limit);
+
+// select_seeds one cell at a time, for maps too big to hold: offer() every done cell in flat
+// order, then seeds(). Memory: a few times o.seeds candidates. The constructor and seeds()
+// throw as select_seeds does.
+class SeedSelector {
+ public:
+  SeedSelector(const Grid& grid, const std::vector<Quantity>& stored, const Parameters& base, const OptimiseOptions& o,
+               double hertz_limit = AnalysisOptions{}.hertz_limit);
+  void offer(std::uint64_t flat, const CellResult& cell);
+  std::vector<Seed> seeds();
+
+ private:
+  void trim();
+  const Grid& grid_;
+  std::vector<Quantity> stored_;
+  const Parameters& base_;
+  const OptimiseOptions& o_;
+  double hertz_limit_;
+  Box box_;
+  Quantity quantity_;
+  std::vector<double> x_;
+  std::vector<Seed> best_;
+};
 
 // The scene's own point as the one seed (clamped into the box).
 Seed scene_seed(const Parameters& base, const OptimiseOptions& o);

@@ -1,0 +1,35 @@
+# The campaigns end to end under mpiexec (pytest: tests/campaigns/sweep, tests/campaigns/multistart),
+# and the optimiser's command-line checks. Included from tests/CMakeLists.txt after
+# cli_tests.cmake and postprocess_tests.cmake (which finds the Python interpreter).
+
+# `vibromap optimise`: command-line checks (vibromap_cli_test, from cli_tests.cmake).
+vibromap_cli_test(optimise_help RC 0 ARGS optimise --help
+                  OUT "--set.*--output.*--overwrite.*--format.*\\[optimise\\].*gradient_projection.*FILE_map\\.h5.*Exit codes")
+vibromap_cli_test(optimise_without_section RC 2 ARGS optimise jobs/paper/table1.toml
+                  ERR "jobs/paper/table1\\.toml: no \\[optimise\\] section: nothing to optimise")
+vibromap_cli_test(optimise_bad_algorithm RC 2
+                  ARGS optimise jobs/paper/optimise_box.toml --set optimise.algorithm=bobyq
+                  ERR "--set optimise\\.algorithm=bobyq: unknown algorithm 'bobyq' \\(did you mean 'bobyqa'\\?\\)")
+vibromap_cli_test(optimise_output_directory_missing RC 4
+                  ARGS optimise jobs/paper/optimise_box.toml -o no_such_dir/o.h5
+                  ERR "no_such_dir/o\\.h5: cannot write the optimisation: directory 'no_such_dir' does not exist")
+
+if(NOT VibromapPython_FOUND)
+  message(WARNING "campaign tests not added: no Python with numpy, h5py and pytest")
+  return()
+endif()
+
+# vibromap_campaign_pytest(name folder): pytest on tests/campaigns/<folder>, alone on the machine
+# (the runs use every core and time signals).
+function(vibromap_campaign_pytest name folder)
+  add_test(NAME ${name}
+           COMMAND "${VibromapPython_EXECUTABLE}" -m pytest -q -p no:cacheprovider tests/campaigns/${folder}
+           WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
+  set_tests_properties(${name} PROPERTIES
+    ENVIRONMENT "VIBROMAP_EXE=$<TARGET_FILE:vibromap>;VIBROMAP_MPIEXEC=${MPIEXEC_EXECUTABLE};PYTHONDONTWRITEBYTECODE=1;MPLCONFIGDIR=${CMAKE_CURRENT_BINARY_DIR}/mplconfig"
+    TIMEOUT 900
+    RUN_SERIAL TRUE)
+endfunction()
+
+vibromap_campaign_pytest(sweep_mpi sweep)
+vibromap_campaign_pytest(optimise_mpi multistart)
