@@ -91,11 +91,16 @@ std::string sweep_footer() {
          "and --oversubscribe for more ranks than cores). Cells are handed out dynamically; rank 0\n"
          "computes too and writes the map. Progress goes to stderr: a live line on a terminal,\n"
          "plain lines every [sweep] progress_interval seconds otherwise.\n\n"
-         "The map is rewritten atomically every [sweep] checkpoint_interval seconds, so a run\n"
-         "killed at any moment leaves a map that opens; --resume continues it. The run must be the\n"
-         "same, judged key by key from the parsed scenes: formatting, comments and the checkpoint\n"
-         "and progress intervals may differ, and an error names the keys that do. SIGINT, SIGTERM\n"
-         "or SIGUSR1 write a checkpoint and stop (exit code 3).\n\n" +
+         "The map is made (every chunk allocated, its size checked against the disk) before any\n"
+         "cell is computed, and cells are written into it as they arrive. Every [sweep]\n"
+         "checkpoint_interval seconds the new cells are synced and then marked done, so a run\n"
+         "killed at any moment (kill -9 included) leaves a map that opens; --resume continues it,\n"
+         "verifying every chunk's checksum and computing the cells of a damaged one again. The\n"
+         "run must be the same, judged key by key from the parsed scenes: formatting, comments and\n"
+         "the checkpoint and progress intervals may differ, and an error names the keys that do.\n"
+         "A run holds FILE.h5.lock: a second run on the same map is refused. SIGINT, SIGTERM or\n"
+         "SIGUSR1 to any rank write a final checkpoint and stop (exit code 3); through mpirun send\n"
+         "SIGUSR1 (mpirun turns SIGINT and SIGTERM into a kill 2 s later and exits 1).\n\n" +
          main_footer();
 }
 

@@ -13,7 +13,7 @@ struct Row {
 constexpr std::array kRows = {
     Row{ExitCode::ok, "ok", "done (an unresolved or failed cell or point is a result, reported in the output)"},
     Row{ExitCode::internal, "internal", "an unexpected error (a bug): the message says where"},
-    Row{ExitCode::bad_input, "bad_input", "bad command line, scene or existing output: nothing was computed"},
+    Row{ExitCode::bad_input, "bad_input", "bad input (command line, scene or existing output): the line says what"},
     Row{ExitCode::stopped, "stopped",
         "stopped by SIGINT, SIGTERM or SIGUSR1 after a final checkpoint: run again with --resume"},
     Row{ExitCode::io, "io", "a file could not be read or written, or a resource (disk, memory) ran out"},

@@ -13,7 +13,7 @@ namespace vibromap {
 enum class ExitCode : int {
   ok = 0,         // done (an unresolved or failed cell, or point, is a result, reported in the output)
   internal = 1,   // an unexpected error, a bug: the message says where
-  bad_input = 2,  // bad command line, scene or existing output: nothing was computed
+  bad_input = 2,  // bad command line, scene or existing output: the line says what
   stopped = 3,    // stopped by SIGINT, SIGTERM or SIGUSR1 after a final checkpoint: --resume goes on
   io = 4,         // a file could not be read or written, or a resource (disk, memory) ran out
 };
