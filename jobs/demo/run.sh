@@ -32,11 +32,12 @@ args=(sweep "$here/e1_e2.toml" -o "$map")
 [ -f "$map" ] && args+=(--resume)   # continue an interrupted run; a finished map is left as it is
 
 # mpirun turns SIGINT and SIGTERM into SIGTERM for the ranks a second later and SIGKILL a second
-# after that, and exits 1; it forwards SIGUSR1 and returns the ranks' exit code. So Ctrl-C is
-# passed on as SIGUSR1: the sweep checkpoints and every rank exits 3.
+# after that, and exits 1; it forwards SIGUSR1 and returns the ranks' exit code. So mpirun runs
+# in a session of its own (Ctrl-C reaches this script only), and Ctrl-C, SIGTERM or SIGHUP is passed on
+# as SIGUSR1: the sweep checkpoints and every rank exits 3.
 pid=""
-trap '[ -n "$pid" ] && kill -s USR1 "$pid" 2>/dev/null' INT TERM
-mpirun "${mpi_flags[@]}" "$exe" "${args[@]}" &
+trap '[ -n "$pid" ] && kill -s USR1 "$pid" 2>/dev/null' INT TERM HUP
+setsid mpirun "${mpi_flags[@]}" "$exe" "${args[@]}" &
 pid=$!
 status=0
 while :; do
@@ -44,7 +45,7 @@ while :; do
   status=$?
   if [ "$status" -le 128 ] || ! kill -0 "$pid" 2>/dev/null; then break; fi
 done
-trap - INT TERM
+trap - INT TERM HUP
 if [ "$status" -ne 0 ]; then
   [ "$status" -eq 3 ] && echo "demo: stopped with a checkpoint in $map; run jobs/demo/run.sh again to go on" >&2
   exit "$status"
