@@ -13,8 +13,8 @@ set(allowed_parallel  parallel)
 set(allowed_campaigns core io parallel campaigns)
 set(allowed_cli       core io parallel campaigns cli)
 # Layer -> regex of third-party includes it must not use (MPI only in parallel, HDF5 and TOML
-# only in io, CLI11 only in cli).
-set(forbidden_core     "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
+# only in io, CLI11 only in cli, NLopt not in the core).
+set(forbidden_core     "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*|nlopt.*)$")
 set(forbidden_io       "^(mpi\\.h|CLI/.*)$")
 set(forbidden_parallel "^(hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
 set(forbidden_campaigns "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")

@@ -12,6 +12,7 @@
 #include "start_codec.hpp"
 #include "start_sink.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "vibromap/core/text.hpp"

@@ -138,12 +138,6 @@ std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorith
   return plan;
 }
 
-LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
-                      const Seed& seed, Algorithm algorithm) {
-  PointObjective f(base, options, o);
-  return minimise(f, Box(o.variables), seed.x, algorithm, o.local);
-}
-
 std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<StartRecord>& starts, const Box& box,
                                                              int count, double merge) {
   std::vector<std::pair<std::size_t, std::size_t>> found;

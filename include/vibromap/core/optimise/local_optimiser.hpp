@@ -1,6 +1,6 @@
 #pragma once
-// One local optimisation from one seed: the entry point that runs any Algorithm on any
-// Objective within a Box, and what it reports.
+// What one local optimisation from one seed reports (campaigns/multistart/local_search.hpp's
+// minimise runs it: NLopt stays out of the core).
 //
 // Every algorithm works on a TrackedObjective (objective.hpp) in the scaled variables, so
 // they share one cache, one budget and one rule for the answer: the best point of a start is
@@ -41,11 +41,5 @@ struct LocalResult {
   long cache_hits = 0;                        // calls answered from the cache
   double wall_s = 0.0;                        // time of the start, s
 };
-
-// Runs `algorithm` from the physical point `seed` (clamped into the box). Throws
-// std::invalid_argument when the options or the seed do not fit the box; never throws for
-// what the objective does.
-LocalResult minimise(Objective& f, const Box& box, std::span<const double> seed, Algorithm algorithm,
-                     const LocalOptions& options);
 
 }  // namespace vibromap

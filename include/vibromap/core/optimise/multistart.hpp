@@ -77,10 +77,6 @@ struct StartSpec {
 // Every seed with every algorithm, seed-major: start i is seed i / A with algorithm i % A.
 std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms);
 
-// Runs one start with the physics objective (point_objective.hpp) on the scene's point and
-// options.
-LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
-                      const Seed& seed, Algorithm algorithm);
 
 // A start and its result, as gathered on rank 0.
 struct StartRecord {

@@ -30,7 +30,7 @@ const std::vector<ObjectiveKind>& all_objective_kinds();
 std::string objective_quantity(ObjectiveKind k);         // "k_con", "T_con", "F_max"
 double objective_sense(ObjectiveKind k);                 // +1 minimised, -1 maximised (value = sense * quantity)
 
-// The local algorithms. The five NLopt ones run through the NLopt adaptor (nlopt_adaptor.hpp);
+// The local algorithms. The five NLopt ones run through the multistart campaign's NLopt adaptor;
 // gradient_projection is ours (gradient_projection.hpp), the source paper's method.
 enum class Algorithm {
   bobyqa,               // NLopt LN_BOBYQA: derivative-free, bounds only (regime by a barrier value)

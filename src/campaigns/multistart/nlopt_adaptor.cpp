@@ -1,4 +1,4 @@
-#include "vibromap/core/optimise/nlopt_adaptor.hpp"
+#include "nlopt_adaptor.hpp"
 
 #include <nlopt.h>
 

@@ -1,10 +1,11 @@
-#include "vibromap/core/optimise/local_optimiser.hpp"
+#include "vibromap/campaigns/multistart/local_search.hpp"
 
 #include <chrono>
 #include <stdexcept>
 
 #include "vibromap/core/optimise/gradient_projection.hpp"
-#include "vibromap/core/optimise/nlopt_adaptor.hpp"
+#include "nlopt_adaptor.hpp"
+#include "vibromap/core/optimise/point_objective.hpp"
 
 namespace vibromap {
 
@@ -27,6 +28,12 @@ LocalResult minimise(Objective& f, const Box& box, std::span<const double> seed,
   r.cache_hits = tracked.cache_hits();
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
+                      const Seed& seed, Algorithm algorithm) {
+  PointObjective f(base, options, o);
+  return minimise(f, Box(o.variables), seed.x, algorithm, o.local);
 }
 
 }  // namespace vibromap

@@ -1,4 +1,4 @@
-// The optimisation layer (include/vibromap/core/optimise/): box and scaling, the tracked objective
+// The optimisation numerics (include/vibromap/core/optimise/) and the multistart campaign's local search (campaigns/multistart/local_search.hpp): box and scaling, the tracked objective
 // (cache, budget, best feasible), every local algorithm on analytic objectives with known
 // optima (inside the box, on a bound, on a log axis spanning seven decades, on the boundary
 // of an infeasible region whose objective is lower), the physics objective's feasibility
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "vibromap/core/optimise/box.hpp"
-#include "vibromap/core/optimise/local_optimiser.hpp"
+#include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/core/optimise/multistart.hpp"
 #include "vibromap/core/optimise/objective.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"

@@ -1,8 +1,8 @@
 #pragma once
-// The NLopt adaptor: runs LN_BOBYQA, LN_COBYLA, LN_SBPLX, LD_SLSQP or LD_MMA (Steven G.
+// Internal to the multistart campaign. The NLopt adaptor: runs LN_BOBYQA, LN_COBYLA, LN_SBPLX, LD_SLSQP or LD_MMA (Steven G.
 // Johnson, The NLopt nonlinear-optimization package, https://github.com/stevengj/nlopt) on a
 // TrackedObjective in the scaled variables u in [0, 1]^n. NLopt's header stays in
-// nlopt_adaptor.cpp: nothing outside the optimise library sees it.
+// nlopt_adaptor.cpp: nothing outside this campaign sees it.
 //
 // Feasibility (the regime kept):
 //  - cobyla, slsqp, mma take the regime as one inequality constraint c(u) <= 0 with
