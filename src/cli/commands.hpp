@@ -27,6 +27,8 @@ struct RunArgs {
   std::string format = "table";   // "table" or "json"
   std::string trajectory;         // HDF5 file for the kept trajectory; empty: none
   bool overwrite = false;         // replace an existing trajectory file
+  bool census = false;            // look for every attractor ([census]) instead of the one from rest
+  bool labels = false;            // with census: also print each initial state and its attractor
 };
 
 // Solves the scene's point and prints its summary to `out`; writes the trajectory file when

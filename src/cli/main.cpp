@@ -78,6 +78,8 @@ CLI::App* add_run(CLI::App& app, cli::RunArgs& args) {
   run->add_option("-t,--trajectory", args.trajectory, "Also write the steady motion's trajectory to FILE.h5")
       ->type_name("FILE.h5");
   run->add_flag("--overwrite", args.overwrite, "Replace an existing trajectory file");
+  run->add_flag("--census", args.census, "Find every attractor of the point with its basin fraction ([census])");
+  run->add_flag("--labels", args.labels, "With --census: also print each initial state and its attractor's index");
   run->footer(run_footer());
   return run;
 }

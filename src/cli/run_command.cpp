@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/io/census_output.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/io/scene/docs.hpp"
@@ -103,9 +105,38 @@ void save_trajectory(const std::string& path, const PointSummary& summary, const
   write_trajectory(path, summary, scene.text);
 }
 
+// `run --census`: every attractor of the point ([census], or its defaults).
+int census_command(const RunArgs& args, std::ostream& out) {
+  if (!args.trajectory.empty()) throw SceneError(args.scene + ": --trajectory cannot be combined with --census");
+  const Scene scene = load_scene(args.scene, args.sets);
+  CensusOptions census = scene.census.value_or(CensusOptions{});
+  census.labels = args.labels;
+  const CensusSummary summary = census_point(scene.params, scene.options, census);
+  if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
+  if (args.format == "json") {
+    write_census_json(out, summary);
+  } else {
+    write_census_table(out, summary, scene);
+    if (args.labels) {
+      out << "\n  #  x1 (m)        x2 (m)        v1 (m/s)      v2 (m/s)      attractor\n";
+      for (std::size_t i = 0; i < summary.labels.size(); ++i) {
+        const Eigen::Vector4d& x = summary.initial_conditions[i];
+        char line[160];
+        std::snprintf(line, sizeof line, "%3zu  %12.5e  %12.5e  %12.5e  %12.5e  %d\n", i, x[0], x[1], x[2], x[3],
+                      summary.labels[i]);
+        out << line;
+      }
+    }
+  }
+  out.flush();
+  return code(ExitCode::ok);
+}
+
 }  // namespace
 
 int run_command(const RunArgs& args, std::ostream& out) {
+  if (args.labels && !args.census) throw SceneError(args.scene + ": --labels needs --census");
+  if (args.census) return census_command(args, out);
   const Scene scene = load_run_scene(args);
   if (!args.trajectory.empty()) check_trajectory(args.trajectory, args.overwrite, scene);
   const PointSummary summary = solve_point(scene.params, scene.options);

@@ -138,3 +138,16 @@ vibromap_cli_test(accuracy_csv_directory_missing RC 4
 vibromap_cli_test(accuracy_table2 RC 0
                   ARGS accuracy jobs/paper/table2.toml -q --csv ${CMAKE_CURRENT_BINARY_DIR}/cli_accuracy_table2.csv
                   OUT "reference +rtol 1e-13 +ok +\\(1,1\\).*rk4 +2\\^11 steps/T.*dopri5 +rtol 1e-6 +ok.*hybrid\\+shooting +rtol 1e-12 +ok +\\(1,1\\)")
+
+# run --census: the attractor table of one point (the monostable Table 1: one (1,1), fraction 1),
+# its JSON with labels, and the errors of its flags and [census] keys.
+vibromap_cli_test(run_census_table RC 0 ARGS run jobs/paper/table1.toml --census --set census.initial_conditions=4
+                  OUT "census +4 initial states.*attractors +1\n.*\\(1,1\\) +1\\.0000 +0\\.0000 +111[0-9] ")
+vibromap_cli_test(run_census_json RC 0 ARGS run jobs/paper/table1.toml --census --labels --format json
+                  --set census.initial_conditions=3
+                  OUT "\"attractors\": \\[.*\"regime\": \"\\(1,1\\)\".*\"fraction\": 1,.*\"from_rest\": true.*\"strobe\": \\[.*\"initial_conditions\": \\[.*\"labels\": \\[[^]]*0,[^]]*0,[^]]*0[^]]*\\]")
+vibromap_cli_test(run_labels_needs_census RC 2 ARGS run jobs/paper/table1.toml --labels ERR "--labels needs --census")
+vibromap_cli_test(run_census_bad_box RC 2 ARGS run jobs/paper/table1.toml --census --set "census.x1=[1, 0]"
+                  ERR "census\\.x1=\\[1, 0\\]: must be an array \\[lo, hi\\]")
+vibromap_cli_test(run_census_unknown_key RC 2 ARGS run jobs/paper/table1.toml --census --set census.initial_states=4
+                  ERR "unknown key 'initial_states' in \\[census\\]; keys of \\[census\\]: initial_conditions")

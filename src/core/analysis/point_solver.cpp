@@ -243,23 +243,6 @@ ShootingOptions shooting_options(const PointOptions& o, int n) {
   return so;
 }
 
-// Newton for period n may converge to an orbit of a shorter period d | n: the least such d.
-int least_period(Run& r, const Model& model, const State& y, int n, double tol) {
-  const StateScale scale(model);
-  for (int d = 1; d < n; ++d) {
-    if (n % d != 0) continue;
-    const auto integ = make_integrator(model, budgeted(r));
-    State u = y;
-    integ->reset(u);
-    Observer none;
-    bool ok = true;
-    for (int i = 0; i < d && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-    r.shooting += integ->counters();
-    if (ok && scale.distance(u, y) <= kShorterPeriodFactor * tol) return d;
-  }
-  return n;
-}
-
 void record_shooting(PointSummary& s, const ShootingResult& sh) {
   s.floquet = sh.multipliers;
   s.stable = sh.stable() ? 1 : 0;
@@ -400,7 +383,8 @@ ShootingResult find_orbit(PointSummary& s, Run& r, const ShootingSection& sectio
     s.newton_iterations += sh.iterations;
   }
   if (!sh.converged || !sh.stable()) return sh;
-  if (const int d = least_period(r, section.model, sh.y, so.n, so.tol); d != so.n) {
+  if (const int d = least_period(section.model, budgeted(r), sh.y, so.n, kShorterPeriodFactor * so.tol, r.shooting);
+      d != so.n) {
     so.n = d;
     sh = shoot(section.model, budgeted(r), sh.y, so, r.shooting);
     s.newton_iterations += sh.iterations;
@@ -470,6 +454,29 @@ void solve_by_integration(PointSummary& s, Run& r, ObserverList& observers, Peri
 }
 
 }  // namespace
+
+PointSummary measure_orbit(const Parameters& p, const PointOptions& options, const Eigen::Vector4d& y, int n) {
+  const auto start = std::chrono::steady_clock::now();
+  PointSummary s;
+  s.T = p.period();
+  const Model model(p);
+  const auto integrator = make_integrator(model, options.integrator);
+  Run r{model, options, *integrator, Model::to_internal(y), ImpactRecorder(model, 2L * n + 2),
+        SteadyStateDetector(model, n, steady_tolerance(options)), {}};
+  if (measure_cycle(s, r, Model::to_internal(y), n)) {
+    s.status = SolveStatus::ok;
+  } else {
+    s.status = SolveStatus::failed;
+    s.message = "the orbit's cycle could not be integrated";
+    s.regime = {RegimeKind::failed, 0, 0};
+  }
+  measure_impacts(s, model, options.analysis.hertz_limit);
+  s.periods = integrator->period();
+  s.counters = integrator->counters();
+  s.final_state = Model::to_physical(r.u);
+  s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
 
 std::string to_string(SteadyMethod m) { return m == SteadyMethod::shooting ? "shooting" : "integrate"; }
 

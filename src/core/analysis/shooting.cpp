@@ -14,6 +14,23 @@ StateScale::StateScale(const Model& model) {
   speed_ = p.omega * length_;
 }
 
+int least_period(const Model& model, const IntegratorOptions& integration, const State& y, int n, double tol,
+                 IntegrationCounters& counters) {
+  const StateScale scale(model);
+  for (int d = 1; d < n; ++d) {
+    if (n % d != 0) continue;
+    const auto integ = make_integrator(model, integration);
+    State u = y;
+    integ->reset(u);
+    Observer none;
+    bool ok = true;
+    for (int i = 0; i < d && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
+    counters += integ->counters();
+    if (ok && scale.distance(u, y) <= tol) return d;
+  }
+  return n;
+}
+
 double StateScale::distance(const State& a, const State& b) const {
   double d = 0.0;
   for (int i = 0; i < 4; ++i) {

@@ -118,6 +118,17 @@ std::vector<KeyRow> optimise_doc_rows() {
   return rows;
 }
 
+// The [census] rows of `vibromap keys`.
+std::vector<KeyRow> census_doc_rows() {
+  std::vector<KeyRow> rows;
+  for (const detail::CensusRow& row : detail::census_rows()) {
+    KeyRow r = key_row(row.info);
+    r.allowed = row.allowed();
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
 // One line of a commented example section: "# KEY = VALUE   # comment".
 void write_example_line(std::ostream& os, const std::string& lhs, std::string_view comment) {
   os << "# " << column(lhs, 44) << "  # " << comment << "\n";
@@ -137,6 +148,21 @@ void write_reference_optimise(std::ostream& os) {
   for (const OptimiseRow& row : optimise_rows()) {
     const SceneKey& k = row.info;
     const std::string lhs = k.key == "map" ? std::string("map = \"box.h5\"") : cat(k.key, " = ", k.default_text);
+    write_example_line(os, lhs, cat(k.meaning, unit_suffix(k.unit), ", ", row.allowed()));
+  }
+}
+
+// A commented example [census] section: without the leading "# ", its lines parse.
+void write_reference_census(std::ostream& os) {
+  os << "\n# How `vibromap run --census` looks for every attractor of the point, with its basin fraction.\n"
+        "# Every key is optional (a scene without [census] uses these defaults).\n"
+        "#\n"
+        "# [census]\n";
+  for (const detail::CensusRow& row : detail::census_rows()) {
+    const SceneKey& k = row.info;
+    // The sides' examples are the defaults of Table 1 (L = D = 0.05 m, omega L = 0.3615 m/s).
+    const std::string side = k.key == "x1" ? "[-0.05, 0.05]" : k.key == "x2" ? "[0.0, 0.1]" : "[-0.3615, 0.3615]";
+    const std::string lhs = k.default_given ? cat(k.key, " = ", k.default_text) : cat(k.key, " = ", side);
     write_example_line(os, lhs, cat(k.meaning, unit_suffix(k.unit), ", ", row.allowed()));
   }
 }
@@ -176,6 +202,8 @@ void write_scene_keys(std::ostream& os) {
   os << "\n[optimise] (only in an optimisation scene: free parameters around the point above; example in "
         "jobs/reference.toml)\n";
   write_key_table(os, optimise_doc_rows());
+  os << "\n[census] (how `vibromap run --census` looks for every attractor; every key optional)\n";
+  write_key_table(os, census_doc_rows());
 }
 
 void write_scene_key_summary(std::ostream& os) {
@@ -207,6 +235,7 @@ void write_reference_scene(std::ostream& os) {
     }
   }
   write_reference_optimise(os);
+  write_reference_census(os);
   write_reference_sweep(os);
 }
 

@@ -70,6 +70,9 @@ std::string canonical_text(const Scene& scene, IdentityScope scope) {
   std::vector<std::string> lines;
   add_point_lines(scene, lines);
   if (scene.sweep) add_sweep_lines(*scene.sweep, lines);
+  if (scene.census) {
+    for (std::string& line : detail::census_lines(*scene.census)) lines.push_back(std::move(line));
+  }
   if (scope == IdentityScope::optimise && scene.optimise) {
     for (std::string& line : detail::optimise_lines(*scene.optimise)) lines.push_back(std::move(line));
   }

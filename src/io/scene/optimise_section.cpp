@@ -7,63 +7,12 @@
 #include <cmath>
 #include <type_traits>
 
+#include "option_fields.hpp"
 #include "scene_internal.hpp"
 #include "vibromap/core/text.hpp"
 
 namespace vibromap::detail {
 namespace {
-
-template <auto... Members>
-void read_real_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
-  (o.*....*Members) = read_real(k, node, loc);
-}
-
-template <auto... Members>
-void read_integer_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
-  const std::optional<double> x = number_of(node);  // a whole float such as 200.0 is accepted
-  const bool whole = x && std::isfinite(*x) && *x == std::trunc(*x);
-  if (!whole || !k.bounds.contains(*x)) fail(cat(loc, ": must be ", k.allowed()));
-  using T = std::remove_cvref_t<decltype((o.*....*Members))>;
-  (o.*....*Members) = static_cast<T>(*x);
-}
-
-template <auto Member>
-void read_bool_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
-  o.*Member = read_boolean(k, node, loc) != 0;
-}
-
-template <auto Parse, auto Member>
-void read_choice_field(OptimiseOptions& o, const SceneKey& k, const toml::node& node, const std::string& loc) {
-  o.*Member = Parse(k.choices.at(static_cast<std::size_t>(read_choice(k, node, loc))));
-}
-
-// How a row reads its key, and writes back the value read as canonical text (identity.cpp).
-struct RowAccess {
-  void (*read)(OptimiseOptions&, const SceneKey&, const toml::node&, const std::string&);
-  std::string (*text)(const OptimiseOptions&, const SceneKey&);
-};
-
-template <auto... Members>
-RowAccess real_field() {
-  return {read_real_field<Members...>, [](const OptimiseOptions& o, const SceneKey&) { return shortest((o.*....*Members)); }};
-}
-
-template <auto... Members>
-RowAccess integer_field() {
-  return {read_integer_field<Members...>,
-          [](const OptimiseOptions& o, const SceneKey&) { return std::to_string((o.*....*Members)); }};
-}
-
-template <auto Member>
-RowAccess bool_field() {
-  return {read_bool_field<Member>,
-          [](const OptimiseOptions& o, const SceneKey&) { return std::string(o.*Member ? "true" : "false"); }};
-}
-
-template <auto Parse, auto Member>
-RowAccess choice_field() {
-  return {read_choice_field<Parse, Member>, [](const OptimiseOptions& o, const SceneKey&) { return to_string(o.*Member); }};
-}
 
 std::string regime_allowed() { return "\"(n,k)\" with n, k >= 1, or \"any\" (any motion with an impact)"; }
 
@@ -139,13 +88,13 @@ std::string map_text(const OptimiseOptions& o, const SceneKey&) { return o.map.e
 
 // A documentation row: type, allowed range, unit, meaning, default as text.
 OptimiseRow optimise_row(std::string_view key, SceneKeyType type, Bounds bounds, std::string_view unit,
-                         std::string_view meaning, std::string default_text, RowAccess access) {
+                         std::string_view meaning, std::string default_text, RowAccess<OptimiseOptions> access) {
   return {{kOptimise, key, type, bounds, {}, unit, meaning, {}, std::move(default_text), true}, access.read, access.text, {}};
 }
 
 template <class Enum>
 OptimiseRow optimise_choice(std::string_view key, std::string_view meaning, const std::vector<Enum>& values, Enum def,
-                            RowAccess read) {
+                            RowAccess<OptimiseOptions> read) {
   static const std::vector<std::string> names = [&] {  // static storage: SceneKey::choices holds views
     std::vector<std::string> n;
     for (const Enum v : values) n.push_back(to_string(v));
@@ -162,10 +111,10 @@ void add_optimise_goal_rows(std::vector<OptimiseRow>& rows, const OptimiseOption
       "objective",
       "what to optimise: min_k_con (the softest impact: k_con = T/T_con of the longest), max_T_con (the duration "
       "of impact `impact`), min_F_max (the peak contact force)",
-      all_objective_kinds(), d.objective, choice_field<parse_objective_kind, &O::objective>()));
+      all_objective_kinds(), d.objective, choice_field<O, parse_objective_kind, &O::objective>()));
   rows.push_back(optimise_row("impact", SceneKeyType::integer, interval(0, 1000, false, false), "-",
                               "max_T_con: which impact of the steady cycle, in time order (0: the first)",
-                              std::to_string(d.impact), integer_field<&O::impact>()));
+                              std::to_string(d.impact), integer_field<O, &O::impact>()));
   rows.push_back(optimise_row("regime", SceneKeyType::choice, any_finite(), "-",
                               "the regime to keep, a constraint (never traded for a better objective); \"any\": "
                               "any motion with an impact",
@@ -175,11 +124,11 @@ void add_optimise_goal_rows(std::vector<OptimiseRow>& rows, const OptimiseOption
       "stability",
       "the kept orbit's Floquet stability: if_known (an orbit found unstable is infeasible), required (only one "
       "known stable is feasible) or ignored",
-      all_stability_rules(), d.stability, choice_field<parse_stability_rule, &O::stability>()));
+      all_stability_rules(), d.stability, choice_field<O, parse_stability_rule, &O::stability>()));
   rows.push_back(optimise_row("hertz_valid", SceneKeyType::boolean, any_finite(), "-",
                               "also keep Hertz theory valid, z_max/R* <= [analysis] hertz_limit, as a constraint "
                               "(seeding needs hertz_valid or z_ratio in the map)",
-                              d.hertz_valid ? "true" : "false", bool_field<&O::hertz_valid>()));
+                              d.hertz_valid ? "true" : "false", bool_field<O, &O::hertz_valid>()));
   rows.push_back(optimise_row("algorithm", SceneKeyType::choice, any_finite(), "-",
                               "local algorithm, or a list of them, each started from every seed: bobyqa, cobyla, "
                               "sbplx (NLopt, derivative-free), slsqp, mma (NLopt, finite-difference gradients), "
@@ -188,7 +137,7 @@ void add_optimise_goal_rows(std::vector<OptimiseRow>& rows, const OptimiseOption
   rows.back().allowed_text = "a name or a list of names";
   rows.push_back(optimise_row("seeds", SceneKeyType::integer, interval(1, 1e6, false, false), "-",
                               "starts per algorithm: the best cells of the seeding map that keep the regime inside "
-                              "the box", std::to_string(d.seeds), integer_field<&O::seeds>()));
+                              "the box", std::to_string(d.seeds), integer_field<O, &O::seeds>()));
   rows.push_back(optimise_row("map", SceneKeyType::choice, any_finite(), "-",
                               "seeding map (HDF5 from vibromap sweep; a path from the current directory); not "
                               "given: the scene's [sweep] runs first into OUTPUT_map.h5, or, without [sweep], the "
@@ -203,35 +152,35 @@ void add_optimise_stopping_rows(std::vector<OptimiseRow>& rows, const OptimiseOp
   constexpr auto local = &O::local;
   const LocalOptions& l = d.local;
   const auto real_row = [&](std::string_view key, Bounds b, std::string_view unit, std::string_view meaning,
-                            double def, RowAccess read) {
+                            double def, RowAccess<OptimiseOptions> read) {
     rows.push_back(optimise_row(key, SceneKeyType::real, b, unit, meaning, toml_float(def), read));
   };
   real_row("xtol_rel", interval(0.0, 1.0, true, true), "-",
            "stop when a step moves every scaled variable by less than this fraction of its box", l.xtol_rel,
-           real_field<local, &L::xtol_rel>());
+           real_field<O, local, &L::xtol_rel>());
   real_row("ftol_rel", interval(0.0, 1.0, false, true), "-",
            "stop when a step changes the objective by less than this, relative (0: off)", l.ftol_rel,
-           real_field<local, &L::ftol_rel>());
+           real_field<O, local, &L::ftol_rel>());
   rows.push_back(optimise_row("max_evaluations", SceneKeyType::integer, interval(1, 1e9, false, false), "-",
                               "point solves per start, finite-difference ones included (cache hits are free)",
-                              std::to_string(l.max_evaluations), integer_field<local, &L::max_evaluations>()));
+                              std::to_string(l.max_evaluations), integer_field<O, local, &L::max_evaluations>()));
   real_row("max_time", ge(0), "s", "wall time per start; 0: no limit (a limit makes results depend on the machine)",
-           l.max_time, real_field<local, &L::max_time>());
+           l.max_time, real_field<O, local, &L::max_time>());
   real_row("initial_step", interval(0.0, 1.0, true, false), "-",
            "first step, a fraction of the box (NLopt initial_step, BOBYQA's rhobeg)", l.initial_step,
-           real_field<local, &L::initial_step>());
+           real_field<O, local, &L::initial_step>());
   real_row("fd_step", interval(0.0, 0.1, true, false), "-",
            "finite-difference step of the gradients (slsqp, mma, gradient_projection), a fraction of the box",
-           l.fd_step, real_field<local, &L::fd_step>());
+           l.fd_step, real_field<O, local, &L::fd_step>());
   real_row("barrier", gt(0), "-",
            "bobyqa, sbplx: the objective given for a point outside the kept regime (plus its violation; finite, "
            "as BOBYQA needs)",
-           l.barrier, real_field<local, &L::barrier>());
+           l.barrier, real_field<O, local, &L::barrier>());
   rows.push_back(optimise_row("best", SceneKeyType::integer, interval(1, 1000, false, false), "-",
                               "best distinct points re-solved from scratch (integrate from rest and shooting) and "
-                              "reported", std::to_string(d.best), integer_field<&O::best>()));
+                              "reported", std::to_string(d.best), integer_field<O, &O::best>()));
   real_row("verify_rtol", interval(0.0, 0.1, true, true), "-", "rtol of those re-solves", d.verify_rtol,
-           real_field<&O::verify_rtol>());
+           real_field<O, &O::verify_rtol>());
 }
 
 }  // namespace
@@ -317,9 +266,7 @@ std::optional<OptimiseOptions> read_optimise(const toml::table& table, const Con
   if (sec == nullptr) return std::nullopt;
   OptimiseOptions o;
   o.variables = read_variables(*sec, ctx);
-  for (const OptimiseRow& row : optimise_rows()) {
-    if (const toml::node* node = sec->get(row.info.key)) row.read(o, row.info, *node, locate(ctx, row.info, *node));
-  }
+  read_rows(o, optimise_rows(), *sec, ctx);
   if (const std::string err = validate(o); !err.empty()) fail(cat(ctx.path, ": [optimise] ", err));
   return o;
 }
@@ -330,7 +277,7 @@ std::vector<std::string> optimise_lines(const OptimiseOptions& o) {
     lines.push_back(cat("optimise.", v.name, " = { min = ", shortest(v.min), ", max = ", shortest(v.max),
                         ", scale = ", to_string(v.scale), " }"));
   }
-  for (const OptimiseRow& row : optimise_rows()) lines.push_back(cat("optimise.", row.info.key, " = ", row.text(o, row.info)));
+  for (std::string& line : row_lines(kOptimise, o, optimise_rows())) lines.push_back(std::move(line));
   return lines;
 }
 

@@ -223,7 +223,7 @@ KeyValue read_value(const Binding& b, const toml::node& node, const std::string&
   return v;
 }
 
-// Every key in schema order ([initial] last, after D), then [sweep] and [optimise].
+// Every key in schema order ([initial] last, after D), then [sweep], [optimise] and [census].
 Scene read_values(const toml::table& table, const Context& ctx) {
   Scene scene;
   for (const Binding& b : bindings()) {
@@ -236,6 +236,7 @@ Scene read_values(const toml::table& table, const Context& ctx) {
   }
   scene.sweep = read_sweep(table, ctx);
   scene.optimise = read_optimise(table, ctx);
+  scene.census = read_census(table, ctx);
   return scene;
 }
 

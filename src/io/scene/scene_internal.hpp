@@ -182,17 +182,29 @@ inline constexpr std::string_view kVariableForm = "{ min, max[, scale] }";
 
 // [optimise]'s keys other than the free parameters: the documentation row and how the key is
 // read into OptimiseOptions.
-struct OptimiseRow {
+template <class Options>
+struct OptionRow {
   SceneKey info;
-  void (*read)(OptimiseOptions&, const SceneKey&, const toml::node&, const std::string& loc);
-  std::string (*text)(const OptimiseOptions&, const SceneKey&);  // the value read, canonical text
+  void (*read)(Options&, const SceneKey&, const toml::node&, const std::string& loc);
+  std::string (*text)(const Options&, const SceneKey&);  // the value read, canonical text
   std::string_view allowed_text = {};  // what is allowed, when info.allowed() cannot say it
 
   std::string allowed() const { return allowed_text.empty() ? info.allowed() : std::string(allowed_text); }
 };
+using OptimiseRow = OptionRow<OptimiseOptions>;
 const std::vector<OptimiseRow>& optimise_rows();
 // The canonical text of each [optimise] key of `o` (identity.cpp): "optimise.KEY = VALUE" lines.
 std::vector<std::string> optimise_lines(const OptimiseOptions& o);
 std::optional<OptimiseOptions> read_optimise(const toml::table& table, const Context& ctx);
+
+// ---------------------------------------------------------------------------------------
+// [census] (census_section.cpp): its rows read CensusOptions as [optimise]'s read theirs.
+
+inline constexpr std::string_view kCensus = "census";
+using CensusRow = OptionRow<CensusOptions>;
+const std::vector<CensusRow>& census_rows();
+const std::vector<std::string_view>& census_keys();
+std::vector<std::string> census_lines(const CensusOptions& o);  // "census.KEY = VALUE"
+std::optional<CensusOptions> read_census(const toml::table& table, const Context& ctx);
 
 }  // namespace vibromap::detail

@@ -1,6 +1,6 @@
 // The scene's sections and the keys each has: the schema's sections (keys.cpp), then [sweep]
-// (its options; its axes are any numeric key, sweep_axes.cpp) and [optimise] (its free
-// parameters and options, optimise_section.cpp).
+// (its options; its axes are any numeric key, sweep_axes.cpp), [optimise] (its free
+// parameters and options, optimise_section.cpp) and [census] (census_section.cpp).
 
 #include <algorithm>
 
@@ -16,6 +16,7 @@ bool is_parameter_name(std::string_view name) {
 std::vector<std::string_view> all_sections() {
   std::vector<std::string_view> sections = scene_sections();
   sections.push_back(kOptimise);
+  sections.push_back(kCensus);
   return sections;
 }
 
@@ -33,6 +34,7 @@ std::optional<std::string_view> section_of(std::string_view key) {
   };
   if (has(sweep_option_keys())) return kSweep;
   if (has(optimise_option_keys())) return kOptimise;
+  if (has(census_keys())) return kCensus;
   return std::nullopt;
 }
 
@@ -54,6 +56,7 @@ bool is_section(std::string_view name) {
 std::vector<std::string_view> keys_of(std::string_view section) {
   if (section == kSweep) return sweep_option_keys();
   if (section == kOptimise) return optimise_keys();
+  if (section == kCensus) return census_keys();
   std::vector<std::string_view> keys;
   for (const Binding& b : bindings()) {
     if (b.info.section == section) keys.push_back(b.info.key);
@@ -64,6 +67,7 @@ std::vector<std::string_view> keys_of(std::string_view section) {
 bool has_key(std::string_view section, std::string_view key) {
   if (section == kSweep) return is_sweep_option(key) || find_key(key) != nullptr;
   if (section == kOptimise) return std::find(optimise_keys().begin(), optimise_keys().end(), key) != optimise_keys().end();
+  if (section == kCensus) return std::find(census_keys().begin(), census_keys().end(), key) != census_keys().end();
   return find_binding(section, key) != nullptr;
 }
 

@@ -102,4 +102,10 @@ struct PointOptions {
 
 PointSummary solve_point(const Parameters& p, const PointOptions& options);
 
+// The cycle of n periods through the orbit point y (physical (x1, x2, v1, v2) at a period
+// start) measured as solve_point measures the orbit it finds: impacts at a tenth of the
+// tolerance, regime, T_con, k_con, F_max, z_ratio. Floquet multipliers are not computed.
+// status is failed when the integration fails, else ok.
+PointSummary measure_orbit(const Parameters& p, const PointOptions& options, const Eigen::Vector4d& y, int n);
+
 }  // namespace vibromap

@@ -39,6 +39,11 @@ struct ShootingResult {
 ShootingResult shoot(const Model& model, const IntegratorOptions& integration, const State& y0,
                      const ShootingOptions& options, IntegrationCounters& counters);
 
+// The least d dividing n with ||P^d(y) - y|| <= tol (n when there is none): Newton for
+// period n may converge to an orbit of a shorter period. counters accumulates the work.
+int least_period(const Model& model, const IntegratorOptions& integration, const State& y, int n, double tol,
+                 IntegrationCounters& counters);
+
 // The scaled max-norm distance of two states used for steady states and shooting
 // (positions over L + |x|, velocities over omega L + |v|, L = max(D, lambda F0 / k1)).
 class StateScale {

@@ -60,6 +60,17 @@
 // may not both be free. Like [sweep], its keys are not rows of scene_keys(); write_scene_keys
 // documents them apart, and they take --set (`--set optimise.algorithm=cobyla`,
 // `--set 'optimise.E1={min=1e5,max=1e9,scale="log"}'`).
+//
+// An optional [census] section sets how `vibromap run --census` (and a sweep with census)
+// looks for every attractor of a point (census.hpp):
+//   [census]
+//   initial_conditions = 32       # K, the rest state included
+//   x1 = [-0.05, 0.05]            # box of initial states, [lo, hi] in m (x1, x2) and m/s (v1, v2);
+//                                 # not given: the rest state +- the motion's scale
+//   seed = 1
+//   max_attractors = 8
+//   soft_kcon = 10.0              # soft: stable, Hertz-valid, k_con <= soft_kcon
+//   recurrences, cell, rtol       # the census's numerics (vibromap keys)
 
 #include <array>
 #include <optional>
@@ -68,6 +79,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
@@ -89,6 +101,7 @@ struct Scene {
   PointOptions options;
   std::optional<SweepOptions> sweep;  // nullopt: no [sweep] section (a single point)
   std::optional<OptimiseOptions> optimise;  // nullopt: no [optimise] section
+  std::optional<CensusOptions> census;      // nullopt: no [census] section (`run --census` then uses the defaults)
   std::array<bool, 4> initial_given{};  // the [initial] keys given (x1, x2, v1, v2); the others
                                         // follow the rest state (0, D, 0, 0)
   std::string path;  // the scene file as named by the user

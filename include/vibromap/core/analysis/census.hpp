@@ -1,0 +1,102 @@
+#pragma once
+// A census of one parameter point: every attractor the motion can settle into, with the
+// fraction of a box of initial states that goes to each (its basin fraction).
+//
+// Initial condition 0 is the rest state (Parameters::initial_state without [initial]); the
+// others are drawn uniformly from a box of physical states (x1, x2, v1, v2), a draw with the
+// bodies overlapping (x1 - x2 > 0) being drawn again. Each initial condition is integrated at
+// the scene's tolerance, forcing period by forcing period, until it is decided:
+//  - captured by a periodic attractor already found (the rule is in census.cpp, where it is
+//    applied: the offset from the orbit follows the orbit's linearisation, which contracts);
+//  - recurring on a non-periodic attractor already found (Attractors.jl's rule: its
+//    stroboscopic points stay `recurrences` periods in a row in the cells that attractor
+//    visits);
+//  - settled: its stroboscopic samples repeat (steady state); the orbit is refined by shooting;
+//  - out of budget (analysis.max_periods): non-periodic when it does not settle, else
+//    unresolved.
+// Periodic attractors are also looked for by shooting from each undecided initial condition
+// after 10, 30 and 90 periods (Newton on the stroboscopic map, as solve_point does); a stable
+// orbit found that way joins the list, and the initial condition goes on until it is captured.
+// Two periodic orbits are the same attractor when they have the same period and the same
+// stroboscopic points (up to a cyclic shift) within a tolerance far below their distance
+// from any other orbit; an attractor's identity is its orbit, never its (n,k) label.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "vibromap/core/analysis/point_solver.hpp"
+
+namespace vibromap {
+
+struct CensusOptions {
+  int initial_conditions = 32;  // K: initial states, the rest state included, -
+  // The box of initial states, [lo, hi] each; unset: the rest state +- the motion's scale
+  // (L = max(D, lambda F0 / k1) in positions, omega L in velocities).
+  std::optional<std::array<double, 2>> x1, x2;  // m
+  std::optional<std::array<double, 2>> v1, v2;  // m/s
+  std::uint64_t seed = 1;       // seed of the draws, -
+  int max_attractors = 8;       // attractors listed; initial states reaching others are counted as unlisted, -
+  double soft_kcon = 10.0;      // an attractor is soft when stable, Hertz-valid and k_con <= soft_kcon, -
+  int recurrences = 100;        // stroboscopic points in a row on a non-periodic attractor's cells that decide it, -
+  double cell = 0.25;           // cell size of the non-periodic recurrence grid, in motion scales, -
+  double rtol = 1e-6;           // tolerance at which initial states are followed (orbits are refined at the
+                                // scene's); the scene's when looser. Ignored without early_stop, -
+  bool early_stop = true;       // false: follow every initial state to its steady state at the scene's
+                                // tolerance, with no capture, recurrence or Newton search (brute force, for checks)
+  bool labels = false;          // keep each initial state and its attractor index in the summary
+};
+
+std::string validate(const CensusOptions& o);
+
+// The box actually used for p: [lo, hi] for x1, x2, v1, v2.
+std::array<std::array<double, 2>, 4> census_box(const Parameters& p, const CensusOptions& o);
+// The K initial states (physical), the rest state first.
+std::vector<Eigen::Vector4d> census_initial_conditions(const Parameters& p, const CensusOptions& o);
+
+struct Attractor {
+  bool periodic = true;         // false: a non-periodic (or chatter) attractor, told by recurrence
+  Regime regime;                // (n,k), no contact, chatter, permanent contact or non-periodic
+  double T_con = 0.0;           // longest impact of the cycle (non-periodic: of the recurrent window), s
+  double k_con = 0.0;           // T / T_con, -
+  double F_max = 0.0;           // largest peak contact force, N
+  double z_ratio = 0.0;         // largest z_max / R*, -
+  bool hertz_valid = true;
+  double max_floquet = 0.0;     // largest |Floquet multiplier| (NaN when not computed)
+  int stable = -1;              // 1 stable, 0 unstable, -1 unknown
+  int count = 0;                // initial states that reach it
+  double fraction = 0.0;        // count / K
+  double fraction_stderr = 0.0; // sqrt(p (1 - p) / K)
+  bool from_rest = false;       // the rest state reaches it
+  std::vector<Eigen::Vector4d> strobe;  // periodic: the n stroboscopic states (x1, x2, v1, v2) at period starts
+  bool soft = false;            // stable, Hertz-valid and k_con <= soft_kcon
+};
+
+// Labels of initial states that reach no listed attractor.
+constexpr int kUnresolvedLabel = -1;  // the budget ran out while the motion was still settling, or it failed
+constexpr int kUnlistedLabel = -2;    // an attractor beyond max_attractors
+
+struct CensusSummary {
+  SolveStatus status = SolveStatus::ok;
+  std::string message;
+  double T = 0.0;                      // forcing period, s
+  std::vector<Attractor> attractors;   // the periodic ones first, by basin fraction
+  int K = 0;
+  int unresolved = 0;                  // initial states labelled kUnresolvedLabel
+  int unlisted = 0;                    // initial states labelled kUnlistedLabel
+  double soft_fraction = 0.0;          // sum of the fractions of soft attractors
+  int decided_early = 0;               // initial states decided by capture or recurrence
+  std::vector<Eigen::Vector4d> initial_conditions;  // with CensusOptions::labels
+  std::vector<int> labels;                          // with CensusOptions::labels: index into attractors
+  long periods = 0;                    // forcing periods integrated for all initial states
+  IntegrationCounters counters;
+  double wall_s = 0.0;
+};
+
+CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census);
+
+}  // namespace vibromap

@@ -1,0 +1,25 @@
+#pragma once
+// Output of a census of one point (CensusSummary, census.hpp) as JSON, for scripts, or as a
+// table, for people.
+//
+// JSON: one object with the keys
+//   status, message, K, T, soft_fraction, unresolved, unlisted, decided_early, periods,
+//   wall_s, initial_states_per_s,
+//   attractors: [{regime, n, k, periodic, T_con, k_con, F_max, z_ratio, hertz_valid,
+//                 max_floquet, stable, soft, count, fraction, fraction_stderr, from_rest,
+//                 strobe: [[x1, x2, v1, v2], ...] (the n stroboscopic states; [] when not periodic)}],
+//   and, when the census kept them (--labels), initial_conditions: [[x1, x2, v1, v2], ...] and
+//   labels: [index into attractors, -1 unresolved, -2 unlisted, ...].
+// In SI units (s, N, m, m/s); non-finite numbers are null.
+
+#include <iosfwd>
+
+#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/io/scene/scene.hpp"
+
+namespace vibromap {
+
+void write_census_json(std::ostream& os, const CensusSummary& census);
+void write_census_table(std::ostream& os, const CensusSummary& census, const Scene& scene);
+
+}  // namespace vibromap

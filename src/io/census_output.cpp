@@ -1,0 +1,103 @@
+#include "vibromap/io/census_output.hpp"
+
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+#include "vibromap/io/json_writer.hpp"
+
+namespace vibromap {
+
+namespace {
+
+void write_state(JsonWriter& w, const Eigen::Vector4d& x) {
+  w.begin_array();
+  for (int i = 0; i < 4; ++i) w.value(x[i]);
+  w.end_array();
+}
+
+void write_attractor(JsonWriter& w, const Attractor& a) {
+  w.begin_object();
+  w.field("regime", a.regime.label());
+  w.field("n", a.regime.n);
+  w.field("k", a.regime.k);
+  w.field("periodic", a.periodic);
+  w.field("T_con", a.T_con);
+  w.field("k_con", a.k_con);
+  w.field("F_max", a.F_max);
+  w.field("z_ratio", a.z_ratio);
+  w.field("hertz_valid", a.hertz_valid);
+  w.field("max_floquet", a.max_floquet);
+  w.key("stable");
+  if (a.stable < 0) w.null();
+  else w.value(a.stable == 1);
+  w.field("soft", a.soft);
+  w.field("count", a.count);
+  w.field("fraction", a.fraction);
+  w.field("fraction_stderr", a.fraction_stderr);
+  w.field("from_rest", a.from_rest);
+  w.key("strobe").begin_array();
+  for (const Eigen::Vector4d& x : a.strobe) write_state(w, x);
+  w.end_array();
+  w.end_object();
+}
+
+std::string fmt(const char* format, double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
+}  // namespace
+
+void write_census_json(std::ostream& os, const CensusSummary& s) {
+  JsonWriter w(os);
+  w.begin_object();
+  w.field("status", to_string(s.status));
+  w.field("message", s.message);
+  w.field("K", s.K);
+  w.field("T", s.T);
+  w.field("soft_fraction", s.soft_fraction);
+  w.field("unresolved", s.unresolved);
+  w.field("unlisted", s.unlisted);
+  w.field("decided_early", s.decided_early);
+  w.field("periods", s.periods);
+  w.field("wall_s", s.wall_s);
+  w.field("initial_states_per_s", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0);
+  w.key("attractors").begin_array();
+  for (const Attractor& a : s.attractors) write_attractor(w, a);
+  w.end_array();
+  if (!s.labels.empty()) {
+    w.key("initial_conditions").begin_array();
+    for (const Eigen::Vector4d& x : s.initial_conditions) write_state(w, x);
+    w.end_array();
+    w.key("labels").begin_array();
+    for (int l : s.labels) w.value(l);
+    w.end_array();
+  }
+  w.end_object();
+  os << "\n";
+}
+
+void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& scene) {
+  os << "scene          " << scene.path << "\n"
+     << "census         " << s.K << " initial states (the rest state and " << s.K - 1 << " drawn)\n"
+     << "attractors     " << s.attractors.size() << "\n"
+     << "soft fraction  " << fmt("%.4f", s.soft_fraction) << "  (stable, Hertz-valid, k_con <= soft_kcon)\n";
+  if (s.unresolved > 0) os << "unresolved     " << s.unresolved << " initial states (budget ran out while settling)\n";
+  if (s.unlisted > 0) os << "unlisted       " << s.unlisted << " initial states (attractors beyond max_attractors)\n";
+  os << "work           " << s.periods << " forcing periods, " << s.decided_early << " states decided early, "
+     << fmt("%.3f", s.wall_s) << " s (" << fmt("%.0f", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0)
+     << " initial states/s)\n\n";
+  os << "  #  regime          fraction  +-stderr   k_con       T_con (s)   F_max (N)   z/R*      max|mu|   rest  soft\n";
+  int i = 0;
+  for (const Attractor& a : s.attractors) {
+    char line[256];
+    std::snprintf(line, sizeof line, "%3d  %-14s  %8.4f  %8.4f  %10.4g  %10.4g  %10.4g  %8.2e  %7.4f   %-4s  %s\n", i++,
+                  a.regime.label().c_str(), a.fraction, a.fraction_stderr, a.k_con, a.T_con, a.F_max, a.z_ratio,
+                  a.max_floquet, a.from_rest ? "yes" : "", a.soft ? "yes" : "");
+    os << line;
+  }
+}
+
+}  // namespace vibromap

@@ -1,0 +1,115 @@
+// The [census] section of a scene: the options of CensusOptions, each a row like [optimise]'s.
+// The box sides x1, x2, v1, v2 are arrays [lo, hi]; the others are numbers.
+
+#include <cmath>
+
+#include "option_fields.hpp"
+#include "scene_internal.hpp"
+#include "vibromap/core/text.hpp"
+
+namespace vibromap::detail {
+namespace {
+
+using C = CensusOptions;
+using Side = std::optional<std::array<double, 2>> CensusOptions::*;
+
+constexpr std::string_view kSideForm = "an array [lo, hi] of two finite numbers with lo <= hi";
+
+template <Side Member>
+void read_side(C& o, const SceneKey&, const toml::node& node, const std::string& loc) {
+  const toml::array* a = node.as_array();
+  std::optional<double> lo, hi;
+  if (a != nullptr && a->size() == 2) {
+    lo = number_of(*a->get(0));
+    hi = number_of(*a->get(1));
+  }
+  if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) || *lo > *hi) fail(cat(loc, ": must be ", kSideForm));
+  o.*Member = std::array<double, 2>{*lo, *hi};
+}
+
+template <Side Member>
+std::string side_text(const C& o, const SceneKey&) {
+  const auto& side = o.*Member;
+  return side ? cat("[", shortest((*side)[0]), ", ", shortest((*side)[1]), "]") : std::string("(scaled)");
+}
+
+CensusRow census_row(std::string_view key, SceneKeyType type, Bounds bounds, std::string_view unit,
+                     std::string_view meaning, std::string default_text, RowAccess<C> access) {
+  return {{kCensus, key, type, bounds, {}, unit, meaning, {}, std::move(default_text), true}, access.read, access.text, {}};
+}
+
+template <Side Member>
+CensusRow side_row(std::string_view key, std::string_view unit, std::string_view meaning) {
+  CensusRow r = census_row(key, SceneKeyType::real, any_finite(), unit, meaning, "(scaled)",
+                           {read_side<Member>, side_text<Member>});
+  r.allowed_text = "[lo, hi], lo <= hi";
+  r.info.default_given = false;
+  return r;
+}
+
+std::vector<CensusRow> make_rows() {
+  const C d;
+  std::vector<CensusRow> rows;
+  rows.push_back(census_row("initial_conditions", SceneKeyType::integer, interval(1, 1e6, false, false), "-",
+                            "initial states followed, the rest state (initial condition 0) included",
+                            std::to_string(d.initial_conditions), integer_field<C, &C::initial_conditions>()));
+  rows.push_back(side_row<&C::x1>("x1", "m", "box side of x1; not given: the rest value +- L, L = max(D, lambda F0 / k1)"));
+  rows.push_back(side_row<&C::x2>("x2", "m", "box side of x2; not given: D +- L"));
+  rows.push_back(side_row<&C::v1>("v1", "m/s", "box side of v1; not given: +- omega L"));
+  rows.push_back(side_row<&C::v2>("v2", "m/s", "box side of v2; not given: +- omega L"));
+  rows.push_back(census_row("seed", SceneKeyType::integer, interval(0, 9.0e15, false, false), "-",
+                            "seed of the uniform draws in the box (a draw with x1 - x2 > 0 is drawn again)",
+                            std::to_string(d.seed), integer_field<C, &C::seed>()));
+  rows.push_back(census_row("max_attractors", SceneKeyType::integer, interval(1, 64, false, false), "-",
+                            "attractors listed, most visited first; states reaching others are counted as unlisted",
+                            std::to_string(d.max_attractors), integer_field<C, &C::max_attractors>()));
+  rows.push_back(census_row("soft_kcon", SceneKeyType::real, gt(0), "-",
+                            "an attractor is soft when stable, periodic with impacts, Hertz-valid and k_con <= this",
+                            toml_float(d.soft_kcon), real_field<C, &C::soft_kcon>()));
+  rows.push_back(census_row("recurrences", SceneKeyType::integer, interval(2, 1e5, false, false), "-",
+                            "stroboscopic points in a row on a known non-periodic attractor's cells that decide a state",
+                            std::to_string(d.recurrences), integer_field<C, &C::recurrences>()));
+  rows.push_back(census_row("cell", SceneKeyType::real, gt(0), "-",
+                            "cell of the non-periodic recurrence grid, in motion scales (L, omega L)",
+                            toml_float(d.cell), real_field<C, &C::cell>()));
+  rows.push_back(census_row("rtol", SceneKeyType::real, interval(1e-14, 1e-3, false, false), "-",
+                            "tolerance initial states are followed at (orbits are refined at [solver] rtol); the "
+                            "scene's when looser",
+                            toml_float(d.rtol), real_field<C, &C::rtol>()));
+  rows.push_back(census_row("early_stop", SceneKeyType::boolean, any_finite(), "-",
+                            "decide states early (capture, recurrence, Newton searches); false: brute force, every "
+                            "state integrated to its steady state at [solver] rtol (for checks)",
+                            d.early_stop ? "true" : "false", bool_field<C, &C::early_stop>()));
+  return rows;
+}
+
+}  // namespace
+
+const std::vector<CensusRow>& census_rows() {
+  static const std::vector<CensusRow> rows = make_rows();
+  return rows;
+}
+
+const std::vector<std::string_view>& census_keys() {
+  static const std::vector<std::string_view> keys = [] {
+    std::vector<std::string_view> k;
+    for (const CensusRow& row : census_rows()) k.push_back(row.info.key);
+    return k;
+  }();
+  return keys;
+}
+
+std::optional<CensusOptions> read_census(const toml::table& table, const Context& ctx) {
+  const toml::table* sec = table.get_as<toml::table>(kCensus);
+  if (sec == nullptr) return std::nullopt;
+  CensusOptions o;
+  read_rows(o, census_rows(), *sec, ctx);
+  if (const std::string err = validate(o); !err.empty()) fail(cat(ctx.path, ": [census] ", err));
+  return o;
+}
+
+std::vector<std::string> census_lines(const CensusOptions& o) {
+  return row_lines(kCensus, o, census_rows());
+}
+
+}  // namespace vibromap::detail

@@ -1,0 +1,172 @@
+// The census of one point (census.hpp) against references:
+//  - its initial states: the rest state first, the others inside the box, never overlapping,
+//    the same for the same seed;
+//  - a monostable point (the paper's Table 1): one attractor, fraction 1, the orbit solve_point
+//    finds (k_con to 1e-6);
+//  - the bistable Table 2 point (a soft (1,1) and a (3,3) coexist): every label of the census,
+//    with its early decisions, equals the label of brute-force integration of the same initial
+//    state with no early stop (census.early_stop = false), attractors matched by their orbits;
+//    the fractions add up to one with their standard errors sqrt(p (1 - p) / K).
+// VIBROMAP_CENSUS_K sets K of the brute-force comparison (default 48; the closing note of the
+// census issue quotes K = 256).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/shooting.hpp"
+
+namespace vibromap {
+namespace {
+
+Parameters table2() {
+  Parameters p;
+  p.m2 = 310.0;
+  p.spring2 = {Spring::Form::frequency, 3.606};
+  p.E1 = 1.4e10;
+  p.E2 = 1.0e6;
+  return p;
+}
+
+TEST(CensusInitialStates, RestFirstThenInsideTheBoxApartAndReproducible) {
+  const Parameters p = table2();
+  CensusOptions o;
+  o.initial_conditions = 200;
+  const auto box = census_box(p, o);
+  // The default box: the rest state +- L in positions, +- omega L in velocities, L = D here.
+  EXPECT_DOUBLE_EQ(box[0][0], -0.05);
+  EXPECT_DOUBLE_EQ(box[1][1], 0.1);
+  EXPECT_NEAR(box[2][1], 7.23 * 0.05, 1e-12);
+  const auto x = census_initial_conditions(p, o);
+  ASSERT_EQ(x.size(), 200u);
+  EXPECT_EQ(x[0], p.initial_state());
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    EXPECT_LE(x[i][0] - x[i][1], 0.0) << i;
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_GE(x[i][c], box[static_cast<std::size_t>(c)][0]);
+      EXPECT_LE(x[i][c], box[static_cast<std::size_t>(c)][1]);
+    }
+  }
+  EXPECT_EQ(census_initial_conditions(p, o), x);
+  o.seed = 2;
+  EXPECT_NE(census_initial_conditions(p, o)[1], x[1]);
+}
+
+TEST(CensusInitialStates, AGivenBoxIsUsedAndAnAllOverlappingBoxIsRefused) {
+  Parameters p = table2();
+  CensusOptions o;
+  o.x1 = {{0.2, 0.3}};
+  o.x2 = {{0.0, 0.1}};  // x1 - x2 > 0 everywhere
+  const CensusSummary s = census_point(p, PointOptions{}, o);
+  EXPECT_EQ(s.status, SolveStatus::invalid_input);
+  EXPECT_NE(s.message.find("x1 - x2"), std::string::npos) << s.message;
+  o.x1 = {{-0.01, 0.01}};
+  EXPECT_DOUBLE_EQ(census_box(p, o)[0][1], 0.01);
+  CensusOptions bad;
+  bad.v1 = {{1.0, -1.0}};
+  EXPECT_NE(validate(bad).find("v1"), std::string::npos);
+}
+
+TEST(Census, MonostablePointHasOneAttractorThatIsSolvePointsOrbit) {
+  const Parameters p;  // Table 1
+  CensusOptions o;
+  o.initial_conditions = 12;
+  const CensusSummary s = census_point(p, PointOptions{}, o);
+  ASSERT_EQ(s.status, SolveStatus::ok) << s.message;
+  ASSERT_EQ(s.attractors.size(), 1u);
+  const Attractor& a = s.attractors.front();
+  EXPECT_EQ(a.regime.label(), "(1,1)");
+  EXPECT_EQ(a.count, 12);
+  EXPECT_DOUBLE_EQ(a.fraction, 1.0);
+  EXPECT_DOUBLE_EQ(a.fraction_stderr, 0.0);
+  EXPECT_TRUE(a.from_rest);
+  EXPECT_EQ(a.stable, 1);
+  EXPECT_LT(a.max_floquet, 1.0);
+  const PointSummary point = solve_point(p, PointOptions{});
+  EXPECT_NEAR(a.k_con, point.k_con, 1e-6 * point.k_con);
+  ASSERT_EQ(a.strobe.size(), 1u);
+  const Model model(p);
+  EXPECT_LT(StateScale(model).distance(Model::to_internal(a.strobe[0]), Model::to_internal(point.final_state)), 1e-6);
+  EXPECT_FALSE(a.soft);  // k_con 1111: rigid
+}
+
+// The attractor an initial state reached, as an orbit: its period and stroboscopic states
+// (empty for a non-periodic attractor, kind only).
+struct Identity {
+  int label;
+  std::string kind;
+  std::vector<Eigen::Vector4d> strobe;
+};
+
+Identity identity(const CensusSummary& s, std::size_t i) {
+  const int l = s.labels[i];
+  if (l < 0) return {l, l == kUnresolvedLabel ? "unresolved" : "unlisted", {}};
+  const Attractor& a = s.attractors[static_cast<std::size_t>(l)];
+  return {l, a.regime.label(), a.strobe};
+}
+
+bool same(const Identity& a, const Identity& b, const StateScale& scale) {
+  if (a.kind != b.kind || a.strobe.size() != b.strobe.size()) return false;
+  const std::size_t n = a.strobe.size();
+  if (n == 0) return true;
+  for (std::size_t shift = 0; shift < n; ++shift) {
+    bool all = true;
+    for (std::size_t k = 0; k < n && all; ++k)
+      all = scale.distance(Model::to_internal(a.strobe[(k + shift) % n]), Model::to_internal(b.strobe[k])) < 1e-5;
+    if (all) return true;
+  }
+  return false;
+}
+
+TEST(Census, EveryLabelEqualsBruteForceAtTheBistableTable2Point) {
+  const Parameters p = table2();
+  PointOptions options;
+  options.analysis.max_periods = 20000;  // the longest transients here take several thousand periods
+  CensusOptions o;
+  const char* k = std::getenv("VIBROMAP_CENSUS_K");
+  o.initial_conditions = k != nullptr ? std::atoi(k) : 48;
+  o.seed = 7;
+  o.labels = true;
+  const CensusSummary census = census_point(p, options, o);
+  CensusOptions brute = o;
+  brute.early_stop = false;
+  const CensusSummary reference = census_point(p, options, brute);
+  ASSERT_EQ(census.status, SolveStatus::ok) << census.message;
+  ASSERT_EQ(reference.status, SolveStatus::ok) << reference.message;
+  EXPECT_EQ(reference.decided_early, 0);
+  EXPECT_GT(census.decided_early, o.initial_conditions / 2);
+  EXPECT_LT(census.periods, reference.periods / 2);
+
+  // Both the soft (1,1) and the (3,3) are found, and nothing else.
+  ASSERT_EQ(census.attractors.size(), 2u);
+  EXPECT_EQ(census.attractors[0].regime.label() + census.attractors[1].regime.label(), "(1,1)(3,3)");
+  EXPECT_TRUE(census.attractors[0].soft);
+  EXPECT_FALSE(census.attractors[1].soft);  // z_max / R* 0.07 > hertz_limit 0.05
+  EXPECT_EQ(census.unresolved + census.unlisted, 0);
+
+  const StateScale scale{Model(p)};
+  int equal = 0;
+  for (std::size_t i = 0; i < census.labels.size(); ++i) {
+    const bool ok = same(identity(census, i), identity(reference, i), scale);
+    equal += ok ? 1 : 0;
+    EXPECT_TRUE(ok) << "initial state " << i << ": census " << identity(census, i).kind << ", brute force "
+                    << identity(reference, i).kind;
+  }
+  std::printf("labels equal to brute force: %d/%d; census %ld periods in %.3f s, brute force %ld periods in %.3f s\n",
+              equal, o.initial_conditions, census.periods, census.wall_s, reference.periods, reference.wall_s);
+
+  double total = 0.0;
+  for (const Attractor& a : census.attractors) {
+    total += a.fraction;
+    EXPECT_DOUBLE_EQ(a.fraction, static_cast<double>(a.count) / o.initial_conditions);
+    EXPECT_DOUBLE_EQ(a.fraction_stderr, std::sqrt(a.fraction * (1.0 - a.fraction) / o.initial_conditions));
+  }
+  EXPECT_NEAR(total, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(census.soft_fraction, census.attractors[0].fraction);
+}
+
+}  // namespace
+}  // namespace vibromap
