@@ -12,7 +12,6 @@ namespace vibromap::census_detail {
 
 namespace {
 
-constexpr double kNewtonTolFactor = 10.0;  // Newton's tolerance, in units of rtol (as solve_point)
 // Two orbits are one attractor when their cycles agree to this scaled distance (or 1000 Newton
 // tolerances, when larger): Newton solutions from different starts differ by about
 // tol / (1 - |mu|), distinct orbits by far more (two (1,1) orbits 3 % apart in T_con, SPEC.md).
@@ -64,7 +63,7 @@ AttractorSet::AttractorSet(const Parameters& p, const PointOptions& options, con
 }
 
 double AttractorSet::newton_tol() const {
-  return options_.analysis.newton_tol > 0.0 ? options_.analysis.newton_tol : kNewtonTolFactor * options_.integrator.rtol;
+  return newton_tolerance(options_);
 }
 
 bool AttractorSet::full() const {

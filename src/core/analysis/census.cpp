@@ -103,11 +103,6 @@ class PhaseSampler final : public Observer {
   std::vector<State> states_;
 };
 
-double steady_tolerance(const PointOptions& o) {
-  if (o.analysis.steady_tol > 0.0) return o.analysis.steady_tol;
-  return o.integrator.method == Method::rk4 ? 1e-9 : 100.0 * o.integrator.rtol;
-}
-
 struct Followed {
   int label = kUnresolvedLabel;
   bool early = false;

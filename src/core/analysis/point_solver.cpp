@@ -104,10 +104,6 @@ class TrajectoryRecorder final : public Observer {
   std::vector<TrajectorySample>& out_;
 };
 
-double steady_tolerance(const PointOptions& o) {
-  if (o.analysis.steady_tol > 0.0) return o.analysis.steady_tol;
-  return o.integrator.method == Method::rk4 ? 1e-9 : 100.0 * o.integrator.rtol;
-}
 
 // Everything solve_point needs while it runs.
 struct Run {
@@ -238,7 +234,7 @@ ShootingOptions shooting_options(const PointOptions& o, int n) {
   so.n = n;
   // Adaptive steps make the period map rough at the level of the integration error, so the
   // residual cannot be pushed much below rtol.
-  so.tol = o.analysis.newton_tol > 0.0 ? o.analysis.newton_tol : kNewtonTolFactor * o.integrator.rtol;
+  so.tol = newton_tolerance(o);
   so.max_iterations = o.analysis.newton_max_iterations;
   return so;
 }
@@ -454,6 +450,15 @@ void solve_by_integration(PointSummary& s, Run& r, ObserverList& observers, Peri
 }
 
 }  // namespace
+
+double steady_tolerance(const PointOptions& o) {
+  if (o.analysis.steady_tol > 0.0) return o.analysis.steady_tol;
+  return o.integrator.method == Method::rk4 ? 1e-9 : 100.0 * o.integrator.rtol;
+}
+
+double newton_tolerance(const PointOptions& o) {
+  return o.analysis.newton_tol > 0.0 ? o.analysis.newton_tol : kNewtonTolFactor * o.integrator.rtol;
+}
 
 PointSummary measure_orbit(const Parameters& p, const PointOptions& options, const Eigen::Vector4d& y, int n) {
   const auto start = std::chrono::steady_clock::now();

@@ -102,6 +102,11 @@ struct PointOptions {
 
 PointSummary solve_point(const Parameters& p, const PointOptions& options);
 
+// The tolerances solve_point works to when the scene leaves them automatic (0): the
+// steady-state test's (100 rtol; rk4 1e-9) and Newton's (10 rtol).
+double steady_tolerance(const PointOptions& o);
+double newton_tolerance(const PointOptions& o);
+
 // The cycle of n periods through the orbit point y (physical (x1, x2, v1, v2) at a period
 // start) measured as solve_point measures the orbit it finds: impacts at a tenth of the
 // tolerance, regime, T_con, k_con, F_max, z_ratio. Floquet multipliers are not computed.
