@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Summarise a vibromap regime map: cells done, status and regime counts, stability, the
 slowest cells, and a check that every float quantity of every computed cell is finite
-(NaN is allowed only where the map says "not computed": max_multiplier and lyapunov).
+(NaN is allowed only where the map says "not computed": max_multiplier and lyapunov, and
+steady_residual in a census map). A census map adds how many cells hold 1, 2, ... attractors
+and the soft fraction.
 
 Usage: postprocess/vmpy summarize_map MAP.h5 [--slowest N]
 Exit status: 0 printed, 2 unreadable file, 1 a computed cell holds a non-finite value.
@@ -44,9 +46,12 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
         index = np.unravel_index(flat, wall.shape)
         where = ", ".join(f"{a.name}={a.values[i]:.3g}" for a, i in zip(sweep.axes.values(), index))
         lines.append(f"  slow: {wall[index]:.3g} s  {where}  {sweep.labels()[index]}")
+    may_be_nan = MAY_BE_NAN + (("steady_residual",) if sweep.is_census else ())
+    if sweep.is_census:
+        lines.extend(census_lines(sweep, done))
     bad = 0
     for name, values in sweep.data.items():
-        if values.dtype.kind != "f" or name in MAY_BE_NAN:
+        if values.dtype.kind != "f" or name in may_be_nan:
             continue
         n = int((~np.isfinite(values[done])).sum())
         if n:
@@ -54,6 +59,20 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
             bad += n
     lines.append("finite: every float quantity of every computed cell" if bad == 0 else f"{bad} non-finite values")
     return lines, bad
+
+
+def census_lines(sweep, done) -> list[str]:
+    """Attractors per cell and the soft fraction of a census map."""
+    count = sweep.data["attractors"][done]
+    soft = sweep.data["soft_fraction"][done]
+    unresolved = sweep.data["unresolved_fraction"][done]
+    per = ", ".join(f"{int(a)}: {int((count == a).sum())}" for a in sorted(set(count.tolist())))
+    lines = [f"census: cells with 1, 2, ... attractors: {per}"]
+    if soft.size:
+        lines.append(f"soft fraction: median {np.median(soft):.3g}, cells with some soft basin "
+                     f"{int((soft > 0).sum())}, with soft fraction >= 0.9: {int((soft >= 0.9).sum())}")
+        lines.append(f"unresolved initial states: {np.mean(unresolved):.3g} of all, at most {np.max(unresolved):.3g} in a cell")
+    return lines
 
 
 def main(argv=None) -> int:

@@ -21,8 +21,16 @@ Map file (include/vibromap/io/map_file.hpp, one file per sweep; N axes, first ax
             stable is 1 (stable), 0 (unstable) or -1 (unknown: no periodic orbit, not computed);
             max_multiplier and lyapunov are NaN also in cells done where they were not computed.
   root attributes  title, Conventions, vibromap_version, scene, ranks, cells_total,
-            cells_done, complete, stored (the quantity names, space separated)
-read_map() reads it (a map from before /stable was kept reads as stable == -1 everywhere);
+            cells_done, complete, stored (the quantity names, space separated),
+            census_attractors (A > 0 in a census map)
+  census map (a sweep whose scene had [census]): /attractors (N-D int32), /soft_fraction,
+            /unresolved_fraction, /unlisted_fraction (N-D float64), and per (cell, attractor)
+            /attractor_<q> of shape + (A,) over the coordinate /attractor: regime, stable,
+            hertz_valid, from_rest, soft (int8, -1 beyond the cell's attractors), n, k,
+            T_con, k_con, F_max, z_ratio, max_floquet, fraction, fraction_stderr, x1, x2, v1, v2
+            (NaN beyond the cell's attractors); the ordinary datasets describe the attractor the
+            rest state reaches, and steady_residual is NaN there
+read_map() reads it (census datasets in SweepMap.census) (a map from before /stable was kept reads as stable == -1 everywhere);
 slice2d() takes a 2-D (or 1-D strip) slice for plotting;
 regime_labels() names each cell's regime: "(n,k)", "chatter", "no-contact", "not-computed".
 """
@@ -199,6 +207,13 @@ class SweepMap:
     stable_meanings: dict[int, str] = dataclasses.field(
         default_factory=lambda: dict(zip(STABLE_FLAG_VALUES, STABLE_FLAG_MEANINGS.split()))
     )  # stable code -> meaning ("unknown", "unstable", "stable")
+    census: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
+    # census maps: "regime", "n", "k_con", "fraction", ... (attractor_<q> without its prefix),
+    # each of shape + (A,); empty in a map without a census
+
+    @property
+    def is_census(self) -> bool:
+        return bool(self.census)
 
     @property
     def axis_names(self) -> list[str]:
@@ -341,12 +356,15 @@ def read_map(path: str) -> SweepMap:
         axes = _map_axes(f, path)
         data: dict[str, np.ndarray] = {}
         units: dict[str, str] = {}
+        census: dict[str, np.ndarray] = {}
         for name, item in f.items():
             if name in axes or not isinstance(item, h5py.Dataset) or item.dtype.kind not in "iufb":
                 continue
             if item.shape != shape:
                 if name in MAP_ALWAYS:
                     raise VibromapFileError(f"{path}: dataset '{name}' has shape {item.shape}, not the map's {shape}")
+                if name.startswith("attractor_") and item.shape[:-1] == shape:
+                    census[name[len("attractor_"):]] = read_dataset(item, path)
                 continue
             data[name] = read_dataset(item, path)
             units[name] = _text(item.attrs.get("units", ""))
@@ -376,6 +394,7 @@ def read_map(path: str) -> SweepMap:
         regime_meanings=regime_meanings,
         status_meanings=status_meanings,
         stable_meanings=stable_meanings,
+        census=census,
     )
 
 

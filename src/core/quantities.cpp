@@ -163,4 +163,58 @@ CellResult summarize(const PointSummary& s) {
   return c;
 }
 
+CellResult summarize(const CensusSummary& s) {
+  CellResult c;
+  c.status = status_code(s.status);
+  c.regime = regime_code(s.status == SolveStatus::ok ? RegimeKind::unresolved : RegimeKind::failed);
+  c.periods = s.periods;
+  c.rhs_evals = s.counters.rhs_evals;
+  c.wall_s = s.wall_s;
+  c.steady_residual = std::numeric_limits<double>::quiet_NaN();
+  if (s.status != SolveStatus::ok) return c;
+  const double K = s.K > 0 ? static_cast<double>(s.K) : 1.0;
+  c.soft_fraction = s.soft_fraction;
+  c.unresolved_fraction = s.unresolved / K;
+  c.unlisted_fraction = s.unlisted / K;
+  bool rest_decided = false;
+  for (const Attractor& a : s.attractors) {
+    AttractorRecord r;
+    r.regime = regime_code(a.regime.kind);
+    r.stable = static_cast<std::int8_t>(a.stable);
+    r.hertz_valid = a.hertz_valid ? 1 : 0;
+    r.from_rest = a.from_rest ? 1 : 0;
+    r.soft = a.soft ? 1 : 0;
+    r.n = a.regime.n;
+    r.k = a.regime.k;
+    r.T_con = a.T_con;
+    r.k_con = a.k_con;
+    r.F_max = a.F_max;
+    r.z_ratio = a.z_ratio;
+    r.max_floquet = a.max_floquet;
+    r.fraction = a.fraction;
+    r.fraction_stderr = a.fraction_stderr;
+    r.strobe.fill(std::numeric_limits<double>::quiet_NaN());
+    if (!a.strobe.empty())
+      for (int i = 0; i < 4; ++i) r.strobe[static_cast<std::size_t>(i)] = a.strobe.front()[i];
+    c.census.push_back(r);
+    if (!a.from_rest) continue;
+    rest_decided = true;
+    c.regime = r.regime;
+    c.n = r.n;
+    c.k = r.k;
+    c.stable = r.stable;
+    c.hertz_valid = r.hertz_valid;
+    c.max_multiplier = a.max_floquet;
+    c.T_con = a.T_con;
+    c.k_con = a.k_con;
+    c.F_max = a.F_max;
+    c.z_max = a.z_max;
+    c.z_ratio = a.z_ratio;
+    c.v_in = a.v_in;
+    c.impulse = a.impulse;
+  }
+  if (!rest_decided) c.status = status_code(SolveStatus::budget);  // rest's motion still settling at max_periods
+  return c;
+}
+
 }  // namespace vibromap

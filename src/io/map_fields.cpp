@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 namespace vibromap::detail {
 namespace {
@@ -41,8 +43,8 @@ MapField code_field(std::string name, std::string long_name, std::int8_t last, s
   f.flag_meanings = std::move(meanings);
   f.lo = kNotComputed;
   f.hi = last;
-  f.get_int = [](const CellResult& c) -> std::int64_t { return c.*M; };
-  f.set_int = [](CellResult& c, std::int64_t v) { c.*M = static_cast<std::int8_t>(v); };
+  f.get_int = [](const CellResult& c, std::size_t) -> std::int64_t { return c.*M; };
+  f.set_int = [](CellResult& c, std::size_t, std::int64_t v) { c.*M = static_cast<std::int8_t>(v); };
   return f;
 }
 
@@ -58,8 +60,8 @@ MapField count_field(std::string name, std::string long_name) {
   f.units = std::string(1, '1');  // (not = "1": GCC 12's false -Wrestrict, bug 105329)
   f.lo = 0;
   f.hi = std::numeric_limits<std::int32_t>::max();
-  f.get_int = [](const CellResult& c) -> std::int64_t { return c.*M; };
-  f.set_int = [](CellResult& c, std::int64_t v) { c.*M = static_cast<std::int32_t>(v); };
+  f.get_int = [](const CellResult& c, std::size_t) -> std::int64_t { return c.*M; };
+  f.set_int = [](CellResult& c, std::size_t, std::int64_t v) { c.*M = static_cast<std::int32_t>(v); };
   return f;
 }
 
@@ -70,9 +72,94 @@ MapField real_field(std::string name, std::string long_name, std::string units) 
   f.fill = kNaN;
   f.long_name = std::move(long_name);
   f.units = std::move(units);
-  f.get_real = [](const CellResult& c) { return c.*M; };
-  f.set_real = [](CellResult& c, double v) { c.*M = v; };
+  f.get_real = [](const CellResult& c, std::size_t) { return c.*M; };
+  f.set_real = [](CellResult& c, std::size_t, double v) { c.*M = v; };
   return f;
+}
+
+// A field of the census's attractor records, slot a = attractor a of the cell: made from a
+// per-cell field of the same kind (its type, fill, flags, range), with accessors on
+// AttractorRecord member M (or element I of a std::array member).
+template <auto M, int I = -1>
+MapField attractor_field(MapField f, std::size_t slots) {
+  f.slots = slots;
+  auto ref = [](auto& r) -> auto& {
+    if constexpr (I < 0) return r.*M; else return (r.*M)[I];
+  };
+  const double fill = f.fill.value_or(0.0);
+  using Value = std::remove_cvref_t<decltype(ref(std::declval<AttractorRecord&>()))>;
+  if constexpr (std::is_integral_v<Value>) {
+    f.get_int = [ref, fill](const CellResult& c, std::size_t a) -> std::int64_t {
+      return a < c.census.size() ? static_cast<std::int64_t>(ref(c.census[a])) : static_cast<std::int64_t>(fill);
+    };
+    f.set_int = [ref](CellResult& c, std::size_t a, std::int64_t v) {
+      if (a < c.census.size()) ref(c.census[a]) = static_cast<Value>(v);
+    };
+  } else {
+    f.get_real = [ref, fill](const CellResult& c, std::size_t a) { return a < c.census.size() ? ref(c.census[a]) : fill; };
+    f.set_real = [ref](CellResult& c, std::size_t a, double v) {
+      if (a < c.census.size()) ref(c.census[a]) = v;
+    };
+  }
+  return f;
+}
+
+// The census's datasets (map_file.hpp).
+void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
+  MapField count = count_field<&CellResult::n>("attractors", "attractors the census lists in the cell");
+  count.lo = 0;
+  count.hi = static_cast<std::int64_t>(slots);
+  count.get_int = [](const CellResult& c, std::size_t) { return static_cast<std::int64_t>(c.census.size()); };
+  count.set_int = [](CellResult& c, std::size_t, std::int64_t v) { c.census.resize(static_cast<std::size_t>(v)); };
+  fields.push_back(count);
+  fields.push_back(real_field<&CellResult::soft_fraction>(
+      "soft_fraction", "basin fraction of the soft attractors (stable, Hertz-valid, k_con <= census.soft_kcon)", "1"));
+  fields.push_back(real_field<&CellResult::unresolved_fraction>(
+      "unresolved_fraction", "fraction of initial states still settling when the budget ran out", "1"));
+  fields.push_back(real_field<&CellResult::unlisted_fraction>(
+      "unlisted_fraction", "fraction of initial states reaching an attractor beyond census.max_attractors", "1"));
+  const auto code = [](std::string name, std::string long_name, std::int8_t last, std::string meanings) {
+    return code_field<&CellResult::regime>(std::move(name), std::move(long_name), last, std::move(meanings));
+  };
+  using A = AttractorRecord;
+  fields.push_back(attractor_field<&A::regime>(
+      code("attractor_regime", "the attractor's regime; periodic (n,k) with attractor_n and attractor_k",
+           regime_code(RegimeKind::failed), flag_meanings(RegimeKind::failed, &regime_code)),
+      slots));
+  MapField stable = code("attractor_stable", "stability of the attractor's orbit from its Floquet multipliers", 1,
+                         "unknown unstable stable");
+  fields.push_back(attractor_field<&A::stable>(stable, slots));
+  const auto flag = [&](std::string name, std::string long_name) {
+    MapField f = code(std::move(name), std::move(long_name), 1, "not_listed no yes");
+    return f;
+  };
+  fields.push_back(attractor_field<&A::hertz_valid>(
+      flag("attractor_hertz_valid", "1 where the attractor's z_ratio is within the Hertz validity limit"), slots));
+  fields.push_back(attractor_field<&A::from_rest>(flag("attractor_from_rest", "1 for the attractor rest reaches"), slots));
+  fields.push_back(attractor_field<&A::soft>(
+      flag("attractor_soft", "1 where the attractor is soft (stable, Hertz-valid, k_con <= census.soft_kcon)"), slots));
+  fields.push_back(attractor_field<&A::n>(
+      count_field<&CellResult::n>("attractor_n", "period of the attractor in forcing periods (0 where not periodic)"),
+      slots));
+  fields.push_back(attractor_field<&A::k>(
+      count_field<&CellResult::k>("attractor_k", "impacts per period of the attractor (0 where not periodic)"), slots));
+  const auto real = [](std::string name, std::string long_name, std::string units) {
+    return real_field<&CellResult::T_con>(std::move(name), std::move(long_name), std::move(units));
+  };
+  fields.push_back(attractor_field<&A::T_con>(real("attractor_T_con", "duration of the attractor's longest impact", "s"), slots));
+  fields.push_back(attractor_field<&A::k_con>(real("attractor_k_con", "softness T / T_con of the attractor's longest impact", "1"), slots));
+  fields.push_back(attractor_field<&A::F_max>(real("attractor_F_max", "largest peak contact force of the attractor", "N"), slots));
+  fields.push_back(attractor_field<&A::z_ratio>(real("attractor_z_ratio", "largest peak penetration over R* of the attractor", "1"), slots));
+  fields.push_back(attractor_field<&A::max_floquet>(
+      real("attractor_max_floquet", "largest |Floquet multiplier| of the attractor's orbit", "1"), slots));
+  fields.push_back(attractor_field<&A::fraction>(
+      real("attractor_fraction", "basin fraction: initial states reaching the attractor over all", "1"), slots));
+  fields.push_back(attractor_field<&A::fraction_stderr>(
+      real("attractor_fraction_stderr", "standard error sqrt(p (1 - p) / K) of the basin fraction", "1"), slots));
+  fields.push_back(attractor_field<&A::strobe, 0>(real("attractor_x1", "x1 of the attractor's first stroboscopic state", "m"), slots));
+  fields.push_back(attractor_field<&A::strobe, 1>(real("attractor_x2", "x2 of the attractor's first stroboscopic state", "m"), slots));
+  fields.push_back(attractor_field<&A::strobe, 2>(real("attractor_v1", "v1 of the attractor's first stroboscopic state", "m/s"), slots));
+  fields.push_back(attractor_field<&A::strobe, 3>(real("attractor_v2", "v2 of the attractor's first stroboscopic state", "m/s"), slots));
 }
 
 MapField quantity_field(Quantity q) {
@@ -87,12 +174,12 @@ MapField quantity_field(Quantity q) {
     f.fill_attribute = false;
     f.lo = 0;
     f.hi = quantity_max(q);
-    f.get_int = [q](const CellResult& c) { return quantity_int(c, q); };
-    f.set_int = [q](CellResult& c, std::int64_t v) { set_quantity_int(c, q, v); };
+    f.get_int = [q](const CellResult& c, std::size_t) { return quantity_int(c, q); };
+    f.set_int = [q](CellResult& c, std::size_t, std::int64_t v) { set_quantity_int(c, q, v); };
   } else {
     f.fill = kNaN;
-    f.get_real = [q](const CellResult& c) { return c.value(q); };
-    f.set_real = [q](CellResult& c, double v) { set_quantity(c, q, v); };
+    f.get_real = [q](const CellResult& c, std::size_t) { return c.value(q); };
+    f.set_real = [q](CellResult& c, std::size_t, double v) { set_quantity(c, q, v); };
   }
   return f;
 }
@@ -112,7 +199,7 @@ MapField done_field() {
   return f;
 }
 
-std::vector<MapField> map_fields(const std::vector<Quantity>& stored) {
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors) {
   std::vector<MapField> fields;
   fields.push_back(code_field<&CellResult::status>("status", "outcome of the point solver",
                                                    status_code(SolveStatus::invalid_input),
@@ -130,6 +217,7 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored) {
   fields.push_back(
       real_field<&CellResult::steady_residual>("steady_residual", "relative residual of the steady-state test", "1"));
   for (const Quantity q : stored) fields.push_back(quantity_field(q));
+  if (attractors > 0) add_census_fields(fields, attractors);
   return fields;
 }
 

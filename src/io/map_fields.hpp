@@ -25,17 +25,24 @@ struct MapField {
   std::vector<std::int8_t> flag_values;    // CF flags of the code datasets
   std::string flag_meanings;
   std::int64_t lo = 0, hi = 0;             // integer fields: the valid range of a done cell
-  std::function<double(const CellResult&)> get_real;
-  std::function<void(CellResult&, double)> set_real;
-  std::function<std::int64_t(const CellResult&)> get_int;
-  std::function<void(CellResult&, std::int64_t)> set_int;
+  // Per cell (slots == 0): the accessors below take slot 0. Per (cell, attractor) of a census
+  // (slots == the map's attractor dimension): one more dimension; slot a of a cell listing
+  // fewer attractors holds the fill value, and setting it does nothing.
+  std::size_t slots = 0;
+  std::function<double(const CellResult&, std::size_t)> get_real;
+  std::function<void(CellResult&, std::size_t, double)> set_real;
+  std::function<std::int64_t(const CellResult&, std::size_t)> get_int;
+  std::function<void(CellResult&, std::size_t, std::int64_t)> set_int;
+
+  std::size_t width() const { return slots == 0 ? 1 : slots; }  // values per cell
 };
 
 // /done (not a CellResult member: written by checkpoints).
 MapField done_field();
 // The per-cell datasets in file order: status, regime, stable, n, k, wall_s, steady_residual,
-// then the stored quantities.
-std::vector<MapField> map_fields(const std::vector<Quantity>& stored);
+// then the stored quantities; with a census (attractors > 0), attractors, soft_fraction,
+// unresolved_fraction, unlisted_fraction and the attractor_* datasets (slots = attractors).
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors);
 std::uint64_t element_bytes(ElementType t);
 
 // The chunks of an N-D map dataset of `shape`: trailing axes whole while they fit in

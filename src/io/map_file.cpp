@@ -70,10 +70,20 @@ std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
   return scales;
 }
 
+// The shape of field f's dataset (per (cell, attractor): one more dimension), and its chunks:
+// the cells of a chunk are those of every other dataset's chunk, so chunk spans agree.
+Shape with_slots(Shape shape, const MapField& f) {
+  if (f.slots > 0) shape.push_back(f.slots);
+  return shape;
+}
+
+// `scales`: the axes' coordinates, then (with a census) /attractor.
 Dataset make_field(Hdf5File& file, const MapField& f, const Shape& shape, const Shape& chunk,
                    const std::vector<Dataset>& scales) {
-  Dataset d = file.create_dataset(f.name, f.file_type, shape, chunked(chunk, f.fill, f.fill_attribute));
-  for (std::size_t i = 0; i < scales.size(); ++i) d.attach_dimension_scale(scales[i], i);
+  Dataset d = file.create_dataset(f.name, f.file_type, with_slots(shape, f),
+                                  chunked(with_slots(chunk, f), f.fill, f.fill_attribute));
+  const std::size_t dims = shape.size() + (f.slots > 0 ? 1 : 0);
+  for (std::size_t i = 0; i < dims; ++i) d.attach_dimension_scale(scales[i], i);
   d.set_attribute("long_name", f.long_name);
   if (!f.units.empty()) d.set_attribute("units", f.units);
   if (!f.flag_values.empty()) {
@@ -96,6 +106,7 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
   file.set_attribute("cells_done", 0);
   file.set_attribute("complete", 0);
   file.set_attribute("stored", stored);
+  file.set_attribute("census_attractors", layout.attractors);
 }
 
 // Refuses a layout the file cannot hold, before any file is touched.
@@ -109,6 +120,19 @@ void check_layout(const std::string& path, const MapLayout& layout) {
   for (std::size_t i = 0; i < layout.stored.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (layout.stored[i] == layout.stored[j]) refuse(cat("quantity '", to_string(layout.stored[i]), "' is stored twice"));
+}
+
+// The census's attractor index 0..A-1 as a coordinate.
+Dataset write_attractor_scale(Hdf5File& file, std::size_t attractors) {
+  std::vector<int> index(attractors);
+  for (std::size_t a = 0; a < attractors; ++a) index[a] = static_cast<int>(a);
+  DatasetOptions o;
+  o.fletcher32 = true;
+  Dataset coordinate = file.write_dataset("attractor", std::span<const int>(index), {}, o);
+  coordinate.make_dimension_scale("attractor");
+  coordinate.set_attribute("long_name", "index of the attractor in the cell's census, by basin fraction");
+  coordinate.set_attribute("units", "1");
+  return coordinate;
 }
 
 // ---- Reading a map's layout ----------------------------------------------------------------
@@ -184,6 +208,11 @@ MapLayout read_layout(const Hdf5File& file) {
   layout.grid = Grid(std::move(axes));
   layout.scene_text = file.read_string_attribute("scene");
   layout.identity = file.read_string_attribute("identity");
+  if (file.has_attribute("census_attractors")) {  // maps made before the census have none
+    const std::int64_t a = file.read_int_attribute("census_attractors");
+    if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");
+    layout.attractors = static_cast<std::size_t>(a);
+  }
   if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(layout.grid.size()))
     malformed(path, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(layout.grid.size()),
                         " cells"));
@@ -214,10 +243,10 @@ struct MapDatasets {
   std::vector<std::vector<std::int64_t>> ints;   // per field, integer fields
 
   void open(const Hdf5File& file, const MapLayout& layout) {
-    fields = map_fields(layout.stored);
+    fields = map_fields(layout.stored, layout.attractors);
     const Shape shape = layout.grid.shape();
     done = open_field(file, "done", shape);
-    for (const MapField& f : fields) data.push_back(open_field(file, f.name, shape));
+    for (const MapField& f : fields) data.push_back(open_field(file, f.name, with_slots(shape, f)));
     reals.resize(fields.size());
     ints.resize(fields.size());
   }
@@ -229,12 +258,16 @@ struct MapDatasets {
       if (i < 0) {
         done_buffer.resize(n);
         done.read_flat(span.begin, std::span<std::uint8_t>(done_buffer));
-      } else if (fields[static_cast<std::size_t>(i)].integer) {
-        ints[static_cast<std::size_t>(i)].resize(n);
-        data[static_cast<std::size_t>(i)].read_flat(span.begin, std::span<std::int64_t>(ints[static_cast<std::size_t>(i)]));
+        return true;
+      }
+      const auto u = static_cast<std::size_t>(i);
+      const std::size_t w = fields[u].width();
+      if (fields[u].integer) {
+        ints[u].resize(n * w);
+        data[u].read_flat(span.begin * w, std::span<std::int64_t>(ints[u]));
       } else {
-        reals[static_cast<std::size_t>(i)].resize(n);
-        data[static_cast<std::size_t>(i)].read_flat(span.begin, std::span<double>(reals[static_cast<std::size_t>(i)]));
+        reals[u].resize(n * w);
+        data[u].read_flat(span.begin * w, std::span<double>(reals[u]));
       }
     } catch (const IoError& e) {
       if (why) *why = e.what();
@@ -250,15 +283,18 @@ struct MapDatasets {
     CellResult c;
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const MapField& f = fields[i];
-      if (!f.integer) {
-        f.set_real(c, reals[i][k]);
-        continue;
+      const std::size_t w = f.width();
+      for (std::size_t a = 0; a < w; ++a) {
+        if (!f.integer) {
+          f.set_real(c, a, reals[i][k * w + a]);
+          continue;
+        }
+        const std::int64_t v = ints[i][k * w + a];
+        if (v < f.lo || v > f.hi)
+          malformed(path, cat("dataset '/", f.name, "' holds ", std::to_string(v), ", outside ", std::to_string(f.lo),
+                              "..", std::to_string(f.hi)));
+        f.set_int(c, a, v);
       }
-      const std::int64_t v = ints[i][k];
-      if (v < f.lo || v > f.hi)
-        malformed(path, cat("dataset '/", f.name, "' holds ", std::to_string(v), ", outside ", std::to_string(f.lo), "..",
-                            std::to_string(f.hi)));
-      f.set_int(c, v);
     }
     return c;
   }
@@ -272,7 +308,8 @@ struct MapDatasets {
       flat /= shape[d];
     }
     done.reset_chunk(offset, 0.0);
-    for (std::size_t i = 0; i < fields.size(); ++i) data[i].reset_chunk(offset, fields[i].fill.value_or(0.0));
+    for (std::size_t i = 0; i < fields.size(); ++i)
+      data[i].reset_chunk(fields[i].slots > 0 ? with_slots(offset, fields[i]) : offset, fields[i].fill.value_or(0.0));
   }
 };
 
@@ -311,7 +348,8 @@ const MapRepair& MapWriter::repair() const { return impl_->repair; }
 
 std::uint64_t MapWriter::file_bytes(const MapLayout& layout) {
   std::uint64_t per_cell = 1;  // done
-  for (const detail::MapField& f : detail::map_fields(layout.stored)) per_cell += detail::element_bytes(f.file_type);
+  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors))
+    per_cell += detail::element_bytes(f.file_type) * f.width();
   // HDF5 stores every chunk whole, the ones that overhang the grid's edge included.
   const Shape shape = layout.grid.shape();
   const Shape chunk = detail::map_chunk_shape(shape);
@@ -336,9 +374,10 @@ MapWriter MapWriter::create(const std::string& path, const MapLayout& layout, in
     const Shape shape = layout.grid.shape();
     impl->chunk = detail::map_chunk_shape(shape);
     impl->chunks = detail::chunk_spans(shape, impl->chunk);
-    const std::vector<Dataset> scales = detail::write_axes(impl->file, layout.grid);
+    std::vector<Dataset> scales = detail::write_axes(impl->file, layout.grid);
+    if (layout.attractors > 0) scales.push_back(detail::write_attractor_scale(impl->file, layout.attractors));
     detail::MapField done_field = detail::done_field();
-    impl->ds.fields = detail::map_fields(layout.stored);
+    impl->ds.fields = detail::map_fields(layout.stored, layout.attractors);
     impl->ds.done = detail::make_field(impl->file, done_field, shape, impl->chunk, scales);
     for (const detail::MapField& f : impl->ds.fields)
       impl->ds.data.push_back(detail::make_field(impl->file, f, shape, impl->chunk, scales));
@@ -428,14 +467,17 @@ void MapWriter::write(std::uint64_t first, std::span<const CellResult> cells) {
   if (cells.empty()) return;
   for (std::size_t i = 0; i < m.ds.fields.size(); ++i) {
     const detail::MapField& f = m.ds.fields[i];
+    const std::size_t w = f.width();
     if (f.integer) {
-      m.ints.resize(cells.size());
-      for (std::size_t k = 0; k < cells.size(); ++k) m.ints[k] = f.get_int(cells[k]);
-      m.ds.data[i].write_flat(first, std::span<const std::int64_t>(m.ints));
+      m.ints.resize(cells.size() * w);
+      for (std::size_t k = 0; k < cells.size(); ++k)
+        for (std::size_t a = 0; a < w; ++a) m.ints[k * w + a] = f.get_int(cells[k], a);
+      m.ds.data[i].write_flat(first * w, std::span<const std::int64_t>(m.ints));
     } else {
-      m.reals.resize(cells.size());
-      for (std::size_t k = 0; k < cells.size(); ++k) m.reals[k] = f.get_real(cells[k]);
-      m.ds.data[i].write_flat(first, std::span<const double>(m.reals));
+      m.reals.resize(cells.size() * w);
+      for (std::size_t k = 0; k < cells.size(); ++k)
+        for (std::size_t a = 0; a < w; ++a) m.reals[k * w + a] = f.get_real(cells[k], a);
+      m.ds.data[i].write_flat(first * w, std::span<const double>(m.reals));
     }
   }
   // Every second or so, push what HDF5 has evicted towards the disk: checkpoints then wait
@@ -521,6 +563,7 @@ SweepMap read_map(const std::string& path) {
     map.stored = layout.stored;
     map.scene_text = layout.scene_text;
     map.identity = layout.identity;
+    map.attractors = layout.attractors;
     map.ranks = static_cast<int>(file.read_int_attribute("ranks"));
   }
   map.cells.assign(map.grid.size(), CellResult{});
@@ -537,10 +580,10 @@ void write_map(const std::string& path, const SweepMap& map) {
   const std::string cells = std::to_string(map.grid.size());
   if (map.cells.size() != map.grid.size()) refuse(cat(std::to_string(map.cells.size()), " cell records for ", cells, " cells"));
   if (map.done.size() != map.grid.size()) refuse(cat(std::to_string(map.done.size()), " done flags for ", cells, " cells"));
-  detail::check_layout(path, {map.grid, map.stored, map.scene_text, map.identity});
+  detail::check_layout(path, {map.grid, map.stored, map.scene_text, map.identity, map.attractors});
   const std::string tmp = path + ".tmp";
   try {
-    MapWriter w = MapWriter::create(tmp, {map.grid, map.stored, map.scene_text, map.identity}, map.ranks);
+    MapWriter w = MapWriter::create(tmp, {map.grid, map.stored, map.scene_text, map.identity, map.attractors}, map.ranks);
     for (std::uint64_t i = 0; i < map.cells.size();) {
       if (!map.done[i]) {
         ++i;

@@ -1,6 +1,7 @@
 """Helpers shared by the campaign tests under mpiexec (sweep and multistart)."""
 import os
 import signal
+import time
 
 EXE = os.environ.get("VIBROMAP_EXE", "build/vibromap")
 MPIEXEC = os.environ.get("VIBROMAP_MPIEXEC", "mpiexec")
@@ -63,3 +64,22 @@ def kill_all(pid):
             os.kill(p, signal.SIGKILL)
         except ProcessLookupError:
             pass
+
+
+def wait_for_cells_done(proc, out, at_least, poll=0.1, timeout=120):
+    """Polls the map `out` that a running sweep `proc` writes until /done counts `at_least`
+    cells (or the sweep ends, or `timeout` s pass); returns the last count read."""
+    import h5py  # only the tests that poll a map need it
+
+    done = 0
+    deadline = time.time() + timeout
+    while time.time() < deadline and proc.poll() is None and done < at_least:
+        time.sleep(poll)
+        if not out.exists():
+            continue
+        try:
+            with h5py.File(out, "r") as f:
+                done = int(f["done"][()].sum())
+        except (OSError, KeyError, ValueError, RuntimeError):
+            continue  # the map is being written while we read it (no SWMR): try again
+    return done

@@ -226,6 +226,97 @@ TEST_F(MapFile, RoundTripsACompleteMapAndAMapWithNothingDone) {
   EXPECT_EQ(Hdf5File(file("empty.h5")).read_int_attribute("cells_done"), 0);
 }
 
+// A census map (issue #11): cell i lists i % 4 attractors (0 to 3, of a dimension of 3), each
+// field of attractor a an exact formula in (i, a).
+SweepMap sample_census_map() {
+  SweepMap map = sample_map_2d();
+  map.attractors = 3;
+  for (std::size_t i = 0; i < map.grid.size(); ++i) {
+    if (!map.done[i]) continue;
+    CellResult& c = map.cells[i];
+    const auto n = static_cast<double>(i);
+    c.soft_fraction = 0.125 * static_cast<double>(i % 8);
+    c.unresolved_fraction = i % 2 == 0 ? 0.0 : 0.0625;
+    c.unlisted_fraction = 1.0 / (n + 1.0);
+    for (std::size_t a = 0; a < i % 4; ++a) {
+      AttractorRecord r;
+      const auto x = static_cast<double>(a);
+      r.regime = static_cast<std::int8_t>((i + a) % 9);
+      r.stable = static_cast<std::int8_t>(static_cast<int>((i + a) % 3) - 1);
+      r.hertz_valid = static_cast<std::int8_t>(a % 2);
+      r.from_rest = a == 0 ? 1 : 0;
+      r.soft = static_cast<std::int8_t>((i + a) % 2);
+      r.n = static_cast<std::int32_t>(1 + a);
+      r.k = static_cast<std::int32_t>(1 + i % 3);
+      r.T_con = 1e-3 * (n + x + 1.0);
+      r.k_con = 100.0 / (n + x + 1.0);
+      r.F_max = 1e5 * (x + 1.0);
+      r.z_ratio = 1e-4 * (x + 1.0);
+      r.max_floquet = a == 2 ? kNaN : 0.5 + 0.125 * x;
+      r.fraction = 0.25 * (x + 1.0) / 2.0;
+      r.fraction_stderr = 0.01 * (x + 1.0);
+      r.strobe = {-0.01 * x, 0.05 + n, 0.5 * x, -0.25 * n};
+      c.census.push_back(r);
+    }
+  }
+  return map;
+}
+
+TEST_F(MapFile, RoundTripsACensusMapWithItsAttractorDimension) {
+  const SweepMap map = sample_census_map();
+  expect_round_trip(map, file("census.h5"));
+  const SweepMap back = read_map(file("census.h5"));
+  EXPECT_EQ(back.attractors, 3u);
+  const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
+  for (std::size_t i = 0; i < map.grid.size(); ++i) {
+    SCOPED_TRACE("cell " + std::to_string(i));
+    const CellResult& e = map.cells[i];
+    const CellResult& a = back.cells[i];
+    ASSERT_EQ(a.census.size(), e.census.size());
+    for (const auto member : {&CellResult::soft_fraction, &CellResult::unresolved_fraction, &CellResult::unlisted_fraction})
+      EXPECT_TRUE(same(a.*member, e.*member));
+    for (std::size_t k = 0; k < e.census.size(); ++k) {
+      const AttractorRecord& x = e.census[k];
+      const AttractorRecord& y = a.census[k];
+      EXPECT_EQ(std::vector<int>({y.regime, y.stable, y.hertz_valid, y.from_rest, y.soft, y.n, y.k}),
+                std::vector<int>({x.regime, x.stable, x.hertz_valid, x.from_rest, x.soft, x.n, x.k}));
+      for (const auto member : {&AttractorRecord::T_con, &AttractorRecord::k_con, &AttractorRecord::F_max,
+                                &AttractorRecord::z_ratio, &AttractorRecord::max_floquet, &AttractorRecord::fraction,
+                                &AttractorRecord::fraction_stderr})
+        EXPECT_TRUE(same(y.*member, x.*member));
+      for (std::size_t d = 0; d < 4; ++d) EXPECT_EQ(y.strobe[d], x.strobe[d]);
+    }
+  }
+  // On disk: (E1, R1, attractor), slots beyond a cell's attractors hold the fill values.
+  const Hdf5File f(file("census.h5"));
+  EXPECT_EQ(f.read_int_attribute("census_attractors"), 3);
+  const Dataset fraction = f.open_dataset("attractor_fraction");
+  EXPECT_EQ(fraction.shape(), (Shape{3, 4, 3}));
+  EXPECT_EQ(fraction.attached_scales(2), std::vector<std::string>{"/attractor"});
+  const auto values = fraction.read_double();
+  EXPECT_EQ(values[2 * 3 + 1], 0.25);                                  // cell 2, attractor 1
+  EXPECT_TRUE(std::isnan(values[2 * 3 + 2]));                           // cell 2 lists 2
+  EXPECT_EQ(f.open_dataset("attractor_regime").read_int()[2 * 3 + 2], -1);
+  EXPECT_EQ(f.open_dataset("attractors").read_int()[7], 3);
+  EXPECT_EQ(f.open_dataset("attractor").read_int(), (std::vector<std::int64_t>{0, 1, 2}));
+}
+
+TEST_F(MapFile, ADamagedCensusDatasetIsNamed) {
+  write_map(file("census.h5"), sample_census_map());
+  {
+    Hdf5File f(file("census.h5"), FileMode::read_write);
+    f.remove("attractors");
+    f.write_dataset("attractors", std::vector<int>(12, 4), {3, 4});
+  }
+  try {
+    read_map(file("census.h5"));
+    FAIL() << "a census map listing 4 attractors in a dimension of 3 was read";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file("census.h5") + ": not a valid vibromap map: dataset '/attractors' holds 4, outside 0..3");
+  }
+}
+
 // ---- the layout on disk -----------------------------------------------------------------
 
 TEST_F(MapFile, CellsNotDoneHoldTheFillValuesOnDisk) {

@@ -1,16 +1,21 @@
 #pragma once
-// What a sweep keeps of one solved cell: a fixed-size record (trivially copyable, so ranks
-// exchange arrays of it as bytes), and the optional quantities a scene may ask a map to store.
+// What a sweep keeps of one solved cell, and the optional quantities a scene may ask a map to
+// store.
 //
 // Always kept (SPEC.md, issues #3, #4): status, regime with n and k, stability, wall time
-// and the steady-state residual. Stored on request only: the Quantity values.
+// and the steady-state residual. Stored on request only: the Quantity values. A sweep whose
+// scene has [census] (issue #11) also keeps the cell's census: every attractor listed, with
+// its basin fraction, and the fractions that are soft, unresolved and unlisted; its ordinary
+// fields then describe the attractor the rest state reaches.
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 
 namespace vibromap {
@@ -46,6 +51,21 @@ constexpr std::int8_t kNotComputed = -1;
 std::int8_t regime_code(RegimeKind k);  // periodic 0, chatter 1, ..., failed 8 (enum order)
 std::int8_t status_code(SolveStatus s); // ok 0, budget 1, failed 2, invalid_input 3
 
+// One attractor of a cell's census, as a map keeps it (census.hpp's Attractor, without the
+// orbit's other n - 1 stroboscopic states: they follow from the first by the period map).
+struct AttractorRecord {
+  std::int8_t regime = kNotComputed;  // regime_code of the attractor's regime
+  std::int8_t stable = -1;            // 1 stable, 0 unstable, -1 unknown
+  std::int8_t hertz_valid = 0;
+  std::int8_t from_rest = 0;          // 1: the rest state reaches it
+  std::int8_t soft = 0;               // 1: stable, Hertz-valid, k_con <= census.soft_kcon
+  std::int32_t n = 0, k = 0;
+  double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_ratio = 0.0;
+  double max_floquet = std::numeric_limits<double>::quiet_NaN();
+  double fraction = 0.0, fraction_stderr = 0.0;
+  std::array<double, 4> strobe{};     // first stroboscopic state (x1, x2, v1, v2); NaN when none
+};
+
 struct CellResult {
   std::int8_t status = kNotComputed;
   std::int8_t regime = kNotComputed;
@@ -57,6 +77,11 @@ struct CellResult {
   double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_max = 0.0, z_ratio = 0.0, v_in = 0.0, impulse = 0.0;
   double max_multiplier = std::numeric_limits<double>::quiet_NaN();
   double lyapunov = std::numeric_limits<double>::quiet_NaN();
+  // The census (sweeps with [census]; empty and NaN otherwise).
+  std::vector<AttractorRecord> census;  // attractors listed, by basin fraction
+  double soft_fraction = std::numeric_limits<double>::quiet_NaN();        // census: basin fraction of soft attractors
+  double unresolved_fraction = std::numeric_limits<double>::quiet_NaN();  // census: initial states not decided
+  double unlisted_fraction = std::numeric_limits<double>::quiet_NaN();    // census: beyond max_attractors
 
   double value(Quantity q) const;  // the quantity as a double (integers exactly up to 2^53)
 };
@@ -69,5 +94,8 @@ std::int64_t quantity_int(const CellResult& c, Quantity q);
 void set_quantity_int(CellResult& c, Quantity q, std::int64_t v);
 
 CellResult summarize(const PointSummary& s);
+// A census cell: the ordinary fields from the attractor rest reaches (status budget and regime
+// unresolved when rest was not decided; steady_residual NaN), the census fields from s.
+CellResult summarize(const CensusSummary& s);
 
 }  // namespace vibromap

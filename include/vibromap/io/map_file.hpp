@@ -23,6 +23,16 @@
 //                    from the quantity catalogue (core/quantities.hpp): int64 for the integer
 //                    quantities, float64 for the others. max_multiplier and lyapunov are NaN
 //                    also in cells done where the solver did not compute them.
+// With a census (a sweep whose scene has [census]; root attribute census_attractors = A > 0):
+//   /attractor       1-D int32 coordinate 0..A-1, a dimension scale (the census's attractor index)
+//   /attractors      N-D int32: attractors the census lists in the cell (0..A)
+//   /soft_fraction, /unresolved_fraction, /unlisted_fraction   N-D float64, units 1
+//   /attractor_<q>   (N+1)-D, shape + (A,): per (cell, attractor): regime, stable, hertz_valid,
+//                    from_rest, soft (int8 flags, -1 where the cell lists fewer attractors),
+//                    n, k (int32), T_con, k_con, F_max, z_ratio, max_floquet, fraction,
+//                    fraction_stderr, and x1, x2, v1, v2 (the first stroboscopic state; the
+//                    other n - 1 follow by the period map), float64 NaN where not listed.
+//   The ordinary datasets then describe the attractor the rest state reaches.
 // Float datasets hold NaN (their _FillValue) where done == 0; integer ones hold 0, and
 // regime/status/stable -1. So a NaN alone does not say whether a cell was reached: /done does.
 // Root attributes: title, Conventions ("CF-1.8"), vibromap_version, scene (the scene text),
@@ -67,6 +77,7 @@ struct MapLayout {
   std::vector<Quantity> stored;  // optional quantities kept in the file
   std::string scene_text;        // provenance: the scene after overrides
   std::string identity;          // what --resume compares (one "key = value" line per cell-defining key)
+  std::size_t attractors = 0;    // census: the attractor dimension's length (0: no census)
 };
 
 // Cells [begin, end) in flat order.
@@ -130,6 +141,7 @@ struct SweepMap {
   std::string scene_text;           // provenance
   std::string identity;             // what --resume compares
   int ranks = 1;                    // MPI ranks of the run
+  std::size_t attractors = 0;       // census: the attractor dimension's length (0: no census)
 };
 
 // Writes a whole map (create, every done cell, finish) to `path + ".tmp"`, renamed to `path`

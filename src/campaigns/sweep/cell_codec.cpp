@@ -1,13 +1,24 @@
 #include "cell_codec.hpp"
 
+#include "vibromap/parallel/wire.hpp"
+
 namespace vibromap::detail {
 
-// The member pointers of CellResult's floating-point fields, in wire order.
+// The member pointers of the floating-point fields, in wire order.
 namespace {
 constexpr double CellResult::*kReals[] = {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::T_con,
                                            &CellResult::k_con,  &CellResult::F_max,           &CellResult::z_max,
                                            &CellResult::z_ratio, &CellResult::v_in,           &CellResult::impulse,
                                            &CellResult::max_multiplier, &CellResult::lyapunov};
+constexpr double CellResult::*kCensusReals[] = {&CellResult::soft_fraction, &CellResult::unresolved_fraction,
+                                                 &CellResult::unlisted_fraction};
+constexpr std::int8_t AttractorRecord::*kAttractorCodes[] = {&AttractorRecord::regime, &AttractorRecord::stable,
+                                                             &AttractorRecord::hertz_valid, &AttractorRecord::from_rest,
+                                                             &AttractorRecord::soft};
+constexpr double AttractorRecord::*kAttractorReals[] = {
+    &AttractorRecord::T_con,       &AttractorRecord::k_con,    &AttractorRecord::F_max,
+    &AttractorRecord::z_ratio,     &AttractorRecord::max_floquet, &AttractorRecord::fraction,
+    &AttractorRecord::fraction_stderr};
 }  // namespace
 
 void CellCodec::encode(const CellResult& c, ByteWriter& out) const {
@@ -20,6 +31,18 @@ void CellCodec::encode(const CellResult& c, ByteWriter& out) const {
   out.put(c.periods);
   out.put(c.rhs_evals);
   for (const auto member : kReals) out.put(c.*member);
+  // The census: one byte (0) in a sweep without one.
+  out.put(static_cast<std::uint8_t>(census_ ? 1 : 0));
+  if (!census_) return;
+  for (const auto member : kCensusReals) out.put(c.*member);
+  out.put(static_cast<std::uint32_t>(c.census.size()));
+  for (const AttractorRecord& a : c.census) {
+    for (const auto member : kAttractorCodes) out.put(a.*member);
+    out.put(a.n);
+    out.put(a.k);
+    for (const auto member : kAttractorReals) out.put(a.*member);
+    for (const double x : a.strobe) out.put(x);
+  }
 }
 
 CellResult CellCodec::decode(ByteReader& in) const {
@@ -33,6 +56,18 @@ CellResult CellCodec::decode(ByteReader& in) const {
   c.periods = in.get<std::int64_t>();
   c.rhs_evals = in.get<std::int64_t>();
   for (const auto member : kReals) c.*member = in.get<double>();
+  if (in.get<std::uint8_t>() == 0) return c;
+  for (const auto member : kCensusReals) c.*member = in.get<double>();
+  const auto attractors = in.get<std::uint32_t>();
+  if (attractors > kMaxCensusAttractors) throw WireError("a cell result lists more attractors than a census keeps");
+  c.census.resize(attractors);
+  for (AttractorRecord& a : c.census) {
+    for (const auto member : kAttractorCodes) a.*member = in.get<std::int8_t>();
+    a.n = in.get<std::int32_t>();
+    a.k = in.get<std::int32_t>();
+    for (const auto member : kAttractorReals) a.*member = in.get<double>();
+    for (double& x : a.strobe) x = in.get<double>();
+  }
   return c;
 }
 

@@ -66,7 +66,8 @@ void report_repair(const MapWriter& w) {
 void check_same_run(const MapWriter& w, const MapLayout& wanted, const Scene& scene) {
   const MapLayout& have = w.layout();
   std::vector<std::string> diff = canonical_differences(have.identity, wanted.identity);
-  bool same_grid = have.grid.axes().size() == wanted.grid.axes().size() && have.stored == wanted.stored;
+  bool same_grid = have.grid.axes().size() == wanted.grid.axes().size() && have.stored == wanted.stored &&
+                   have.attractors == wanted.attractors;
   for (std::size_t d = 0; same_grid && d < wanted.grid.axes().size(); ++d)
     same_grid = have.grid.axes()[d].name == wanted.grid.axes()[d].name &&
                 have.grid.axes()[d].values == wanted.grid.axes()[d].values;
@@ -81,7 +82,8 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
                                               const detail::CellCodec& codec, std::unique_ptr<OutputLock>& lock) {
   if (!scene.sweep) throw SceneError(scene.path + ": no [sweep] section: nothing to sweep (see 'vibromap keys')");
   lock = std::make_unique<OutputLock>(config.output);
-  const MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene)};
+  const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
+  const MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
   const bool exists = std::filesystem::exists(config.output);
   std::map<std::string, long> regimes;
   if (config.resume && exists) {
@@ -97,9 +99,11 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
                                            ranks);
 }
 
-CellResult solve_cell(const CellMaker& cells, std::uint64_t flat) {
+// One cell: its point solved from rest, or (with [census]) its census.
+CellResult solve_cell(const CellMaker& cells, const std::optional<CensusOptions>& census, std::uint64_t flat) {
   try {
     const CellPoint point = cells(static_cast<std::size_t>(flat));
+    if (census) return summarize(census_point(point.params, point.options, *census));
     return summarize(solve_point(point.params, point.options));
   } catch (const std::exception&) {  // a cell's trouble is its status, never the run's
     CellResult c;
@@ -123,13 +127,13 @@ FarmOptions farm_options(const Scene& scene, const SweepRunConfig& config) {
 }  // namespace
 
 SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunConfig& config) {
-  const detail::CellCodec codec;
+  const detail::CellCodec codec(scene.census.has_value());
   std::unique_ptr<OutputLock> lock;
   std::unique_ptr<detail::MapSink> sink;
   mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, lock); }, exit_status_of);
   const CellMaker cells(scene, Grid(scene.sweep->axes));
   Campaign<CellResult> campaign;
-  campaign.solve = [&](std::uint64_t flat) { return solve_cell(cells, flat); };
+  campaign.solve = [&](std::uint64_t flat) { return solve_cell(cells, scene.census, flat); };
   campaign.codec = &codec;
   campaign.sink = sink.get();
   SweepReport report;

@@ -12,6 +12,16 @@ namespace vibromap::census_detail {
 
 namespace {
 
+// T_con, v_in and impulse of the longest of the impacts [first, last) (all 0 without impacts).
+template <class It>
+void set_longest(Attractor& a, It first, It last) {
+  const It longest = std::max_element(first, last, [](const Impact& x, const Impact& y) { return x.T_con < y.T_con; });
+  if (longest == last) return;
+  a.T_con = longest->T_con;
+  a.v_in = longest->v_in;
+  a.impulse = longest->impulse;
+}
+
 // Two orbits are one attractor when their cycles agree to this scaled distance (or 1000 Newton
 // tolerances, when larger): Newton solutions from different starts differ by about
 // tol / (1 - |mu|), distinct orbits by far more (two (1,1) orbits 3 % apart in T_con, SPEC.md).
@@ -255,7 +265,9 @@ std::optional<std::size_t> AttractorSet::add_periodic(const State& y0_in, int n_
   a.k_con = m.k_con;
   a.F_max = m.F_max;
   a.z_ratio = m.z_ratio;
+  a.z_max = m.z_max;
   a.hertz_valid = m.hertz_valid;
+  set_longest(a, m.impacts.begin(), m.impacts.end());
   for (const State& y : points) a.strobe.push_back(Model::to_physical(y));
 
   Orbit o;
@@ -300,14 +312,16 @@ std::optional<std::size_t> AttractorSet::add_recurrent(const std::vector<State>&
   Attractor a;
   a.periodic = false;
   a.max_floquet = std::numeric_limits<double>::quiet_NaN();
-  int count = 0;
+  std::vector<Impact> seen;
   for (const Impact& im : impacts) {
     if (im.period_in < first_period || im.period_in > last_period) continue;
-    ++count;
-    a.T_con = std::max(a.T_con, im.T_con);
+    seen.push_back(im);
     a.F_max = std::max(a.F_max, im.F_max);
     a.z_ratio = std::max(a.z_ratio, im.z_ratio);
+    a.z_max = std::max(a.z_max, im.z_max);
   }
+  set_longest(a, seen.begin(), seen.end());
+  const auto count = static_cast<long>(seen.size());
   a.k_con = a.T_con > 0.0 ? model_.period() / a.T_con : 0.0;
   a.hertz_valid = a.z_ratio <= options_.analysis.hertz_limit;
   const long window = last_period - first_period + 1;

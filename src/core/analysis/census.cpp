@@ -237,8 +237,14 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
   std::vector<std::size_t> order(set.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
-  if (order.size() > static_cast<std::size_t>(census.max_attractors))
+  if (order.size() > static_cast<std::size_t>(census.max_attractors)) {
+    // The attractor rest reaches stays listed (a map's motion from rest is one of its cell's).
+    const int rest = labels.front();
+    const auto rest_at = std::find(order.begin(), order.end(), static_cast<std::size_t>(rest));
+    if (rest >= 0 && rest_at - order.begin() >= census.max_attractors)
+      std::rotate(order.begin() + census.max_attractors - 1, rest_at, rest_at + 1);
     order.resize(static_cast<std::size_t>(census.max_attractors));
+  }
   std::vector<int> listed(set.size(), kUnlistedLabel);
   for (std::size_t k = 0; k < order.size(); ++k) {
     listed[order[k]] = static_cast<int>(k);

@@ -23,7 +23,7 @@ import pathlib
 
 REPO = pathlib.Path(__file__).resolve().parents[3]
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC, kill_all, slow_scene  # noqa: E402
+from campaign_helpers import ENV, EXE, MPIEXEC, kill_all, slow_scene, wait_for_cells_done  # noqa: E402
 
 def write_scene(tmp_path, n1=4, n2=3, checkpoint=60.0, name="scene.toml"):
     path = tmp_path / name
@@ -78,18 +78,7 @@ def test_killed_sweep_resumes_to_the_same_map(tmp_path):
     out = tmp_path / "killed.h5"
     cmd = [MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out), "--quiet"]
     proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    done_at_kill = 0
-    deadline = time.time() + 120
-    while time.time() < deadline and proc.poll() is None:
-        time.sleep(0.1)
-        if out.exists():
-            try:
-                with h5py.File(out, "r") as f:
-                    done_at_kill = int(f["done"][()].sum())
-            except (OSError, KeyError, ValueError, RuntimeError):
-                continue  # the map is being written while we read it (no SWMR): try again
-            if done_at_kill >= 5:
-                break
+    wait_for_cells_done(proc, out, 5)
     assert proc.poll() is None, "the sweep finished before it could be killed; make it longer"
     kill_all(proc.pid)
     proc.wait()

@@ -2,7 +2,8 @@
 // The sweep campaign: a scene's [sweep] grid on every MPI rank into one HDF5 map.
 //   plan   the grid's cells in flat order; resume: the cells the map does not mark done
 //   solve  one cell: the scene's point with the cell's axis values, solved by the core
-//          (solve_point); an exception is the cell's status `failed`, never the run's
+//          (solve_point; with [census], census_point: every attractor of the cell); an
+//          exception is the cell's status `failed`, never the run's
 //   codec  CellResult, field by field
 //   sink   the map file (io/map_file.hpp) on rank 0, with the regime counts for progress
 // The farm (parallel/farm.hpp) distributes, checkpoints and stops on signals.

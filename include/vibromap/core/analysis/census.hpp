@@ -65,6 +65,9 @@ struct Attractor {
   double k_con = 0.0;           // T / T_con, -
   double F_max = 0.0;           // largest peak contact force, N
   double z_ratio = 0.0;         // largest z_max / R*, -
+  double z_max = 0.0;           // largest peak penetration, m
+  double v_in = 0.0;            // entry velocity of the longest impact, m/s
+  double impulse = 0.0;         // impulse of the longest impact, N s
   bool hertz_valid = true;
   double max_floquet = 0.0;     // largest |Floquet multiplier| (NaN when not computed)
   int stable = -1;              // 1 stable, 0 unstable, -1 unknown
@@ -84,7 +87,8 @@ struct CensusSummary {
   SolveStatus status = SolveStatus::ok;
   std::string message;
   double T = 0.0;                      // forcing period, s
-  std::vector<Attractor> attractors;   // the periodic ones first, by basin fraction
+  std::vector<Attractor> attractors;   // by basin fraction (discovery order on ties), at most
+                                       // max_attractors; the one rest reaches is always listed
   int K = 0;
   int unresolved = 0;                  // initial states labelled kUnresolvedLabel
   int unlisted = 0;                    // initial states labelled kUnlistedLabel

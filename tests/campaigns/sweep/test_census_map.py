@@ -1,0 +1,114 @@
+"""Census maps end to end (issue #11): a sweep whose scene has [census] keeps, per cell, every
+attractor with its basin fraction, on MPI ranks, with checkpoint and resume.
+
+- the census map does not depend on the number of ranks (1, 2), wall_s aside;
+- each cell's census equals `vibromap run --census` at that cell's point (same numbers);
+- per cell, the listed fractions, the unresolved and the unlisted fractions sum to 1, and
+  soft_fraction is the sum of the soft attractors' fractions;
+- a census sweep killed with SIGKILL resumes to the same map as an uninterrupted run.
+"""
+import json
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from campaign_helpers import ENV, EXE, MPIEXEC, kill_all, wait_for_cells_done  # noqa: E402
+from test_sweep_mpi import assert_same_map, sweep  # noqa: E402
+
+# Table 2 (SPEC.md) over E1 x E2 where (1,1) and (3,3) coexist in places; K initial states.
+CENSUS_SCENE = """
+[system]
+m2 = 310.0
+omega2 = 3.606
+
+[census]
+initial_conditions = {k}
+seed = 3
+max_attractors = 4
+
+[sweep]
+E1 = {{ from = 1e9, to = 2.1e11, n = {n1}, scale = "log" }}
+E2 = {{ from = 2e4, to = 1e7, n = {n2}, scale = "log" }}
+store = ["k_con"]
+checkpoint_interval = {checkpoint}
+"""
+
+
+def write_scene(tmp_path, n1, n2, checkpoint=60.0, k=8):
+    path = tmp_path / "census.toml"
+    path.write_text(CENSUS_SCENE.format(n1=n1, n2=n2, checkpoint=checkpoint, k=k))
+    return path
+
+
+def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
+    scene = write_scene(tmp_path, 3, 3)
+    one, two = tmp_path / "one.h5", tmp_path / "two.h5"
+    sweep(1, scene, one)
+    sweep(2, scene, two)
+    assert_same_map(one, two)
+    with h5py.File(two, "r") as f:
+        assert int(f.attrs["census_attractors"]) == 4
+        assert f["attractor_fraction"].shape == (3, 3, 4)
+        count = f["attractors"][()]
+        fraction = f["attractor_fraction"][()]
+        soft = f["attractor_soft"][()]
+        assert (count >= 1).all()
+        listed = np.nansum(fraction, axis=2)
+        np.testing.assert_allclose(listed + f["unresolved_fraction"][()] + f["unlisted_fraction"][()], 1.0,
+                                   rtol=0, atol=1e-12)
+        np.testing.assert_allclose(np.where(soft == 1, fraction, 0.0).sum(axis=2), f["soft_fraction"][()],
+                                   rtol=0, atol=1e-12)
+        # The ordinary datasets describe the attractor rest reaches.
+        from_rest = f["attractor_from_rest"][()]
+        for i, j in np.ndindex(3, 3):
+            rest = list(from_rest[i, j]).index(1)
+            assert f["n"][i, j] == f["attractor_n"][i, j, rest]
+            assert f["k"][i, j] == f["attractor_k"][i, j, rest]
+        # A bistable cell somewhere: more than one attractor.
+        assert (count >= 2).any()
+        i, j = np.argwhere(count >= 2)[0]
+        e1, e2 = f["E1"][i], f["E2"][j]
+        cell = {name: f[name][i, j] for name in ("attractors", "soft_fraction")}
+        per = {name: f["attractor_" + name][i, j] for name in ("n", "k", "k_con", "fraction", "max_floquet", "x1")}
+    run = subprocess.run([EXE, "run", str(scene), "--census", "--format", "json",
+                          "--set", f"contact.E1={e1!r}", "--set", f"contact.E2={e2!r}"],
+                         env=ENV, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    attractors = json.loads(run.stdout)["attractors"]
+    assert len(attractors) == cell["attractors"]
+    for a, got in enumerate(attractors):
+        assert got["n"] == per["n"][a] and got["k"] == per["k"][a]
+        assert got["fraction"] == per["fraction"][a]
+        assert got["k_con"] == per["k_con"][a]
+        if got["strobe"]:  # periodic: the first stroboscopic state; else NaN
+            assert got["strobe"][0][0] == per["x1"][a]
+        else:
+            assert np.isnan(per["x1"][a])
+
+
+def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
+    scene = write_scene(tmp_path, 4, 4, checkpoint=0.2, k=24)
+    reference = tmp_path / "reference.h5"
+    sweep(2, scene, reference)
+
+    out = tmp_path / "killed.h5"
+    proc = subprocess.Popen([MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out), "--quiet"],
+                            env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wait_for_cells_done(proc, out, 3, poll=0.05)
+    assert proc.poll() is None, "the census sweep finished before it could be killed; make it longer"
+    kill_all(proc.pid)
+    proc.wait()
+    with h5py.File(out, "r") as f:
+        done = f["done"][()]
+        before = int(done.sum())
+        assert 0 < before < done.size
+        assert (f["attractors"][()][done == 0] == 0).all()
+        assert np.isnan(f["attractor_fraction"][()][done == 0]).all()
+    report = json.loads(sweep(2, scene, out, "--resume", "--format", "json").stdout)
+    assert report["cells_resumed"] == before
+    assert report["cells_computed"] == 16 - before
+    assert_same_map(reference, out)
