@@ -168,5 +168,38 @@ TEST(Census, EveryLabelEqualsBruteForceAtTheBistableTable2Point) {
   EXPECT_DOUBLE_EQ(census.soft_fraction, census.attractors[0].fraction);
 }
 
+TEST(CensusFollower, OrbitStatesAreDecidedEarlyAndAttractorsFoundApartAreMatched) {
+  const Parameters p = table2();
+  const PointOptions options;
+  CensusOptions o;
+  o.initial_conditions = 8;
+  o.seed = 7;
+  const CensusSummary census = census_point(p, options, o);
+  ASSERT_EQ(census.attractors.size(), 2u);
+  const Attractor& soft = census.attractors[0];   // (1,1)
+  const Attractor& three = census.attractors[1];  // (3,3)
+  ASSERT_EQ(three.strobe.size(), 3u);
+
+  // A follower that has seen both attractors decides a state on the (3,3) cycle at once.
+  CensusFollower follower(p, options, o);
+  for (const Eigen::Vector4d& x0 : census_initial_conditions(p, o)) follower.follow(x0);
+  ASSERT_EQ(follower.size(), 2u);
+  const CensusFollower::Outcome on_cycle = follower.follow(three.strobe[1]);
+  ASSERT_GE(on_cycle.label, 0);
+  EXPECT_TRUE(on_cycle.early);
+  EXPECT_LE(on_cycle.periods, 3 * 2 + 1);  // its offsets are ~0 from the first cycle on
+  EXPECT_TRUE(same_attractor(p, options, follower.attractor(static_cast<std::size_t>(on_cycle.label)), three));
+
+  // The same orbit up to a cyclic shift is the same attractor; another orbit or a perturbed one is not.
+  Attractor shifted = three;
+  std::rotate(shifted.strobe.begin(), shifted.strobe.begin() + 1, shifted.strobe.end());
+  EXPECT_TRUE(same_attractor(p, options, three, shifted));
+  EXPECT_FALSE(same_attractor(p, options, three, soft));
+  Attractor moved = three;
+  moved.strobe[2][0] += 1e-3 * StateScale(Model(p)).length();
+  EXPECT_FALSE(same_attractor(p, options, three, moved));
+  EXPECT_THROW(CensusFollower(p, options, CensusOptions{.initial_conditions = 0}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace vibromap

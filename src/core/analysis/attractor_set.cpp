@@ -72,6 +72,10 @@ AttractorSet::AttractorSet(const Parameters& p, const PointOptions& options, con
   if (census.early_stop) follow_.rtol = std::max(census.rtol, options.integrator.rtol);
 }
 
+double same_orbit_tolerance(const PointOptions& options) {
+  return std::max(kSameOrbit, 1000.0 * newton_tolerance(options));
+}
+
 double AttractorSet::newton_tol() const {
   return newton_tolerance(options_);
 }
@@ -175,7 +179,7 @@ bool AttractorSet::visits(std::size_t i, const Cell& c) const {
 
 bool AttractorSet::same_orbit(const Orbit& o, const std::vector<State>& points) const {
   if (static_cast<int>(points.size()) != o.n) return false;
-  const double tol = std::max(kSameOrbit, 1000.0 * newton_tol());
+  const double tol = same_orbit_tolerance(options_);
   for (int shift = 0; shift < o.n; ++shift) {
     bool all = true;
     for (int k = 0; k < o.n && all; ++k)

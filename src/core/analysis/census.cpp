@@ -103,11 +103,7 @@ class PhaseSampler final : public Observer {
   std::vector<State> states_;
 };
 
-struct Followed {
-  int label = kUnresolvedLabel;
-  bool early = false;
-  long periods = 0;
-};
+using Followed = CensusFollower::Outcome;
 
 // One initial state followed to its attractor (census.hpp says how it is decided).
 Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
@@ -220,21 +216,23 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
     return s;
   }
 
-  AttractorSet set(p, options, census);
+  CensusFollower follower(p, options, census);
   std::vector<int> labels;
   for (const Eigen::Vector4d& x0 : ics) {
-    const Followed f = follow(set, options, census, x0, s.counters);
+    const CensusFollower::Outcome f = follower.follow(x0);
     labels.push_back(f.label);
     s.periods += f.periods;
     s.decided_early += f.early ? 1 : 0;
   }
+  s.counters = follower.counters();
 
   // List the attractors by how many initial states reach them (discovery order on ties), at
   // most max_attractors; the others' initial states become unlisted.
-  std::vector<int> counts(set.size(), 0);
+  const std::size_t found = follower.size();
+  std::vector<int> counts(found, 0);
   for (int l : labels)
     if (l >= 0) ++counts[static_cast<std::size_t>(l)];
-  std::vector<std::size_t> order(set.size());
+  std::vector<std::size_t> order(found);
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
   if (order.size() > static_cast<std::size_t>(census.max_attractors)) {
@@ -245,10 +243,10 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
       std::rotate(order.begin() + census.max_attractors - 1, rest_at, rest_at + 1);
     order.resize(static_cast<std::size_t>(census.max_attractors));
   }
-  std::vector<int> listed(set.size(), kUnlistedLabel);
+  std::vector<int> listed(found, kUnlistedLabel);
   for (std::size_t k = 0; k < order.size(); ++k) {
     listed[order[k]] = static_cast<int>(k);
-    Attractor a = set.record(order[k]);
+    Attractor a = follower.attractor(order[k]);
     a.count = counts[order[k]];
     const double f = static_cast<double>(a.count) / s.K;
     a.fraction = f;
@@ -269,6 +267,46 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
+}
+
+struct CensusFollower::Impl {
+  Impl(const Parameters& p, const PointOptions& o, const CensusOptions& c) : options(o), census(c), set(p, o, c) {}
+  PointOptions options;
+  CensusOptions census;
+  AttractorSet set;
+  IntegrationCounters counters;
+};
+
+CensusFollower::CensusFollower(const Parameters& p, const PointOptions& options, const CensusOptions& census) {
+  if (std::string err = check_inputs(p, options, census); !err.empty()) throw std::invalid_argument(err);
+  impl_ = std::make_unique<Impl>(p, options, census);
+}
+CensusFollower::~CensusFollower() = default;
+CensusFollower::CensusFollower(CensusFollower&&) noexcept = default;
+CensusFollower& CensusFollower::operator=(CensusFollower&&) noexcept = default;
+
+CensusFollower::Outcome CensusFollower::follow(const Eigen::Vector4d& x0) {
+  return vibromap::follow(impl_->set, impl_->options, impl_->census, x0, impl_->counters);
+}
+std::size_t CensusFollower::size() const { return impl_->set.size(); }
+const Attractor& CensusFollower::attractor(std::size_t i) const { return impl_->set.record(i); }
+const IntegrationCounters& CensusFollower::counters() const { return impl_->counters; }
+
+bool same_attractor(const Parameters& p, const PointOptions& options, const Attractor& a, const Attractor& b) {
+  if (a.periodic != b.periodic) return false;
+  if (!a.periodic) return a.regime.kind == b.regime.kind;
+  const std::size_t n = a.strobe.size();
+  if (n == 0 || b.strobe.size() != n) return false;
+  const Model model(p);
+  const StateScale scale(model);
+  const double tol = census_detail::same_orbit_tolerance(options);
+  for (std::size_t shift = 0; shift < n; ++shift) {
+    bool all = true;
+    for (std::size_t k = 0; k < n && all; ++k)
+      all = scale.distance(Model::to_internal(a.strobe[(k + shift) % n]), Model::to_internal(b.strobe[k])) <= tol;
+    if (all) return true;
+  }
+  return false;
 }
 
 }  // namespace vibromap

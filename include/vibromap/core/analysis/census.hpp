@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -102,5 +103,39 @@ struct CensusSummary {
 };
 
 CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census);
+
+// Follows initial states one at a time to their attractors, keeping every attractor it finds so
+// that later states are decided early against them (census_point runs one over its K states;
+// `vibromap basins` keeps one per MPI rank over the pixels it is given). Not thread-safe.
+class CensusFollower {
+ public:
+  // Throws std::invalid_argument when p, options or census do not validate (or use rk4).
+  CensusFollower(const Parameters& p, const PointOptions& options, const CensusOptions& census);
+  ~CensusFollower();
+  CensusFollower(CensusFollower&&) noexcept;
+  CensusFollower& operator=(CensusFollower&&) noexcept;
+
+  struct Outcome {
+    int label = kUnresolvedLabel;  // index into attractor(), kUnresolvedLabel or kUnlistedLabel
+    bool early = false;            // decided by capture or recurrence
+    long periods = 0;              // forcing periods integrated
+  };
+  // x0: physical state (x1, x2, v1, v2). Unlisted here means no room for another attractor
+  // (4 max_attractors kept); count, fraction, from_rest of the attractors are not filled in.
+  Outcome follow(const Eigen::Vector4d& x0);
+  std::size_t size() const;
+  const Attractor& attractor(std::size_t i) const;
+  const IntegrationCounters& counters() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Whether two attractors of the point (p, options) found apart (other ranks, other runs) are the
+// same one: periodic ones of the same period whose stroboscopic states agree up to a cyclic shift
+// within the census's orbit tolerance (scaled distance max(1e-6, 1000 Newton tolerances)); two
+// non-periodic ones when they have the same regime kind (their recurrence sets are not compared).
+bool same_attractor(const Parameters& p, const PointOptions& options, const Attractor& a, const Attractor& b);
 
 }  // namespace vibromap
