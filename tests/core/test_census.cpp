@@ -198,7 +198,9 @@ TEST(CensusFollower, OrbitStatesAreDecidedEarlyAndAttractorsFoundApartAreMatched
   Attractor moved = three;
   moved.strobe[2][0] += 1e-3 * StateScale(Model(p)).length();
   EXPECT_FALSE(same_attractor(p, options, three, moved));
-  EXPECT_THROW(CensusFollower(p, options, CensusOptions{.initial_conditions = 0}), std::invalid_argument);
+  CensusOptions bad;
+  bad.initial_conditions = 0;
+  EXPECT_THROW(CensusFollower(p, options, bad), std::invalid_argument);
 }
 
 }  // namespace
