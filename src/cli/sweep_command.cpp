@@ -19,6 +19,8 @@ std::string default_output(const std::string& scene_path) {
 }
 
 double rate(const FarmReport& f) { return f.wall_s > 0 ? static_cast<double>(f.items_computed) / f.wall_s : 0.0; }
+// A census map: initial states followed per second (K per cell computed).
+double state_rate(const SweepReport& r) { return rate(r.farm) * r.census_initial_conditions; }
 
 void print_json(std::ostream& out, const SweepReport& r, const std::string& output) {
   const FarmReport& f = r.farm;
@@ -39,6 +41,8 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
       .field("stopped_by", f.stop_signal ? signal_name(f.stop_signal) : std::string())
       .field("requests", f.requests)
       .field("request_us", f.requests ? 1e6 * f.request_s / static_cast<double>(f.requests) : 0.0);
+  if (r.census_initial_conditions > 0)
+    w.field("census_initial_conditions", r.census_initial_conditions).field("initial_conditions_per_s", state_rate(r));
   w.key("regimes").begin_object();
   for (const auto& [label, count] : r.regimes) w.field(label, count);
   w.end_object().end_object();
@@ -54,8 +58,11 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
       << "ranks          " << f.ranks << "\n"
       << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << rate(f) << " cells/s\n"
       << "checkpoints    " << f.checkpoints << " (" << f.checkpoint_s << " s writing, longest " << f.checkpoint_max_s
-      << " s)\n"
-      << "regimes       ";
+      << " s)\n";
+  if (r.census_initial_conditions > 0)
+    out << "census         " << r.census_initial_conditions << " initial states per cell, " << state_rate(r)
+        << " initial states/s\n";
+  out << "regimes       ";
   for (const auto& [label, count] : r.regimes) out << " " << label << " " << count;
   out << "\n";
 }

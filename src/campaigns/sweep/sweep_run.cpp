@@ -139,6 +139,7 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   SweepReport report;
   report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
   if (sink) report.regimes = sink->regimes();
+  if (scene.census) report.census_initial_conditions = scene.census->initial_conditions;
   return report;
 }
 

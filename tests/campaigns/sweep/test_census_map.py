@@ -48,7 +48,9 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
     scene = write_scene(tmp_path, 3, 3)
     one, two = tmp_path / "one.h5", tmp_path / "two.h5"
     sweep(1, scene, one)
-    sweep(2, scene, two)
+    report = json.loads(sweep(2, scene, two, "--format", "json").stdout)
+    assert report["census_initial_conditions"] == 8
+    assert abs(report["initial_conditions_per_s"] - 8 * report["cells_per_s"]) <= 1e-9 * report["initial_conditions_per_s"]
     assert_same_map(one, two)
     with h5py.File(two, "r") as f:
         assert int(f.attrs["census_attractors"]) == 4
