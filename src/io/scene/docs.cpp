@@ -155,7 +155,8 @@ void write_reference_optimise(std::ostream& os) {
 // A commented example [census] section: without the leading "# ", its lines parse.
 void write_reference_census(std::ostream& os) {
   os << "\n# How `vibromap run --census` looks for every attractor of the point, with its basin fraction.\n"
-        "# Every key is optional (a scene without [census] uses these defaults).\n"
+        "# Every key is optional (a scene without [census] uses these defaults). In a sweep scene, a\n"
+        "# [census] section runs the census in every cell (a census map: every attractor per cell).\n"
         "#\n"
         "# [census]\n";
   for (const detail::CensusRow& row : detail::census_rows()) {
@@ -202,7 +203,8 @@ void write_scene_keys(std::ostream& os) {
   os << "\n[optimise] (only in an optimisation scene: free parameters around the point above; example in "
         "jobs/reference.toml)\n";
   write_key_table(os, optimise_doc_rows());
-  os << "\n[census] (how `vibromap run --census` looks for every attractor; every key optional)\n";
+  os << "\n[census] (how `vibromap run --census` looks for every attractor; every key optional; in a sweep scene "
+        "it makes a census map)\n";
   write_key_table(os, census_doc_rows());
 }
 
