@@ -89,6 +89,25 @@ std::string optimise_journal_path(const std::string& output);
 // the map or the journal checkpointed).
 int optimise_command(const OptimiseArgs& args, std::ostream& out);
 
+// `vibromap orbit-diagram SCENE --param KEY --from A --to B --steps N [--transient P] [--keep M]
+// [-o FILE.h5] [--overwrite] [-q] [--format table|json] [--set section.key=value]...`.
+// Collective under mpirun (the two directions run on two ranks); only rank 0 prints.
+struct OrbitDiagramArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string param;             // the scene key to step ("forcing.omega", "omega", "contact.E2", ...)
+  double from = 0.0, to = 0.0;   // its range, SI units, from < to
+  int steps = 41;                // points from `from` to `to`, both included
+  std::string scale = "lin";     // spacing of the points: lin or log
+  long transient = 300;          // periods before the states are kept, at each point
+  int keep = 16;                 // stroboscopic states kept at each point
+  std::string output;            // HDF5 file; empty: none
+  bool overwrite = false;
+  bool quiet = false;
+  std::string format = "table";
+};
+int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out);
+
 // Rank 0 reads and checks the scene (its error ends every rank with one line from rank 0); the
 // other ranks parse the text it read, so only rank 0 needs to see the file.
 Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets);

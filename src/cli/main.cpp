@@ -39,8 +39,8 @@ int report(std::string_view message, ExitCode exit) {
 std::string main_footer() {
   return exit_code_summary() +
          "\n'vibromap run --help' explains a run, 'vibromap sweep --help' a sweep, 'vibromap accuracy\n"
-         "--help' the accuracy study, 'vibromap optimise --help' the optimisation; 'vibromap keys'\n"
-         "lists the scene keys.";
+         "--help' the accuracy study, 'vibromap optimise --help' the optimisation, 'vibromap\n"
+         "orbit-diagram --help' the bifurcation diagram; 'vibromap keys' lists the scene keys.";
 }
 
 std::string run_footer() {
@@ -212,6 +212,49 @@ CLI::App* add_optimise(CLI::App& app, cli::OptimiseArgs& args) {
   return opt;
 }
 
+CLI::App* add_orbit_diagram(CLI::App& app, cli::OrbitDiagramArgs& args) {
+  CLI::App* od = app.add_subcommand("orbit-diagram",
+                                    "Brute-force bifurcation diagram: step one key up and down, carrying the state");
+  od->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
+  od->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+      ->allow_extra_args(false)
+      ->type_name("SECTION.KEY=VALUE");
+  od->add_option("-p,--param", args.param, "The scene key to step: forcing.omega, omega, contact.E2, m2, ...")
+      ->required()
+      ->type_name("KEY");
+  od->add_option("--from", args.from, "First value of the key (SI units)")->required()->type_name("A");
+  od->add_option("--to", args.to, "Last value (> A)")->required()->type_name("B");
+  od->add_option("-n,--steps", args.steps, "Points from A to B, both included")->capture_default_str();
+  od->add_option("--scale", args.scale, "Spacing of the points")
+      ->check(CLI::IsMember({"lin", "log"}))
+      ->type_name("lin|log")
+      ->capture_default_str();
+  od->add_option("--transient", args.transient, "Forcing periods integrated at each point before states are kept")
+      ->capture_default_str();
+  od->add_option("--keep", args.keep, "Stroboscopic states kept at each point")->capture_default_str();
+  od->add_option("-o,--output", args.output, "HDF5 file of the kept states (none by default)")->type_name("FILE.h5");
+  od->add_flag("--overwrite", args.overwrite, "Replace an existing file");
+  od->add_flag("-q,--quiet", args.quiet, "No progress lines");
+  od->add_option("-f,--format", args.format, "Output on stdout: table or json")
+      ->check(CLI::IsMember({"table", "json"}))
+      ->type_name("table|json")
+      ->capture_default_str();
+  od->footer(
+      "The scene's point is stepped through N values of KEY, from A to B and back from B to A.\n"
+      "At the first point the motion starts from the scene's initial state (rest unless [initial]\n"
+      "says otherwise); at every next point it starts from the last state of the point before, so\n"
+      "a branch is followed as far as it lives and the up and down sweeps differ where the\n"
+      "response is multivalued (hysteresis). At each point TRANSIENT forcing periods are\n"
+      "integrated, then KEEP stroboscopic states (at the period starts) are kept: one value for a\n"
+      "period-1 motion, n for period n, a cloud for a chaotic one. The two directions run on two\n"
+      "MPI ranks at once. KEY is checked as a [sweep] axis would be (vibromap keys). The table\n"
+      "prints the range of x1 and the number of distinct x1 values per point and direction;\n"
+      "--format json prints steps (param, direction, status, strobe_x1); -o writes every kept state\n"
+      "(postprocess/vmpy plot_orbit_diagram FILE.h5 draws it).\n\n" +
+      main_footer());
+  return od;
+}
+
 CLI::App* add_keys(CLI::App& app, bool& as_toml) {
   CLI::App* keys = app.add_subcommand("keys", "List every scene key: default, unit, allowed values, meaning");
   keys->add_flag("--toml", as_toml, "Print a reference scene instead (every key with its default)");
@@ -247,10 +290,12 @@ int dispatch(int argc, char** argv) {
   cli::SweepArgs sweep_args;
   cli::AccuracyArgs accuracy_args;
   cli::OptimiseArgs optimise_args;
+  cli::OrbitDiagramArgs orbit_diagram_args;
   const CLI::App* run = add_run(app, run_args);
   const CLI::App* sweep = add_sweep(app, sweep_args);
   const CLI::App* accuracy = add_accuracy(app, accuracy_args);
   const CLI::App* optimise = add_optimise(app, optimise_args);
+  const CLI::App* orbit_diagram = add_orbit_diagram(app, orbit_diagram_args);
   add_keys(app, keys_toml);
   try {
     check_command_name(app, argc, argv);
@@ -262,6 +307,7 @@ int dispatch(int argc, char** argv) {
   if (sweep->parsed()) return cli::sweep_command(sweep_args, std::cout);
   if (accuracy->parsed()) return cli::accuracy_command(accuracy_args, std::cout);
   if (optimise->parsed()) return cli::optimise_command(optimise_args, std::cout);
+  if (orbit_diagram->parsed()) return cli::orbit_diagram_command(orbit_diagram_args, std::cout);
   return cli::keys_command(keys_toml, std::cout);
 }
 

@@ -151,3 +151,16 @@ vibromap_cli_test(run_census_bad_box RC 2 ARGS run jobs/paper/table1.toml --cens
                   ERR "census\\.x1=\\[1, 0\\]: must be an array \\[lo, hi\\]")
 vibromap_cli_test(run_census_unknown_key RC 2 ARGS run jobs/paper/table1.toml --census --set census.initial_states=4
                   ERR "unknown key 'initial_states' in \\[census\\]; keys of \\[census\\]: initial_conditions")
+
+# `vibromap orbit-diagram` (issue #12): the path up and back down, the state carried; a clear
+# line for a bad key, range or option.
+vibromap_cli_test(orbit_diagram_json RC 0 ARGS orbit-diagram jobs/paper/table2.toml --param omega --from 7.8 --to 8
+                  --steps 2 --keep 2 --format json -q
+                  OUT "\"key\": \"forcing\.omega\".*\"param\": 7\.8,[^}]*\"direction\": \"up\",[^}]*\"status\": \"ok\".*\"param\": 8,[^}]*\"direction\": \"down\"")
+vibromap_cli_test(orbit_diagram_bad_key RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param omeg --from 7 --to 8
+                  ERR "--param omeg: unknown key 'omeg' in \\[sweep\\] \\(did you mean 'omega'\\?\\)")
+vibromap_cli_test(orbit_diagram_bad_range RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param omega --from 8 --to 7
+                  ERR "--from 8 --to 7: need finite values with from < to")
+vibromap_cli_test(orbit_diagram_out_of_range RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param m2 --from -1 --to 8
+                  ERR "--param m2: .*must be > 0")
+vibromap_cli_test(orbit_diagram_help RC 0 ARGS orbit-diagram --help OUT "--param.*--from.*--transient.*--keep.*hysteresis")
