@@ -144,10 +144,13 @@ def _read_start(group, path: str, variables: int) -> Start:
 
 def _read_best(group) -> dict:
     point = {name: float(value) for name, value in group.attrs.items() if np.asarray(value).dtype.kind in "iuf"}
-    solve = group.get("integrate")
-    if solve is not None:
-        for name, value in solve.attrs.items():
-            point[f"integrate_{name}"] = _text(value) if np.asarray(value).dtype.kind in "SUO" else value
+    # integrate/: the re-solve from rest; soft_check/: the soft-fraction re-check (min_soft_fraction > 0 only;
+    # older files have none).
+    for sub in ("integrate", "soft_check"):
+        solve = group.get(sub)
+        if solve is not None:
+            for name, value in solve.attrs.items():
+                point[f"{sub}_{name}"] = _text(value) if np.asarray(value).dtype.kind in "SUO" else value
     return point
 
 
@@ -177,6 +180,15 @@ def read_optimise(path: str) -> Optimisation:
             best=best,
             trajectory=_text(f.attrs.get("trajectory", "")),
         )
+
+
+def soft_check_text(point: dict) -> str:
+    """The soft-fraction re-check of a best point for a label ("" without one)."""
+    if "soft_check_soft_fraction" not in point:
+        return ""
+    verdict = "" if point.get("soft_check_passed", 0) else ", FAILS the check"
+    return (f"\nsoft fraction {point['soft_check_soft_fraction']:.3g} +- {point['soft_check_soft_fraction_stderr']:.2g}"
+            f" (K = {int(point['soft_check_initial_conditions'])}){verdict}")
 
 
 def running_best(objective: np.ndarray, feasible: np.ndarray, sense: str) -> np.ndarray:
@@ -221,7 +233,8 @@ def plot_convergence(opt: Optimisation):
         ax.set_yscale("log")
     if opt.best:
         level = opt.best[0].get("objective", np.nan)
-        ax.axhline(level, color="k", linestyle="--", linewidth=0.8, label=f"best {opt.quantity} = {level:.5g}")
+        ax.axhline(level, color="k", linestyle="--", linewidth=0.8,
+                   label=f"best {opt.quantity} = {level:.5g}{soft_check_text(opt.best[0])}")
     ax.set_xlabel("evaluation (point solves of the start, in order)")
     ax.set_ylabel(f"{opt.quantity} ({opt.sense}d)")
     ax.set_title(f"{os.path.basename(opt.path)}: convergence of {len(opt.starts)} starts, keeping {opt.regime}\n"

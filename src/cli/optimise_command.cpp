@@ -74,6 +74,35 @@ void write_solve_json(JsonWriter& w, const PointSummary& s) {
   w.field("max_multiplier", max_multiplier(s)).field("periods", s.periods).field("wall_s", s.wall_s).end_object();
 }
 
+// The lowest re-checked fraction that passes the soft check.
+double soft_threshold(const SoftCheck& c, const OptimiseOptions& o) {
+  return o.min_soft_fraction - kSoftCheckSigmas * c.fraction_stderr;
+}
+
+void write_soft_check_json(JsonWriter& w, const VerifiedPoint& v, const OptimiseOptions& o) {
+  w.field("soft_fraction", v.soft_fraction).key("soft_check");
+  if (!v.soft_check) {
+    w.null();
+    return;
+  }
+  const SoftCheck& c = *v.soft_check;
+  w.begin_object().field("status", to_string(c.census.status)).field("initial_conditions", c.census.K);
+  w.field("seed", c.seed).field("soft_fraction", c.fraction).field("soft_fraction_stderr", c.fraction_stderr);
+  w.field("threshold", soft_threshold(c, o)).field("passed", c.passed).key("orbit_attractor");
+  if (c.orbit_attractor < 0) {
+    w.null();
+  } else {
+    w.value(c.orbit_attractor);
+  }
+  w.field("orbit_fraction", c.orbit_fraction).field("wall_s", c.census.wall_s).key("attractors").begin_array();
+  for (const Attractor& a : c.census.attractors) {
+    w.begin_object().field("regime", a.regime.label()).field("k_con", a.k_con).field("fraction", a.fraction);
+    w.field("fraction_stderr", a.fraction_stderr).field("hertz_valid", a.hertz_valid);
+    stable_value(w.key("stable"), a.stable).field("soft", a.soft).end_object();
+  }
+  w.end_array().end_object();
+}
+
 void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint& v, const OptimiseOptions& o) {
   const PointSummary& s = v.integrate;
   w.begin_object().key("params").begin_object();
@@ -90,7 +119,9 @@ void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint
   write_solve_json(w, v.integrate);
   w.key("shooting");
   write_solve_json(w, v.shooting);
-  w.field("agree", solves_agree(v)).end_object();
+  w.field("agree", solves_agree(v));
+  write_soft_check_json(w, v, o);
+  w.end_object();
 }
 
 void write_starts_json(JsonWriter& w, const OptimiseReport& r, const OptimiseOptions& o) {
@@ -125,7 +156,8 @@ void print_json(std::ostream& out, const OptimiseRun& run, const OptimiseOptions
   w.begin_object().field("output", output).field("seeds_from", r.seeds_from).field("trajectory", r.trajectory_file);
   w.field("objective", to_string(o.objective)).field("quantity", objective_quantity(o.objective));
   w.field("regime", o.regime ? o.regime->label() : std::string("any")).field("stability", to_string(o.stability));
-  w.field("hertz_valid", o.hertz_valid);
+  w.field("hertz_valid", o.hertz_valid).field("min_soft_fraction", o.min_soft_fraction);
+  w.field("soft_check_initial_conditions", o.soft_check_initial_conditions);
   w.field("ranks", r.ranks).field("seeds", r.seeds.size()).field("evaluations", r.evaluations());
   w.field("starts_resumed", run.starts_resumed).field("sweep_cells_computed", run.sweep.items_computed);
   w.field("wall_s", r.wall_s).field("sweep_wall_s", r.sweep_wall_s).field("optimise_wall_s", r.optimise_wall_s);
@@ -174,8 +206,43 @@ void print_algorithms_table(std::ostream& out, const OptimiseReport& r, const Op
   }
 }
 
+// A best point's soft fraction: the optimiser's census, the re-check, its verdict, and the
+// soft attractors (which the optimised orbit is among them, when it is).
+void print_soft_check(std::ostream& out, const VerifiedPoint& v, const OptimiseOptions& o) {
+  if (!v.soft_check) return;
+  const SoftCheck& c = *v.soft_check;
+  out << "soft fraction  " << number(v.soft_fraction, 4) << " (optimiser's census); re-check of "
+      << c.census.K << " other initial states: " << number(c.fraction, 4) << " +- " << number(c.fraction_stderr, 2);
+  if (c.census.status != SolveStatus::ok) {
+    out << "  FAILS THE SOFT CHECK: the census failed (" << c.census.message << ")\n    ";
+  } else if (c.passed) {
+    out << "  passes (>= " << number(o.min_soft_fraction) << " - 3 stderr = " << number(soft_threshold(c, o), 4)
+        << ")\n    ";
+  } else {
+    out << "  FAILS THE SOFT CHECK (< " << number(o.min_soft_fraction) << " - 3 stderr = "
+        << number(soft_threshold(c, o), 4) << ")\n    ";
+  }
+  out << "soft attractors:";
+  bool any = false;
+  for (std::size_t i = 0; i < c.census.attractors.size(); ++i) {
+    const Attractor& a = c.census.attractors[i];
+    if (!a.soft) continue;
+    out << (any ? ";" : "") << " " << a.regime.label() << " k_con " << number(a.k_con) << " fraction "
+        << number(a.fraction, 4) << (static_cast<int>(i) == c.orbit_attractor ? " (the optimised orbit)" : "");
+    any = true;
+  }
+  if (!any) out << " none";
+  if (c.orbit_attractor < 0) {
+    out << "; the optimised orbit is not among the census's attractors";
+  } else if (!c.census.attractors[static_cast<std::size_t>(c.orbit_attractor)].soft) {
+    out << "; the optimised orbit (fraction " << number(c.orbit_fraction, 4) << ") is not soft";
+  }
+  out << "\n    ";
+}
+
 void print_best_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o) {
-  out << "\nbest points, re-solved from scratch at rtol " << number(o.verify_rtol) << " (brute force from rest; shooting):\n";
+  out << "\nbest points, re-solved from scratch at rtol " << number(o.verify_rtol) << " (brute force from rest; shooting)"
+      << (o.min_soft_fraction > 0.0 ? ", those that pass the soft check first" : "") << ":\n";
   for (std::size_t i = 0; i < r.best.size(); ++i) {
     const VerifiedPoint& v = r.best[i];
     const PointSummary& s = v.integrate;
@@ -185,20 +252,32 @@ void print_best_table(std::ostream& out, const OptimiseReport& r, const Optimise
         << (solves_agree(v) ? ", agrees" : ", DISAGREES") << ")  start " << v.start << "\n    ";
     if (!s.hertz_valid)
       out << "Hertz theory flagged: z_max/R* = " << number(s.z_ratio, 3) << " (beyond [analysis] hertz_limit)\n    ";
+    print_soft_check(out, v, o);
     for (const std::string_view name : {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"})
       out << name << " " << number(get_parameter(v.params, name)) << "  ";
     out << "\n    --set:";
     for (const FreeVariable& f : o.variables) out << " " << parameter_override(f.name, get_parameter(v.params, f.name));
     out << "\n";
   }
-  if (r.best.empty()) out << "(no start found a feasible point)\n";
+  if (r.best.empty()) {
+    out << "(no start found a feasible point)\n";
+    if (o.min_soft_fraction > 0.0 && !o.hertz_valid)
+      out << "(min_soft_fraction counts Hertz-valid attractors only: with hertz_valid = true the seeds and the "
+             "search keep Hertz theory valid too)\n";
+  }
+  if (!r.best.empty() && r.best.front().soft_check && !r.best.front().soft_check->passed)
+    out << "NO BEST POINT PASSES THE SOFT CHECK: none is shown to hold min_soft_fraction " << number(o.min_soft_fraction)
+        << " of the basin\n";
 }
 
 void print_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o, const std::string& output) {
   out << "output         " << output << "\n"
       << "objective      " << to_string(o.objective) << ", keeping " << (o.regime ? o.regime->label() : "any regime")
-      << " (stability " << to_string(o.stability) << (o.hertz_valid ? ", Hertz theory valid" : "") << ")\n"
-      << "seeds          " << r.seeds.size() << " from " << r.seeds_from << "\n"
+      << " (stability " << to_string(o.stability) << (o.hertz_valid ? ", Hertz theory valid" : "") << ")\n";
+  if (o.min_soft_fraction > 0.0)
+    out << "robust         soft attractors hold >= " << number(o.min_soft_fraction)
+        << " of the basin (a census per feasible point; the best points re-checked)\n";
+  out << "seeds          " << r.seeds.size() << " from " << r.seeds_from << "\n"
       << "starts         " << r.starts.size() << " on " << r.ranks << (r.ranks == 1 ? " rank, " : " ranks, ")
       << r.evaluations() << " evaluations\n"
       << "wall time      " << number(r.wall_s, 4) << " s (sweep " << number(r.sweep_wall_s, 4) << ", starts "

@@ -57,6 +57,8 @@ void write_root(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o, 
   f.set_attribute("regime", o.regime ? o.regime->label() : std::string("any"));
   f.set_attribute("stability", to_string(o.stability));
   f.set_attribute("hertz_valid", o.hertz_valid ? 1 : 0);
+  f.set_attribute("min_soft_fraction", o.min_soft_fraction);
+  f.set_attribute("soft_check_initial_conditions", o.soft_check_initial_conditions);
   f.set_attribute("variables", joined(r.variables));
   std::vector<std::string> scales;
   for (const FreeVariable& v : o.variables) scales.push_back(to_string(v.scale));
@@ -165,14 +167,59 @@ void write_solve(Group g, const PointSummary& s) {
   g.write_dataset("floquet", mu, {s.floquet.size(), 2});
 }
 
-void write_best(Group& g, const VerifiedPoint& v, double sense) {
+// The re-check census of a best point: its verdict as attributes, its attractors as columns.
+void write_soft_check(Group g, const SoftCheck& c, const OptimiseOptions& o) {
+  g.set_attribute("status", to_string(c.census.status));
+  g.set_attribute("message", c.census.message);
+  g.set_attribute("initial_conditions", c.census.K);
+  g.set_attribute("seed", static_cast<std::int64_t>(c.seed));
+  g.set_attribute("soft_fraction", c.fraction);
+  g.set_attribute("soft_fraction_stderr", c.fraction_stderr);
+  g.set_attribute("threshold", o.min_soft_fraction - kSoftCheckSigmas * c.fraction_stderr);
+  g.set_attribute("passed", c.passed ? 1 : 0);
+  g.set_attribute("orbit_attractor", c.orbit_attractor);
+  g.set_attribute("orbit_fraction", c.orbit_fraction);
+  g.set_attribute("unresolved", c.census.unresolved);
+  g.set_attribute("unlisted", c.census.unlisted);
+  g.set_attribute("wall_s", c.census.wall_s);
+  std::vector<double> k_con, T_con, fraction, stderr_;
+  std::vector<std::int8_t> regime, stable;
+  std::vector<int> n, k;
+  std::vector<std::uint8_t> soft;
+  for (const Attractor& a : c.census.attractors) {
+    regime.push_back(regime_code(a.regime.kind));
+    n.push_back(a.regime.n);
+    k.push_back(a.regime.k);
+    k_con.push_back(a.k_con);
+    T_con.push_back(a.T_con);
+    fraction.push_back(a.fraction);
+    stderr_.push_back(a.fraction_stderr);
+    stable.push_back(static_cast<std::int8_t>(a.stable));
+    soft.push_back(a.soft ? 1 : 0);
+  }
+  Dataset rd = g.write_dataset("regime", regime);
+  set_regime_flags(rd);
+  g.write_dataset("n", n);
+  g.write_dataset("k", k);
+  g.write_dataset("k_con", k_con);
+  g.write_dataset("T_con", T_con).set_attribute("units", "s");
+  g.write_dataset("fraction", fraction);
+  g.write_dataset("fraction_stderr", stderr_);
+  g.write_dataset("stable", stable);
+  g.write_dataset("soft", soft);
+}
+
+void write_best(Group& g, const VerifiedPoint& v, const OptimiseOptions& o) {
+  const double sense = objective_sense(o.objective);
   g.set_attribute("start", v.start);
   g.set_attribute("evaluation", static_cast<std::int64_t>(v.evaluation));
   g.set_attribute("objective", sense * v.value);
+  g.set_attribute("soft_fraction", v.soft_fraction);
   for (const std::string_view name : free_parameter_names()) g.set_attribute(name, get_parameter(v.params, name));
   g.write_dataset("x", v.x);
   write_solve(g.create_group("integrate"), v.integrate);
   write_solve(g.create_group("shooting"), v.shooting);
+  if (v.soft_check) write_soft_check(g.create_group("soft_check"), *v.soft_check, o);
 }
 
 }  // namespace
@@ -191,7 +238,7 @@ void write_optimise_file(const std::string& path, const OptimiseReport& report, 
     Group best = f.create_group("best");
     for (std::size_t i = 0; i < report.best.size(); ++i) {
       Group g = best.create_group(padded(i, 2));
-      write_best(g, report.best[i], sense);
+      write_best(g, report.best[i], options);
     }
   });
 }

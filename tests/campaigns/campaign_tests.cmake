@@ -10,6 +10,19 @@ vibromap_cli_test(optimise_without_section RC 2 ARGS optimise jobs/paper/table1.
 vibromap_cli_test(optimise_bad_algorithm RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.algorithm=bobyq
                   ERR "--set optimise\\.algorithm=bobyq: unknown algorithm 'bobyq' \\(did you mean 'bobyqa'\\?\\)")
+# optimise.min_soft_fraction and its re-check size: out of range or not a number, before any work.
+vibromap_cli_test(optimise_min_soft_fraction_above_one RC 2
+                  ARGS optimise jobs/paper/optimise_box.toml --set optimise.min_soft_fraction=1.5
+                  ERR "jobs/paper/optimise_box\\.toml: --set optimise\\.min_soft_fraction=1\\.5: must be in \\[0, 1\\]")
+vibromap_cli_test(optimise_min_soft_fraction_negative RC 2
+                  ARGS optimise jobs/paper/optimise_box.toml --set optimise.min_soft_fraction=-0.2
+                  ERR "jobs/paper/optimise_box\\.toml: --set optimise\\.min_soft_fraction=-0\\.2: must be in \\[0, 1\\]")
+vibromap_cli_test(optimise_min_soft_fraction_not_a_number RC 2
+                  ARGS optimise jobs/paper/optimise_box.toml --set optimise.min_soft_fraction=most
+                  ERR "--set optimise\\.min_soft_fraction=most: must be a finite number in \\[0, 1\\]")
+vibromap_cli_test(optimise_soft_check_without_states RC 2
+                  ARGS optimise jobs/paper/optimise_box.toml --set optimise.soft_check_initial_conditions=0
+                  ERR "--set optimise\\.soft_check_initial_conditions=0: must be an integer in \\[1, 1e\\+06\\]")
 vibromap_cli_test(optimise_output_directory_missing RC 4
                   ARGS optimise jobs/paper/optimise_box.toml -o no_such_dir/o.h5
                   ERR "no_such_dir/o\\.h5: cannot write the optimisation: directory 'no_such_dir' does not exist")

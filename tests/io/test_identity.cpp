@@ -104,5 +104,29 @@ TEST(Identity, OptimiseKeysCountOnlyForAnOptimisation) {
   EXPECT_NE(oa.find("\nsweep.axis.0 = contact.E1"), std::string::npos) << oa;  // the seeding sweep counts too
 }
 
+// min_soft_fraction and the re-check's size are part of an optimisation's identity, and with
+// the constraint on, so are the census options it runs with, the defaults included.
+TEST(Identity, RobustSoftnessKeysAndTheCensusItRunsCount) {
+  const std::string off = concat({kSweep, "[optimise]\nE1 = { min = 2e4, max = 2.1e11, scale = \"log\" }\n"});
+  const std::string on = concat({off, "min_soft_fraction = 0.9\n"});
+  const std::string o0 = canonical_text(parse(off), IdentityScope::optimise);
+  const std::string o9 = canonical_text(parse(on), IdentityScope::optimise);
+  EXPECT_NE(o0.find("\noptimise.min_soft_fraction = 0\n"), std::string::npos) << o0;
+  EXPECT_EQ(o0.find("census."), std::string::npos) << o0;  // off: no census, none named
+  const std::vector<std::string> diff = canonical_differences(o0, o9);
+  EXPECT_NE(std::find(diff.begin(), diff.end(), "optimise.min_soft_fraction (0 in the file, 0.9 in the scene)"),
+            diff.end());
+  EXPECT_NE(std::find(diff.begin(), diff.end(), "census.initial_conditions (not in the file, 32 in the scene)"),
+            diff.end());
+  const std::string k64 = canonical_text(parse(on, {"census.initial_conditions=64"}), IdentityScope::optimise);
+  EXPECT_EQ(canonical_differences(o9, k64),
+            (std::vector<std::string>{"census.initial_conditions (32 in the file, 64 in the scene)"}));
+  const std::string check = canonical_text(parse(on, {"optimise.soft_check_initial_conditions=1024"}),
+                                           IdentityScope::optimise);
+  EXPECT_EQ(canonical_differences(o9, check),
+            (std::vector<std::string>{"optimise.soft_check_initial_conditions (512 in the file, 1024 in the scene)"}));
+  EXPECT_EQ(sweep_identity(on), sweep_identity(off));  // the seeding map's identity is not the optimiser's
+}
+
 }  // namespace
 }  // namespace vibromap

@@ -12,6 +12,7 @@
 
 #include "support/scene_testing.hpp"
 #include "vibromap/io/scene/docs.hpp"
+#include "vibromap/io/scene/identity.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
@@ -69,6 +70,8 @@ void expect_same_optimise(const OptimiseOptions& a, const OptimiseOptions& b) {
   EXPECT_EQ(a.local.barrier, b.local.barrier);
   EXPECT_EQ(a.best, b.best);
   EXPECT_EQ(a.verify_rtol, b.verify_rtol);
+  EXPECT_EQ(a.min_soft_fraction, b.min_soft_fraction);
+  EXPECT_EQ(a.soft_check_initial_conditions, b.soft_check_initial_conditions);
 }
 
 const std::string kFull =
@@ -92,7 +95,9 @@ const std::string kFull =
     "fd_step = 1e-6\n"
     "barrier = 1e8\n"
     "best = 5\n"
-    "verify_rtol = 1e-11\n";
+    "verify_rtol = 1e-11\n"
+    "min_soft_fraction = 0.9\n"
+    "soft_check_initial_conditions = 1024\n";
 
 // ---------------------------------------------------------------------------------------
 // Reading a valid section
@@ -127,6 +132,8 @@ TEST(OptimiseScene, DefaultsAreTheDocumentedOnes) {
   EXPECT_EQ(o.local.barrier, 1e10);
   EXPECT_EQ(o.best, 3);
   EXPECT_EQ(o.verify_rtol, 1e-12);
+  EXPECT_EQ(o.min_soft_fraction, 0.0);  // off
+  EXPECT_EQ(o.soft_check_initial_conditions, 512);
 }
 
 TEST(OptimiseScene, EveryKeyIsRead) {
@@ -154,6 +161,8 @@ TEST(OptimiseScene, EveryKeyIsRead) {
   EXPECT_EQ(o.local.barrier, 1e8);
   EXPECT_EQ(o.best, 5);
   EXPECT_EQ(o.verify_rtol, 1e-11);
+  EXPECT_EQ(o.min_soft_fraction, 0.9);
+  EXPECT_EQ(o.soft_check_initial_conditions, 1024);
 }
 
 TEST(OptimiseScene, AnyRegimeAndASingleAlgorithmName) {
@@ -266,6 +275,12 @@ const std::vector<BadOptimise>& bad_optimises() {
       {"set bad xtol", kM2, {"optimise.xtol_rel=2"}, {"jobs/x.toml: --set optimise.xtol_rel=2: must be in (0, 1)"}},
       {"set unknown key", kM2, {"optimise.sedes=2"}, {"--set optimise.sedes=2: unknown key 'sedes' in [optimise] (did you mean 'seeds'?)"}},
       {"set section without variables", "", {"optimise.seeds=2"}, {"jobs/x.toml: [optimise] has no free parameters"}},
+      {"soft fraction above 1", concat({kM2, "min_soft_fraction = 1.5\n"}), {},
+       {"jobs/x.toml:3: [optimise] min_soft_fraction = 1.5: must be in [0, 1]"}},
+      {"set soft fraction below 0", kM2, {"optimise.min_soft_fraction=-0.1"},
+       {"jobs/x.toml: --set optimise.min_soft_fraction=-0.1: must be in [0, 1]"}},
+      {"soft check without states", concat({kM2, "soft_check_initial_conditions = 0\n"}), {},
+       {"[optimise] soft_check_initial_conditions = 0: must be an integer in [1, 1e+06]"}},
   };
   return cases;
 }
@@ -292,7 +307,8 @@ TEST(OptimiseScene, KeysListingDocumentsTheOptimiseKeys) {
   }
   for (const char* key : {"optimise.objective ", "optimise.regime ", "optimise.algorithm ", "optimise.seeds ",
                           "optimise.map ", "optimise.xtol_rel ", "optimise.max_evaluations ", "optimise.barrier ",
-                          "optimise.verify_rtol "}) {
+                          "optimise.verify_rtol ", "optimise.min_soft_fraction ",
+                          "optimise.soft_check_initial_conditions "}) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
   }
   EXPECT_NE(text.find("\"min_k_con\""), std::string::npos);
@@ -303,7 +319,8 @@ TEST(OptimiseScene, HelpSummaryListsTheOptimiseKeys) {
   std::ostringstream os;
   write_scene_key_summary(os);
   EXPECT_NE(os.str().find("[optimise]  E1 E2 R1 R2 m2 k2|omega2 objective impact regime stability hertz_valid algorithm seeds map "
-                          "xtol_rel ftol_rel max_evaluations max_time initial_step fd_step barrier best verify_rtol\n"),
+                          "xtol_rel ftol_rel max_evaluations max_time initial_step fd_step barrier best verify_rtol "
+                          "min_soft_fraction soft_check_initial_conditions\n"),
             std::string::npos)
       << os.str();
 }
@@ -361,6 +378,26 @@ TEST(OptimiseScene, PaperBoxJobIsTheBoxOfSpec) {
   EXPECT_EQ(s.params.m1, 1000.0);
   EXPECT_EQ(s.params.F0, 500.0);
   EXPECT_EQ(s.params.omega, 7.23);
+  EXPECT_EQ(o.min_soft_fraction, 0.0);  // the plain job: no census
+}
+
+// The robust job is the paper box job with Hertz validity and 90 % soft basin kept, and no
+// [census] (the defaults: 32 states per point, 512 in the re-check).
+TEST(OptimiseScene, RobustJobIsThePaperBoxWithRobustSoftness) {
+  const Scene box = load_scene(source_path("jobs/paper/optimise_box.toml"));
+  const Scene robust = load_scene(source_path("jobs/paper/optimise_robust.toml"));
+  ASSERT_TRUE(robust.optimise.has_value());
+  OptimiseOptions o = *robust.optimise;
+  EXPECT_EQ(o.min_soft_fraction, 0.9);
+  EXPECT_TRUE(o.hertz_valid);
+  EXPECT_EQ(o.soft_check_initial_conditions, 512);
+  EXPECT_FALSE(robust.census.has_value());
+  o.min_soft_fraction = 0.0;
+  o.hertz_valid = false;
+  expect_same_optimise(o, *box.optimise);
+  const Scene same = load_scene(source_path("jobs/paper/optimise_robust.toml"),
+                                {"optimise.min_soft_fraction=0", "optimise.hertz_valid=false"});
+  EXPECT_EQ(canonical_text(same, IdentityScope::optimise), canonical_text(box, IdentityScope::optimise));
 }
 
 }  // namespace

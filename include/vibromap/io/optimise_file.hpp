@@ -4,7 +4,8 @@
 // Layout (V free parameters, S seeds, E_i evaluations of start i; SI units throughout):
 //   root attributes  title, vibromap_version, scene (the scene text), objective ("min_k_con",
 //       ...), quantity ("k_con", "T_con", "F_max"), sense ("minimise" | "maximise"), impact,
-//       regime ("(1,1)" or "any"), stability, hertz_valid (0 | 1: Hertz validity kept), variables (names, space separated, the column
+//       regime ("(1,1)" or "any"), stability, hertz_valid (0 | 1: Hertz validity kept),
+//       min_soft_fraction (0: off), soft_check_initial_conditions, variables (names, space separated, the column
 //       order of every x), scales ("lin"/"log" per variable), measures (names, space
 //       separated), seeds_from (the seeding map's path, or "scene"), ranks, starts,
 //       evaluations, wall_s, sweep_wall_s, optimise_wall_s, verify_wall_s, trajectory (the
@@ -25,16 +26,27 @@
 //       regime       (E) int8 with CF flag_values 0..8 / flag_meanings (the map's codes), n, k
 //                    (E) int32: with regime they name "(n,k)"
 //       stable       (E) int8: 1 stable, 0 unstable, -1 unknown
-//       <measure>    (E) float64 per measure name (k_con, T_con, F_max, max_multiplier, z_ratio)
+//       <measure>    (E) float64 per measure name (k_con, T_con, F_max, max_multiplier, z_ratio;
+//                    soft_fraction with min_soft_fraction > 0, NaN where no census ran)
 //       wall_s       (E) float64: time of each evaluation
-//   /best/NN         the best distinct points, best first, each re-solved from scratch
-//       attributes   start, evaluation, objective (as found), and every parameter E1, E2,
+//   /best/NN         the best distinct points, best first (with min_soft_fraction > 0: those
+//                    that pass the soft check first), each re-solved from scratch
+//       attributes   start, evaluation, objective (as found), soft_fraction (the optimiser's
+//                    census there; NaN when min_soft_fraction is 0), and every parameter E1, E2,
 //                    R1, R2, m2, k2 (N/m), omega2 (get_parameter, SI)
 //       x            (V) float64
 //       integrate/, shooting/   the two re-solves (rtol verify_rtol): attributes status,
 //                    message, regime (label), n, k, stable, T, T_con, k_con, F_max, z_max,
 //                    z_ratio, hertz_valid (0|1), periods, steady_residual, max_multiplier,
 //                    wall_s; dataset floquet (M, 2) float64 (re, im) when computed
+//       soft_check/  with min_soft_fraction > 0 (files without it are older or had it off):
+//                    the re-check census (multistart.hpp SoftCheck); attributes status, message,
+//                    initial_conditions (K), seed, soft_fraction, soft_fraction_stderr
+//                    (sqrt(p(1-p)/K)), threshold (min_soft_fraction - 3 stderr), passed (0|1),
+//                    orbit_attractor (the optimised orbit's index below, -1: not found),
+//                    orbit_fraction (NaN: not found), unresolved, unlisted, wall_s; per attractor (A):
+//                    regime (int8, CF flags) with n, k (int32), k_con, T_con (s), fraction,
+//                    fraction_stderr (float64), stable (int8), soft (uint8)
 // Written atomically (write_hdf5_atomically); throws IoError naming the path.
 
 #include <string>

@@ -31,8 +31,8 @@ LocalResult minimise(Objective& f, const Box& box, std::span<const double> seed,
 }
 
 LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
-                      const Seed& seed, Algorithm algorithm) {
-  PointObjective f(base, options, o);
+                      const Seed& seed, Algorithm algorithm, const CensusOptions& census) {
+  PointObjective f(base, options, o, census);
   return minimise(f, Box(o.variables), seed.x, algorithm, o.local);
 }
 

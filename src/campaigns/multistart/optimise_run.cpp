@@ -149,6 +149,9 @@ int make_seeds(const MpiSession& mpi, const Scene& scene, const OptimiseRunConfi
 
 // ---- Best points ------------------------------------------------------------------------------
 
+// The census of a point for min_soft_fraction: the scene's [census], else the defaults.
+CensusOptions census_options(const Scene& scene) { return scene.census.value_or(CensusOptions{}); }
+
 // The scene text of a best point: the scene, and the --set overrides that give the point.
 std::string point_scene_text(const Scene& scene, const VerifiedPoint& v) {
   std::string text = scene.text;
@@ -157,18 +160,24 @@ std::string point_scene_text(const Scene& scene, const VerifiedPoint& v) {
   return text + "\n";
 }
 
-// Rank 0: re-solves the best points and writes the best one's trajectory.
+// Rank 0: re-solves the best points (and re-checks their soft fraction), puts those that pass
+// the check first, and writes the best one's trajectory.
 void verify_best(const Scene& scene, const OptimiseRunConfig& config, OptimiseReport& report) {
   const OptimiseOptions& o = *scene.optimise;
   const auto t0 = Clock::now();
   const Box box(o.variables);
   const auto points = best_points(report.starts, box, o.best, std::max(kDistinct, 10.0 * o.local.xtol_rel));
   const int periods = std::max(scene.options.analysis.trajectory_periods, kVerifyTrajectoryPeriods);
+  // With the soft check any point may end up first: each keeps its trajectory until then.
+  const bool checked = o.min_soft_fraction > 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& [start, evaluation] = points[i];
-    const int keep = i == 0 && !config.trajectory.empty() ? periods : 0;
-    report.best.push_back(verify_point(scene.params, scene.options, o, report.starts[start], evaluation, keep));
+    const int keep = (i == 0 || checked) && !config.trajectory.empty() ? periods : 0;
+    report.best.push_back(verify_point(scene.params, scene.options, o, report.starts[start], evaluation, keep,
+                                       census_options(scene)));
   }
+  prefer_passing(report.best);
+  for (std::size_t i = 1; i < report.best.size(); ++i) report.best[i].integrate.trajectory.clear();
   if (!report.best.empty() && !report.best.front().integrate.trajectory.empty()) {
     write_trajectory(config.trajectory, report.best.front().integrate, point_scene_text(scene, report.best.front()));
     report.trajectory_file = std::filesystem::path(config.trajectory).filename().string();
@@ -180,7 +189,7 @@ StartRecord run_one(const Scene& scene, const std::vector<Seed>& seeds, const St
   StartRecord rec{spec, {}, rank};
   try {
     rec.result = run_start(scene.params, scene.options, *scene.optimise, seeds.at(static_cast<std::size_t>(spec.seed)),
-                           spec.algorithm);
+                           spec.algorithm, census_options(scene));
   } catch (const std::exception& e) {  // a start's trouble is its result, never the run's
     rec.result.stop = std::string("FAILURE (") + e.what() + ")";
   }

@@ -5,12 +5,14 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "vibromap/core/analysis/shooting.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 
 namespace vibromap {
 namespace {
 
+constexpr double kSameOrbit = 1e-4;          // scaled distance under which a re-solved orbit is a census attractor
 
 bool is_free(const OptimiseOptions& o, std::string_view name) {
   return std::any_of(o.variables.begin(), o.variables.end(), [&](const FreeVariable& v) { return v.name == name; });
@@ -165,7 +167,8 @@ std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<S
 }
 
 VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
-                           const StartRecord& start, std::size_t evaluation, int trajectory_periods) {
+                           const StartRecord& start, std::size_t evaluation, int trajectory_periods,
+                           const CensusOptions& census) {
   const EvaluationRecord& rec = start.result.evaluations.at(evaluation);
   VerifiedPoint v;
   v.start = start.spec.index;
@@ -175,7 +178,51 @@ VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, 
   v.value = rec.result.value;
   v.integrate = resolve_point(v.params, options, SteadyMethod::integrate, o.verify_rtol, trajectory_periods);
   v.shooting = resolve_point(v.params, options, SteadyMethod::shooting, o.verify_rtol);
+  if (rec.result.measures.size() > kSoftFractionMeasure) v.soft_fraction = rec.result.measures[kSoftFractionMeasure];
+  if (o.min_soft_fraction > 0.0) {
+    const PointSummary& orbit = options.analysis.steady == SteadyMethod::shooting ? v.shooting : v.integrate;
+    v.soft_check = check_soft_fraction(v.params, options, census, o, orbit);
+  }
   return v;
+}
+
+CensusOptions soft_check_options(const CensusOptions& census, const OptimiseOptions& o) {
+  CensusOptions c = census;
+  c.initial_conditions = std::max(o.soft_check_initial_conditions, 4 * census.initial_conditions);
+  c.seed = census.seed + 1;
+  c.labels = false;
+  return c;
+}
+
+SoftCheck check_soft_fraction(const Parameters& p, const PointOptions& options, const CensusOptions& census,
+                              const OptimiseOptions& o, const PointSummary& orbit) {
+  SoftCheck c;
+  const CensusOptions check = soft_check_options(census, o);
+  c.seed = check.seed;
+  c.census = census_point(p, options, check);
+  const double K = std::max(c.census.K, 1);
+  c.fraction = c.census.soft_fraction;
+  c.fraction_stderr = std::sqrt(c.fraction * (1.0 - c.fraction) / K);
+  c.passed = c.census.status == SolveStatus::ok &&
+             c.fraction >= o.min_soft_fraction - kSoftCheckSigmas * c.fraction_stderr - kSoftFractionRounding;
+  if (orbit.status != SolveStatus::ok) return c;
+  const StateScale scale{Model(p)};
+  for (std::size_t i = 0; i < c.census.attractors.size() && c.orbit_attractor < 0; ++i) {
+    const Attractor& a = c.census.attractors[i];
+    if (!a.periodic || !(a.regime == orbit.regime)) continue;
+    for (const Eigen::Vector4d& y : a.strobe) {
+      if (scale.distance(y, orbit.final_state) > kSameOrbit) continue;
+      c.orbit_attractor = static_cast<int>(i);
+      c.orbit_fraction = a.fraction;
+      break;
+    }
+  }
+  return c;
+}
+
+void prefer_passing(std::vector<VerifiedPoint>& best) {
+  std::stable_partition(best.begin(), best.end(),
+                        [](const VerifiedPoint& v) { return !v.soft_check || v.soft_check->passed; });
 }
 
 long OptimiseReport::evaluations() const {

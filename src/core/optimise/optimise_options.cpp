@@ -136,6 +136,9 @@ std::string validate(const OptimiseOptions& o) {
   if (o.seeds < 1) return "seeds must be >= 1";
   if (o.best < 1) return "best must be >= 1";
   if (!(o.verify_rtol > 0.0 && o.verify_rtol < 0.1)) return "verify_rtol must be in (0, 0.1)";
+  if (!(o.min_soft_fraction >= 0.0 && o.min_soft_fraction <= 1.0)) return "min_soft_fraction must be in [0, 1]";
+  if (o.soft_check_initial_conditions < 1 || o.soft_check_initial_conditions > 1'000'000)
+    return "soft_check_initial_conditions must be in [1, 1000000]";
   return validate(o.local);
 }
 

@@ -5,6 +5,7 @@
 #include <complex>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 namespace vibromap {
@@ -15,6 +16,7 @@ constexpr double kUnstableCap = 0.9;         // violation of an unstable orbit o
 constexpr double kUnknownRequired = 0.5;     // violation of unknown stability when it is required
 constexpr double kNoPeriodicMotion = 2.0;    // violation of a non-periodic or impact-free point
 constexpr double kIgnoredStability = -1.0;   // violation of a feasible point when stability is ignored
+constexpr double kLeastShortfall = 1e-6;     // violation of a soft fraction short by less (never 0: infeasible)
 
 // The value minimised, or nullopt where it is undefined.
 std::optional<double> objective_value(const PointSummary& s, const OptimiseOptions& o) {
@@ -91,11 +93,35 @@ Evaluation evaluate_summary(const PointSummary& s, const OptimiseOptions& o, dou
   return e;
 }
 
-PointObjective::PointObjective(const Parameters& base, const PointOptions& options, const OptimiseOptions& optimise)
-    : base_(base), options_(options), optimise_(optimise) {}
+void apply_soft_fraction(Evaluation& e, const CensusSummary& census, const OptimiseOptions& o) {
+  e.measures.resize(std::max(e.measures.size(), kSoftFractionMeasure + 1), kNaN);
+  if (census.status != SolveStatus::ok) {
+    e.violation = kFailedViolation;
+    e.feasible = false;
+    e.message = "the census failed: " + census.message;
+    return;
+  }
+  e.measures[kSoftFractionMeasure] = census.soft_fraction;
+  const double shortfall = o.min_soft_fraction - census.soft_fraction;
+  if (shortfall <= kSoftFractionRounding) return;  // feasible: keeps its continuous margin (see the header)
+  e.violation = std::clamp(shortfall, kLeastShortfall, kUnstableCap);
+  e.feasible = false;
+  std::ostringstream os;
+  os << "the soft attractors' basin fraction " << census.soft_fraction << " (census of " << census.K
+     << " initial states) is below min_soft_fraction " << o.min_soft_fraction;
+  e.message = os.str();
+}
+
+PointObjective::PointObjective(const Parameters& base, const PointOptions& options, const OptimiseOptions& optimise,
+                               const CensusOptions& census)
+    : base_(base), options_(options), optimise_(optimise), census_(census) {
+  census_.labels = false;
+}
 
 std::vector<std::string> PointObjective::measure_names() const {
-  return {"k_con", "T_con", "F_max", "max_multiplier", "z_ratio"};
+  std::vector<std::string> names = {"k_con", "T_con", "F_max", "max_multiplier", "z_ratio"};
+  if (optimise_.min_soft_fraction > 0.0) names.emplace_back("soft_fraction");
+  return names;
 }
 
 Parameters PointObjective::parameters_at(std::span<const double> x) const {
@@ -106,7 +132,13 @@ Parameters PointObjective::parameters_at(std::span<const double> x) const {
 }
 
 Evaluation PointObjective::evaluate(std::span<const double> x) {
-  return evaluate_summary(solve_point(parameters_at(x), options_), optimise_, options_.analysis.hertz_limit);
+  const Parameters p = parameters_at(x);
+  Evaluation e = evaluate_summary(solve_point(p, options_), optimise_, options_.analysis.hertz_limit);
+  if (optimise_.min_soft_fraction > 0.0) {
+    e.measures.resize(kSoftFractionMeasure + 1, kNaN);
+    if (e.feasible) apply_soft_fraction(e, census_point(p, options_, census_), optimise_);
+  }
+  return e;
 }
 
 PointSummary resolve_point(const Parameters& p, PointOptions options, SteadyMethod method, double rtol,

@@ -75,6 +75,11 @@ std::string canonical_text(const Scene& scene, IdentityScope scope) {
   }
   if (scope == IdentityScope::optimise && scene.optimise) {
     for (std::string& line : detail::optimise_lines(*scene.optimise)) lines.push_back(std::move(line));
+    // min_soft_fraction censuses every point with [census]'s options, the defaults when the
+    // scene has none: they define the result, so they are named even when not given.
+    if (scene.optimise->min_soft_fraction > 0.0 && !scene.census) {
+      for (std::string& line : detail::census_lines(CensusOptions{})) lines.push_back(std::move(line));
+    }
   }
   std::sort(lines.begin(), lines.end());
   std::string text;

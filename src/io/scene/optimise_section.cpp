@@ -183,6 +183,24 @@ void add_optimise_stopping_rows(std::vector<OptimiseRow>& rows, const OptimiseOp
            real_field<O, &O::verify_rtol>());
 }
 
+void add_optimise_soft_rows(std::vector<OptimiseRow>& rows, const OptimiseOptions& d) {
+  using O = OptimiseOptions;
+  rows.push_back(optimise_row("min_soft_fraction", SceneKeyType::real, interval(0.0, 1.0, false, false), "-",
+                              "robust softness, a constraint: the point's soft attractors (stable, Hertz-valid, "
+                              "k_con <= [census] soft_kcon) must hold at least this basin fraction, by a census "
+                              "([census] options) of each point that passes the other constraints (0.01-1 s a "
+                              "point); use with hertz_valid = true (a soft attractor is Hertz-valid); 0: off",
+                              toml_float(d.min_soft_fraction), real_field<O, &O::min_soft_fraction>()));
+  rows.push_back(optimise_row("soft_check_initial_conditions", SceneKeyType::integer, interval(1, 1e6, false, false),
+                              "-",
+                              "min_soft_fraction: the best points' soft fraction is re-checked by a census of "
+                              "max(this, 4 [census] initial_conditions) other initial states; a point below "
+                              "min_soft_fraction - 3 standard errors fails the check and is reported after those "
+                              "that pass",
+                              std::to_string(d.soft_check_initial_conditions),
+                              integer_field<O, &O::soft_check_initial_conditions>()));
+}
+
 }  // namespace
 
 const std::vector<OptimiseRow>& optimise_rows() {
@@ -191,6 +209,7 @@ const std::vector<OptimiseRow>& optimise_rows() {
     std::vector<OptimiseRow> r;
     add_optimise_goal_rows(r, defaults);
     add_optimise_stopping_rows(r, defaults);
+    add_optimise_soft_rows(r, defaults);
     return r;
   }();
   return rows;

@@ -7,7 +7,10 @@
   (1,1) no worse than the best seed, and `vibromap run` on the point alone confirms it;
 - the HDF5 output: one group per start with every evaluation inside the box, the best one
   feasible, and the best point's trajectory file; postprocess/plot_optimise.py draws them;
-- bad optimisations end with one line and the documented exit code.
+- bad optimisations end with one line and the documented exit code;
+- min_soft_fraction at the bistable Table 2 point: kept by every feasible evaluation, the best
+  point's re-check reported (JSON, HDF5) and equal to `run --census` with its size and seed, and
+  a minimum above what the soft attractor holds leaves no feasible point.
 
 Run by ctest (tests/optimise_tests.cmake), which sets VIBROMAP_EXE and VIBROMAP_MPIEXEC.
 """
@@ -267,3 +270,78 @@ def test_a_seeding_map_that_cannot_seed_is_kept_and_said_so(tmp_path):
     with h5py.File(tmp_path / "out_map.h5", "r") as f:
         assert f["done"][()].all()
     assert not (tmp_path / "out.h5").exists()
+
+
+# Robust softness at the bistable Table 2 point ((1,1) soft in about 56 % of the basin, (3,3)
+# beyond Hertz's range): a census of 8 states per feasible point, the best point re-checked with
+# max(32, 4 x 8) = 32 other states (seed 1 + 1).
+ROBUST = """
+[system]
+m2 = 310.0
+omega2 = 3.606
+
+[contact]
+E1 = 1.4e10
+E2 = 1e6
+
+[census]
+initial_conditions = 8
+
+[optimise]
+E2 = { min = 8e5, max = 1.2e6, scale = "log" }
+max_evaluations = 8
+best = 1
+min_soft_fraction = 0.3
+soft_check_initial_conditions = 32
+"""
+
+
+def test_min_soft_fraction_is_kept_reported_and_rechecked(tmp_path):
+    scene = write_scene(tmp_path, ROBUST)
+    report = json.loads(optimise(2, scene, tmp_path / "out.h5").stdout)
+    assert report["min_soft_fraction"] == 0.3 and report["soft_check_initial_conditions"] == 32
+    top = report["best"][0]
+    assert top["regime"] == "(1,1)" and top["soft_fraction"] >= 0.3  # the optimiser's census there
+    check = top["soft_check"]
+    assert check["status"] == "ok" and check["initial_conditions"] == 32 and check["seed"] == 2
+    p = check["soft_fraction"]
+    assert math.isclose(check["soft_fraction_stderr"], math.sqrt(p * (1 - p) / 32), rel_tol=1e-12)
+    assert math.isclose(check["threshold"], 0.3 - 3 * check["soft_fraction_stderr"], rel_tol=1e-12)
+    assert check["passed"] == (p >= check["threshold"])
+    assert 0.561 - 3 * 0.0877 <= p <= 0.561 + 3 * 0.0877  # the (1,1)'s brute-force basin, 1,000 states
+    orbit = check["attractors"][check["orbit_attractor"]]  # the optimised orbit is the soft (1,1)
+    assert orbit["regime"] == "(1,1)" and orbit["soft"] and orbit["fraction"] == check["orbit_fraction"]
+    assert math.isclose(orbit["k_con"], top["k_con"], rel_tol=AGREE_RTOL)
+
+    # `vibromap run --census` at the point with the re-check's size and seed: the same fraction.
+    sets = [arg for s in top["set"] for arg in ("--set", s)]
+    run = subprocess.run([EXE, "run", str(scene), *sets, "--census", "--format", "json", "--set",
+                          "census.initial_conditions=32", "--set", "census.seed=2"],
+                         env=ENV, capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout)["soft_fraction"] == p
+
+    with h5py.File(tmp_path / "out.h5", "r") as f:
+        assert f.attrs["min_soft_fraction"] == 0.3 and f.attrs["soft_check_initial_conditions"] == 32
+        assert f.attrs["measures"].split()[-1] == "soft_fraction"
+        g = f["starts/000"]
+        soft, feasible = g["soft_fraction"][()], g["feasible"][()] == 1
+        assert feasible.any() and (soft[feasible] >= 0.3).all()
+        assert f["best/00"].attrs["soft_fraction"] == top["soft_fraction"]
+        c = f["best/00/soft_check"]
+        assert c.attrs["soft_fraction"] == p and c.attrs["passed"] == int(check["passed"])
+        assert c.attrs["initial_conditions"] == 32
+        states = c.attrs["unresolved"] + c.attrs["unlisted"]
+        assert math.isclose(float(c["fraction"][()].sum()) + states / 32, 1.0, rel_tol=1e-12)
+    env = dict(os.environ, MPLCONFIGDIR=str(tmp_path / "mpl"))
+    plot = subprocess.run([sys.executable, PLOT, str(tmp_path / "out.h5")], env=env, capture_output=True, text=True,
+                          timeout=120)  # fmt: skip
+    assert plot.returncode == 0, plot.stderr
+
+    # 0.9 is more than the (1,1) holds anywhere in this box: no feasible point, each census said so.
+    strict = json.loads(optimise(2, scene, tmp_path / "strict.h5", "--set", "optimise.min_soft_fraction=0.9").stdout)
+    assert strict["best"] == [] and all(s["best_objective"] is None for s in strict["starts"])
+    with h5py.File(tmp_path / "strict.h5", "r") as f:
+        soft = f["starts/000/soft_fraction"][()]
+        assert np.isfinite(soft).any() and (soft[np.isfinite(soft)] < 0.9).all()
+        assert (f["starts/000/violation"][()] > 0).all()

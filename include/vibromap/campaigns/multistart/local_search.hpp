@@ -18,8 +18,8 @@ LocalResult minimise(Objective& f, const Box& box, std::span<const double> seed,
                      const LocalOptions& options);
 
 // Runs one start with the physics objective (point_objective.hpp) on the scene's point and
-// options.
+// options; `census` is the scene's [census], used when o.min_soft_fraction > 0.
 LocalResult run_start(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
-                      const Seed& seed, Algorithm algorithm);
+                      const Seed& seed, Algorithm algorithm, const CensusOptions& census = {});
 
 }  // namespace vibromap

@@ -7,9 +7,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/box.hpp"
@@ -85,6 +88,34 @@ struct StartRecord {
   int rank = 0;  // MPI rank that ran it
 };
 
+// The re-check of a best point's soft fraction (OptimiseOptions::min_soft_fraction > 0): a
+// larger census than the optimiser's, with draws of its own. The optimiser picks points where
+// its K-state census reaches the minimum, so that census is biased upward at the answer; a
+// census of other states is not.
+struct SoftCheck {
+  CensusSummary census;                 // the re-check census itself (soft_check_options())
+  std::uint64_t seed = 0;               // its seed
+  double fraction = 0.0;                // census.soft_fraction, p
+  double fraction_stderr = 0.0;         // sqrt(p (1 - p) / K)
+  bool passed = false;                  // p >= min_soft_fraction - kSoftCheckSigmas * stderr
+  int orbit_attractor = -1;             // index into census.attractors of the optimised orbit; -1: not among them
+  double orbit_fraction = std::numeric_limits<double>::quiet_NaN();  // its basin fraction; NaN: not found
+};
+
+// Standard errors a re-checked fraction may fall below min_soft_fraction and still pass.
+inline constexpr double kSoftCheckSigmas = 3.0;
+
+// The re-check census's options: the scene's [census] (`census`) with K = max(
+// o.soft_check_initial_conditions, 4 census.initial_conditions) initial states and seed
+// census.seed + 1 (the optimiser's census states are the first K draws of census.seed).
+CensusOptions soft_check_options(const CensusOptions& census, const OptimiseOptions& o);
+
+// The re-check at p. `orbit` is the optimised orbit re-solved (its regime and final state
+// find it among the census's attractors: same regime, a stroboscopic state within 1e-4 in
+// StateScale's scaled norm).
+SoftCheck check_soft_fraction(const Parameters& p, const PointOptions& options, const CensusOptions& census,
+                              const OptimiseOptions& o, const PointSummary& orbit);
+
 // A best point: where a start found it, and its re-solves from scratch.
 struct VerifiedPoint {
   int start = 0;                   // the start that found it
@@ -94,7 +125,13 @@ struct VerifiedPoint {
   double value = 0.0;              // the objective (minimised sense) as the optimiser saw it
   PointSummary integrate;          // brute force from rest, rtol verify_rtol
   PointSummary shooting;           // shooting, rtol verify_rtol
+  double soft_fraction = std::numeric_limits<double>::quiet_NaN();  // the optimiser's census there (NaN: off)
+  std::optional<SoftCheck> soft_check;  // with min_soft_fraction > 0
 };
+
+// Best points whose soft check passed first, then those that failed it, each in their order
+// (a point without a check counts as passed): the answer is the best point that passes.
+void prefer_passing(std::vector<VerifiedPoint>& best);
 
 // The best feasible evaluation of each start, best first (ties: start index), keeping one of
 // points closer than `merge` (scaled max-norm) to a better one, at most `count`: pairs
@@ -103,9 +140,11 @@ std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<S
                                                              int count, double merge);
 
 // Re-solves a best point twice from scratch (integrate and shooting, rtol o.verify_rtol),
-// the first with `trajectory_periods` periods of trajectory.
+// the first with `trajectory_periods` periods of trajectory; with o.min_soft_fraction > 0 also
+// re-checks its soft fraction (check_soft_fraction, `census` the scene's [census]).
 VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, const OptimiseOptions& o,
-                           const StartRecord& start, std::size_t evaluation, int trajectory_periods);
+                           const StartRecord& start, std::size_t evaluation, int trajectory_periods,
+                           const CensusOptions& census = {});
 
 // Everything `vibromap optimise` found, gathered on rank 0 (multistart_runner.hpp).
 struct OptimiseReport {

@@ -96,6 +96,14 @@ struct OptimiseOptions {
   LocalOptions local;                                  // the local algorithm's stopping rules
   int best = 3;                                        // best distinct points re-solved and reported, -
   double verify_rtol = 1e-12;                          // rtol of the re-solves of the best points, -
+  // Robust softness (issue #11): a point is feasible only when its soft attractors (census.hpp:
+  // stable, Hertz-valid, k_con <= soft_kcon) hold at least this basin fraction, by a census of
+  // the point with the scene's [census] options. 0: off (no census is run, the optimiser is
+  // exactly as without it), -
+  double min_soft_fraction = 0.0;
+  // The best points' re-check census draws max(this, 4 K) initial states (K: [census]
+  // initial_conditions), independent of the optimiser's; only with min_soft_fraction > 0, -
+  int soft_check_initial_conditions = 512;
 };
 
 // Empty when usable, else the first problem found.

@@ -27,13 +27,34 @@
 // violation -1 (with the stability rule still applied to periodic orbits).
 // A point is feasible when violation <= 0 and the value is finite.
 //
+// With OptimiseOptions::min_soft_fraction > 0 (robust softness, issue #11), a point that
+// passes every constraint above is also censused (census_point with the scene's [census]
+// options, K initial states) and must have soft_fraction >= min_soft_fraction, the total basin
+// fraction of its soft attractors (stable, Hertz-valid, k_con <= soft_kcon). Where it falls
+// short, the violation is the shortfall min_soft_fraction - soft_fraction, in (0, 0.9] (the
+// band of a kept regime that misses a secondary constraint, as an unstable orbit); a census
+// that fails is a failed point (3). Where it holds, the point keeps the continuous margin
+// above: soft_fraction is a count over K states, a step function of the parameters, whose
+// finite differences would be 0 or a spike of 1/(K h). The census runs only at points that
+// pass every other constraint (the others cannot become feasible by it), once per point (the
+// TrackedObjective's cache), and never when min_soft_fraction is 0, which leaves every
+// evaluation bit for bit as without the key.
+// The value stays the optimised orbit's (the one solve_point finds, whose regime, stability and
+// Hertz margin the constraints judge), not a census attractor's: so the constraint only removes
+// points and never changes a value, the objective stays continuous (the census's list of
+// attractors changes in jumps with its draws), and several soft attractors leave no doubt about
+// which k_con is meant. Whether the optimised orbit itself holds the soft basin is reported by
+// the best points' re-check (multistart.hpp, SoftCheck::orbit_fraction).
+//
 // Measures recorded with every evaluation: k_con, T_con (longest impact, s), F_max (N),
-// max_multiplier (largest |Floquet multiplier|; NaN when not computed), z_ratio (z_max/R*).
+// max_multiplier (largest |Floquet multiplier|; NaN when not computed), z_ratio (z_max/R*);
+// with min_soft_fraction > 0 also soft_fraction (NaN where the census was not run).
 
 #include <span>
 #include <string>
 #include <vector>
 
+#include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/objective.hpp"
@@ -44,7 +65,9 @@ namespace vibromap {
 class PointObjective final : public Objective {
  public:
   // base: the scene's parameters; the free ones (optimise.variables) are replaced per point.
-  PointObjective(const Parameters& base, const PointOptions& options, const OptimiseOptions& optimise);
+  // census: the census of a point when optimise.min_soft_fraction > 0 (the scene's [census]).
+  PointObjective(const Parameters& base, const PointOptions& options, const OptimiseOptions& optimise,
+                 const CensusOptions& census = {});
 
   Evaluation evaluate(std::span<const double> x) override;
   std::vector<std::string> measure_names() const override;
@@ -56,12 +79,21 @@ class PointObjective final : public Objective {
   Parameters base_;
   PointOptions options_;
   OptimiseOptions optimise_;
+  CensusOptions census_;
 };
 
 // The evaluation of a solved point under the rules above (the core of PointObjective, exposed
 // for tests); hertz_limit is the solve's [analysis] hertz_limit.
 Evaluation evaluate_summary(const PointSummary& s, const OptimiseOptions& o,
                             double hertz_limit = AnalysisOptions{}.hertz_limit);
+
+// The soft-fraction constraint (see above) applied to an evaluation that passed every other
+// constraint, from the census of its point; sets the soft_fraction measure (index
+// kSoftFractionMeasure). For o.min_soft_fraction > 0 only.
+inline constexpr std::size_t kSoftFractionMeasure = 5;
+// A sum of basin fractions this far below a minimum is rounding (count/K summed), not short.
+inline constexpr double kSoftFractionRounding = 1e-12;
+void apply_soft_fraction(Evaluation& e, const CensusSummary& census, const OptimiseOptions& o);
 
 // Largest |Floquet multiplier| of a summary, NaN when none was computed.
 double max_multiplier(const PointSummary& s);

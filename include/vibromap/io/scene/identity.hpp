@@ -22,7 +22,9 @@ enum class IdentityScope {
 // scene holds it by, k2 or omega2; [initial] keys only where given); with a [sweep], its axes
 // ("sweep.axis.D = KEY SCALE [v, ...]", D the axis's position) and store list, never
 // checkpoint_interval or progress_interval; for IdentityScope::optimise, also each free
-// parameter and option of [optimise] (all of them change the result). Ends with a newline.
+// parameter and option of [optimise] (all of them change the result), and, when
+// min_soft_fraction > 0, the [census] options even when the scene leaves them to their defaults
+// (the census of each point then defines the result). Ends with a newline.
 std::string canonical_text(const Scene& scene, IdentityScope scope);
 
 // One short entry per key whose line differs between two canonical texts, in key order, e.g.

@@ -56,13 +56,16 @@
 //   map = "box.h5"                 # seeding map; not given: the scene's [sweep] runs first,
 //                                  # and without [sweep] the scene's point is the one seed
 //   xtol_rel, ftol_rel, max_evaluations, max_time, initial_step, fd_step, barrier, best, verify_rtol
+//   min_soft_fraction = 0.9        # robust softness: soft attractors hold >= 90 % of the basin (a
+//                                  # census per point with [census]'s options; 0: off)
+//   soft_check_initial_conditions = 512   # the best points' re-check census
 // A free parameter's bounds must lie in the range of the parameter's own key; k2 and omega2
 // may not both be free. Like [sweep], its keys are not rows of scene_keys(); write_scene_keys
 // documents them apart, and they take --set (`--set optimise.algorithm=cobyla`,
 // `--set 'optimise.E1={min=1e5,max=1e9,scale="log"}'`).
 //
-// An optional [census] section sets how `vibromap run --census` (and a sweep with census)
-// looks for every attractor of a point (census.hpp):
+// An optional [census] section sets how `vibromap run --census` (and a sweep with census, and
+// [optimise] min_soft_fraction) looks for every attractor of a point (census.hpp):
 //   [census]
 //   initial_conditions = 32       # K, the rest state included
 //   x1 = [-0.05, 0.05]            # box of initial states, [lo, hi] in m (x1, x2) and m/s (v1, v2);
