@@ -82,13 +82,17 @@ Journal open_journal(const Scene& scene, const OptimiseRunConfig& config, const 
 
 // ---- Seeds ----------------------------------------------------------------------------------
 
-// The scene without its [optimise] section: what the seeding sweep's map records, so that
-// changing an [optimise] setting does not make the map "another scene" for --resume.
+// The seeding sweep's scene: without [optimise] (what the seeding map records, so that changing
+// an [optimise] setting does not make the map "another scene" for --resume), and without
+// [census] (a census is the optimiser's check of a point, not something every seeding cell
+// needs: it would make the seeding map a census map, tens of times slower).
 Scene sweep_scene(const Scene& scene) {
   Scene s = scene;
   s.optimise.reset();
-  const auto at = s.text.find("\n[optimise]\n");
-  if (at != std::string::npos) {
+  s.census.reset();
+  for (const char* section : {"\n[optimise]\n", "\n[census]\n"}) {
+    const auto at = s.text.find(section);
+    if (at == std::string::npos) continue;
     const auto next = s.text.find("\n[", at + 1);
     s.text.erase(at, next == std::string::npos ? std::string::npos : next - at);
   }

@@ -159,6 +159,21 @@ double AttractorSet::verified_level(const Orbit& o, const Model& section, Integr
   return 0.0;
 }
 
+bool AttractorSet::recurrence_decides(std::size_t i) const {
+  const auto& r = recurrent_[i];
+  return r && !r->transient && r->stayed >= kRecurrenceProbation;
+}
+
+void AttractorSet::observe_stay(std::size_t i, std::optional<std::size_t> outcome) {
+  auto& r = recurrent_[i];
+  if (!r) return;
+  if (outcome && *outcome == i) {
+    ++r->stayed;
+  } else if (outcome) {
+    r->transient = true;
+  }
+}
+
 Cell AttractorSet::cell(const State& u) const {
   Cell c;
   for (int i = 0; i < 4; ++i)
@@ -333,7 +348,7 @@ std::optional<std::size_t> AttractorSet::add_recurrent(const std::vector<State>&
   a.regime = {chatter ? RegimeKind::chatter : RegimeKind::non_periodic, 0, 0};
   records_.push_back(a);
   orbits_.emplace_back();
-  recurrent_.emplace_back(Recurrent{{hashes.begin(), hashes.end()}});
+  recurrent_.emplace_back(Recurrent{{hashes.begin(), hashes.end()}, 1, false});
   return records_.size() - 1;
 }
 

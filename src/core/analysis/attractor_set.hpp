@@ -57,9 +57,15 @@ class SplitMix64 {
 using Cell = std::array<std::int64_t, 4>;
 
 // A non-periodic attractor: the (hashed) cells of the recurrence grid its stroboscopic points visit.
+// Whether recurrence decides states on it (census.cpp says why): after kRecurrenceProbation
+// states have stayed on it `recurrences` periods in a row and then to the budget's end, and never
+// when a state that stayed that long left it afterwards (a chaotic saddle: a long transient).
 struct Recurrent {
   std::unordered_set<std::uint64_t> cells;
+  int stayed = 0;          // states that stayed on it to the budget's end (the one that found it included)
+  bool transient = false;  // a state stayed `recurrences` periods in a row on it, then left
 };
+constexpr int kRecurrenceProbation = 8;
 
 // The orbit's offset history of one initial state, one scaled offset per period.
 using Offsets = std::deque<Eigen::Vector4d>;
@@ -84,6 +90,11 @@ class AttractorSet {
   // one of its 80 neighbours (a chaotic set is covered sparsely by the samples seen).
   Cell cell(const State& u) const;
   bool visits(std::size_t i, const Cell& cell) const;
+  // Whether a run of recurrences on non-periodic attractor i decides a state (Recurrent).
+  bool recurrence_decides(std::size_t i) const;
+  // A state that was `recurrences` periods in a row on non-periodic attractor i ended on
+  // attractor `outcome` (nullopt: unlisted or unresolved): probation bookkeeping.
+  void observe_stay(std::size_t i, std::optional<std::size_t> outcome);
 
   // The attractor of the periodic orbit through the period-start point y0 (internal) of
   // period n (reduced to its least period), added when new. With a monodromy (Newton

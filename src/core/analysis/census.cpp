@@ -125,7 +125,10 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
   std::size_t known = static_cast<std::size_t>(-1);
   long discovery = kFirstDiscovery;
   Followed f;
+  std::vector<int> longest;  // per attractor: the longest run of recurrences on it (non-periodic ones)
   auto done = [&](std::optional<std::size_t> index, bool early, long periods) {
+    for (std::size_t i = 0; i < longest.size(); ++i)
+      if (longest[i] >= c.recurrences) set.observe_stay(i, index);
     f.label = index ? static_cast<int>(*index) : kUnlistedLabel;
     f.early = early;
     f.periods = periods;
@@ -139,6 +142,7 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
       sampler.set_phases(set.phases());
       offsets.resize(known);
       in_row.resize(known, 0);
+      longest.resize(known, 0);
     }
     if (integ->advance_period(u, observers) != IntegrationStatus::ok) {
       f.periods = j;
@@ -150,15 +154,29 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
     if (recent.size() > window) recent.pop_front();
     if (c.early_stop) {
       const census_detail::Cell cell = set.cell(u);
+      bool approaching = false;  // close to a stable orbit: no recurrence decision (below)
       for (std::size_t i = 0; i < known; ++i) {
-        if (sampler.sampled(i)) {
-          offsets[i].push_back(set.offset(i, sampler.state(i)));
-          if (offsets[i].size() > 2 * static_cast<std::size_t>(set.record(i).strobe.size()) + 1) offsets[i].pop_front();
-          if (set.captured(i, offsets[i])) return done(i, true, j + 1);
-        } else if (!set.record(i).periodic) {
-          in_row[i] = set.visits(i, cell) ? in_row[i] + 1 : 0;
-          if (in_row[i] >= c.recurrences) return done(i, true, j + 1);
-        }
+        if (!sampler.sampled(i)) continue;
+        offsets[i].push_back(set.offset(i, sampler.state(i)));
+        if (offsets[i].size() > 2 * static_cast<std::size_t>(set.record(i).strobe.size()) + 1) offsets[i].pop_front();
+        if (set.captured(i, offsets[i])) return done(i, true, j + 1);
+        approaching = approaching || set.level_ratio(i, offsets[i].back()) < kApproaching;
+      }
+      // Recurrence on a non-periodic set. Such a set is found by a state that ran out of budget
+      // without settling, and may be a chaotic saddle: a long transient that states leave after
+      // hundreds or thousands of periods (measured: m2 275.2 kg, omega2 4.2607 rad/s, Table 2's
+      // moduli, where states leave it after up to ~1400 periods and brute force settles 90 %
+      // of them on (1,1); deciding after 100 recurrences called 52 % non-periodic). So a run
+      // of `recurrences` decides only once kRecurrenceProbation states have stayed on the set
+      // that long and then to the end of their budget, and never once a state that stayed that
+      // long left it (AttractorSet::observe_stay): on a saddle the census then follows every
+      // state as brute force does. A state closing in on a stable orbit is that orbit's to
+      // decide: its run starts again.
+      for (std::size_t i = 0; i < known; ++i) {
+        if (sampler.sampled(i) || set.record(i).periodic) continue;
+        in_row[i] = !approaching && set.visits(i, cell) ? in_row[i] + 1 : 0;
+        longest[i] = std::max(longest[i], in_row[i]);
+        if (in_row[i] >= c.recurrences && set.recurrence_decides(i)) return done(i, true, j + 1);
       }
     }
     if (settled) {
