@@ -5,8 +5,10 @@
 
 namespace vibromap::detail {
 
-BasinsSink::BasinsSink(const PixelCodec& codec, const Scene& scene, std::string path, BasinsContent start)
-    : ResultSink<PixelResult>(codec), scene_(scene), path_(std::move(path)), content_(std::move(start)) {
+BasinsSink::BasinsSink(const PixelCodec& codec, const Scene& scene, CensusOptions census, std::string path,
+                       BasinsContent start)
+    : ResultSink<PixelResult>(codec), scene_(scene), census_(std::move(census)), path_(std::move(path)),
+      content_(std::move(start)) {
   done_ = static_cast<std::uint64_t>(std::count(content_.done.begin(), content_.done.end(), 1));
 }
 
@@ -47,11 +49,10 @@ void BasinsSink::store_results(const ItemRange& range, std::vector<PixelResult>&
 // record a rank kept depends on which of its pixels found the orbit first (the orbit's refined
 // digits, the cyclic shift of its stroboscopic states), this one only on the labels.
 void BasinsSink::canonicalise() {
-  const CensusOptions census = scene_.census.value_or(CensusOptions{});
   for (std::size_t g = 0; g < content_.attractors.size(); ++g) {
     Attractor& a = content_.attractors[g];
     try {
-      CensusFollower fresh(scene_.params, scene_.options, census);
+      CensusFollower fresh(scene_.params, scene_.options, census_);
       const auto out = fresh.follow(content_.plane.state(static_cast<std::uint64_t>(content_.first_pixel[g])));
       if (out.label < 0) continue;
       const Attractor& found = fresh.attractor(static_cast<std::size_t>(out.label));

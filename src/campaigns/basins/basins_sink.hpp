@@ -18,7 +18,8 @@ namespace vibromap::detail {
 class BasinsSink : public ResultSink<PixelResult> {
  public:
   // A sink over `start` (a new run's empty content, or the content of the file resumed).
-  BasinsSink(const PixelCodec& codec, const Scene& scene, std::string path, BasinsContent start);
+  // `census`: the followers' options (canonical records are found with them).
+  BasinsSink(const PixelCodec& codec, const Scene& scene, CensusOptions census, std::string path, BasinsContent start);
 
   std::uint64_t items() const override { return content_.labels.size(); }
   std::uint64_t items_done() const override { return done_; }
@@ -37,6 +38,7 @@ class BasinsSink : public ResultSink<PixelResult> {
   void write(bool complete);
 
   const Scene& scene_;
+  CensusOptions census_;
   std::string path_;
   BasinsContent content_;  // labels index into content_.attractors (discovery order here)
   BasinsContent written_;

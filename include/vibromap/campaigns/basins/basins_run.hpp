@@ -5,7 +5,8 @@
 //          resume: the pixels the file does not mark done
 //   solve  one pixel: its state followed to its attractor by the rank's one CensusFollower
 //          (census.hpp), kept for the whole run so that each attractor is found once per rank
-//          and later pixels are captured early against it; a pixel with the bodies overlapping
+//          and later pixels are captured early against it (by periodic orbits only: no
+//          recurrence capture, basins_run.cpp says why); a pixel with the bodies overlapping
 //          (x1 > x2) is labelled kOverlapLabel and not followed; an exception is the pixel's
 //          label kUnresolvedLabel, never the run's
 //   codec  PixelResult: the label and the attractor's record (regime, orbit, stability)
