@@ -549,3 +549,75 @@ def save_figure(fig, path: str, dpi: int) -> None:
         raise VibromapFileError(f"{path}: cannot write ({exc.strerror or exc})") from exc
     finally:
         plt.close(fig)
+
+
+@dataclasses.dataclass
+class BasinAttractor:
+    """One attractor of a basins file (include/vibromap/io/basins_file.hpp)."""
+
+    regime: str  # "(n,k)" or a regime kind
+    n: int
+    k: int
+    k_con: float
+    T_con: float  # s
+    F_max: float  # N
+    stable: int  # 1, 0, -1 unknown
+    soft: bool
+    pixels: int
+    fraction: float  # of the pixels followed (overlap excluded)
+    strobe: np.ndarray  # (n, 4): stroboscopic states x1, x2, v1, v2
+
+
+@dataclasses.dataclass
+class Basins:
+    """A plane of initial states labelled by attractor (`vibromap basins`)."""
+
+    path: str
+    x_name: str  # first plane variable: x1, x2, v1 or v2
+    y_name: str
+    x: np.ndarray  # its values (m or m/s)
+    y: np.ndarray
+    x_units: str
+    y_units: str
+    label: np.ndarray  # (len(y), len(x)) int: attractor index, -1 unresolved, -2 unlisted, -3 overlap, -4 not computed
+    fixed: str  # "x2=0.05 v2=0": the variables outside the plane
+    fixed_state: np.ndarray  # (4,) the state before the plane variables are set
+    complete: bool
+    scene: str
+    attractors: list
+
+
+BASINS_UNRESOLVED, BASINS_UNLISTED, BASINS_OVERLAP, BASINS_NOT_COMPUTED = -1, -2, -3, -4
+
+
+def read_basins(path: str) -> Basins:
+    """Reads a basins file, or raises VibromapFileError with a one-line reason."""
+    with open_h5(path) as f:
+        plane = _text(f.attrs.get("plane", ""))
+        if "," not in plane or "label" not in f:
+            raise VibromapFileError(f"{path}: not a basins file of vibromap basins (no plane or label)")
+        x_name, y_name = plane.split(",", 1)
+        if x_name not in f or y_name not in f:
+            raise VibromapFileError(f"{path}: the plane's coordinates '{plane}' are missing")
+        label = np.asarray(f["label"][()], dtype=int)
+        x, y = np.asarray(f[x_name][()]), np.asarray(f[y_name][()])
+        if label.shape != (y.size, x.size):
+            raise VibromapFileError(f"{path}: 'label' is {label.shape}, the plane {y.size} x {x.size}")
+        count = _scalar(f.attrs.get("attractors", 0), path, "attractors", int)
+        attractors = []
+        kinds = _flag_meanings(f["regime"], None, "", path) if count else {}
+        for a in range(count):
+            code = int(f["regime"][a])
+            n, k = int(f["n"][a]), int(f["k"][a])
+            points = int(f["strobe_points"][a])
+            attractors.append(BasinAttractor(
+                regime=f"({n},{k})" if code == REGIME_PERIODIC else kinds.get(code, str(code)).replace("_", "-"),
+                n=n, k=k, k_con=float(f["k_con"][a]), T_con=float(f["T_con"][a]), F_max=float(f["F_max"][a]),
+                stable=int(f["stable"][a]), soft=bool(f["soft"][a]), pixels=int(f["pixels"][a]),
+                fraction=float(f["fraction"][a]), strobe=np.asarray(f["strobe"][a, :points, :])))
+        return Basins(path=os.fspath(path), x_name=x_name, y_name=y_name, x=x, y=y,
+                      x_units=_text(f[x_name].attrs.get("units", "")), y_units=_text(f[y_name].attrs.get("units", "")),
+                      label=label, fixed=_text(f.attrs.get("fixed", "")),
+                      fixed_state=np.asarray(f.attrs.get("fixed_state", np.full(4, np.nan)), dtype=float),
+                      complete=bool(_scalar(f.attrs.get("complete", 0), path, "complete", int)),
+                      scene=_text(f.attrs.get("scene", "")), attractors=attractors)

@@ -13,6 +13,7 @@
 namespace vibromap {
 class MpiSession;
 struct Scene;
+struct FarmReport;
 }  // namespace vibromap
 
 namespace vibromap::cli {
@@ -107,6 +108,30 @@ struct OrbitDiagramArgs {
   std::string format = "table";
 };
 int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out);
+
+// `vibromap basins SCENE --plane A,B --grid NxM [--at V=X]... [-o FILE.h5] [--resume | --overwrite]`
+// Collective under mpirun: every rank runs it; only rank 0 prints.
+struct BasinsArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string plane = "x1,v1";    // two of x1, x2, v1, v2
+  std::string grid = "200x200";   // points along each plane variable
+  std::vector<std::string> at;    // fixed values "x2=0.05" of the variables outside the plane
+  std::string output;             // file; empty: the scene's name with _basins.h5, in the current directory
+  bool resume = false;
+  bool overwrite = false;
+  bool quiet = false;
+  double checkpoint = 30.0;       // s between rewrites of the file
+  std::string format = "table";
+};
+
+// Labels every pixel of the plane with its attractor on all ranks and prints the attractors.
+// Throws SceneError on bad options (before any MPI or file work). Returns the exit code.
+int basins_command(const BasinsArgs& args, std::ostream& out);
+
+// Rank 0, after a campaign's summary: ExitCode::ok, or (stopped by a signal) a line on stderr
+// saying what `output` holds and that --resume goes on, and ExitCode::stopped.
+int campaign_exit(const FarmReport& farm, const std::string& output, const char* noun);
 
 // Rank 0 reads and checks the scene (its error ends every rank with one line from rank 0); the
 // other ranks parse the text it read, so only rank 0 needs to see the file.

@@ -39,8 +39,9 @@ int report(std::string_view message, ExitCode exit) {
 std::string main_footer() {
   return exit_code_summary() +
          "\n'vibromap run --help' explains a run, 'vibromap sweep --help' a sweep, 'vibromap accuracy\n"
-         "--help' the accuracy study, 'vibromap optimise --help' the optimisation, 'vibromap\n"
-         "orbit-diagram --help' the bifurcation diagram; 'vibromap keys' lists the scene keys.";
+         "--help' the accuracy study, 'vibromap optimise --help' the optimisation, 'vibromap basins\n"
+         "--help' the basin pictures, 'vibromap orbit-diagram --help' the bifurcation diagram;\n"
+         "'vibromap keys' lists the scene keys.";
 }
 
 std::string run_footer() {
@@ -255,6 +256,58 @@ CLI::App* add_orbit_diagram(CLI::App& app, cli::OrbitDiagramArgs& args) {
   return od;
 }
 
+std::string basins_footer() {
+  return "A plane of initial states: the two --plane variables (of x1, x2, v1, v2: positions of the\n"
+         "bodies in m, velocities in m/s) on an evenly spaced NxM grid (--grid, N along the first\n"
+         "variable, 2..4096 each) spanning the scene's [census] box of each (census.x1 = [lo, hi], ...;\n"
+         "by default the rest state +- the motion's scale, 'vibromap keys'); the other two variables\n"
+         "are the rest state's (x1 = 0, x2 = D, v1 = v2 = 0) unless --at gives them (--at x2=0.06).\n"
+         "Each pixel's state is followed to the attractor its motion settles into, as 'run --census'\n"
+         "follows its initial states ([census] and [analysis] set the numerics): one follower per MPI\n"
+         "rank keeps every attractor it found, so later pixels are decided early against them. A pixel\n"
+         "with the bodies overlapping (x1 > x2) is not followed (label -3).\n\n"
+         "FILE.h5 (CF-1.8, opens in xarray): label (the attractor index of each pixel; -1 unresolved,\n"
+         "-2 unlisted, -3 overlap, -4 not computed), done, the two coordinates, and per attractor its\n"
+         "regime, n, k, k_con, T_con, F_max, max_floquet, stable, soft, pixels, fraction and\n"
+         "stroboscopic states. Attractors are numbered by pixel count, so the file does not depend on\n"
+         "the number of ranks. postprocess/vmpy plot_basins FILE.h5 -o FILE.png draws it.\n\n"
+         "The file is rewritten atomically every --checkpoint seconds; a run stopped (SIGINT, SIGTERM,\n"
+         "SIGUSR1: exit code 3) or killed leaves the file of its last checkpoint, and --resume computes\n"
+         "the rest. An existing FILE.h5 is replaced only with --overwrite.\n\n" +
+         main_footer();
+}
+
+CLI::App* add_basins(CLI::App& app, cli::BasinsArgs& args) {
+  CLI::App* b = app.add_subcommand("basins", "Basins of attraction on a plane of initial states, on MPI ranks");
+  b->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
+  b->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+      ->allow_extra_args(false)
+      ->type_name("SECTION.KEY=VALUE");
+  b->add_option("--plane", args.plane, "The two state variables of the plane (of x1, x2, v1, v2)")
+      ->type_name("A,B")
+      ->capture_default_str();
+  b->add_option("--grid", args.grid, "Points along the first and the second plane variable (2..4096 each)")
+      ->type_name("NxM")
+      ->capture_default_str();
+  b->add_option("--at", args.at, "Fix a variable outside the plane (repeatable; default: the rest state)")
+      ->allow_extra_args(false)
+      ->type_name("VAR=VALUE");
+  b->add_option("-o,--output", args.output, "File to write (default: the scene's name with _basins.h5)")
+      ->type_name("FILE.h5");
+  auto* resume = b->add_flag("--resume", args.resume, "Continue an existing file of the same run");
+  b->add_flag("--overwrite", args.overwrite, "Replace an existing file")->excludes(resume);
+  b->add_option("--checkpoint", args.checkpoint, "Seconds between rewrites of the file")
+      ->type_name("SECONDS")
+      ->capture_default_str();
+  b->add_flag("-q,--quiet", args.quiet, "No progress lines");
+  b->add_option("-f,--format", args.format, "Summary on stdout: table or json")
+      ->check(CLI::IsMember({"table", "json"}))
+      ->type_name("table|json")
+      ->capture_default_str();
+  b->footer(basins_footer());
+  return b;
+}
+
 CLI::App* add_keys(CLI::App& app, bool& as_toml) {
   CLI::App* keys = app.add_subcommand("keys", "List every scene key: default, unit, allowed values, meaning");
   keys->add_flag("--toml", as_toml, "Print a reference scene instead (every key with its default)");
@@ -291,11 +344,13 @@ int dispatch(int argc, char** argv) {
   cli::AccuracyArgs accuracy_args;
   cli::OptimiseArgs optimise_args;
   cli::OrbitDiagramArgs orbit_diagram_args;
+  cli::BasinsArgs basins_args;
   const CLI::App* run = add_run(app, run_args);
   const CLI::App* sweep = add_sweep(app, sweep_args);
   const CLI::App* accuracy = add_accuracy(app, accuracy_args);
   const CLI::App* optimise = add_optimise(app, optimise_args);
   const CLI::App* orbit_diagram = add_orbit_diagram(app, orbit_diagram_args);
+  const CLI::App* basins = add_basins(app, basins_args);
   add_keys(app, keys_toml);
   try {
     check_command_name(app, argc, argv);
@@ -308,6 +363,7 @@ int dispatch(int argc, char** argv) {
   if (accuracy->parsed()) return cli::accuracy_command(accuracy_args, std::cout);
   if (optimise->parsed()) return cli::optimise_command(optimise_args, std::cout);
   if (orbit_diagram->parsed()) return cli::orbit_diagram_command(orbit_diagram_args, std::cout);
+  if (basins->parsed()) return cli::basins_command(basins_args, std::cout);
   return cli::keys_command(keys_toml, std::cout);
 }
 
@@ -316,7 +372,7 @@ int dispatch(int argc, char** argv) {
 bool is_campaign(int argc, char** argv) {
   if (argc < 2) return false;
   const std::string_view command = argv[1];
-  return command == "sweep" || command == "optimise";
+  return command == "sweep" || command == "optimise" || command == "basins" || command == "orbit-diagram";
 }
 
 // Without a launcher (no mpirun, no srun) vibromap is an MPI singleton on one node: Open MPI

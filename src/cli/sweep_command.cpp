@@ -94,10 +94,14 @@ int sweep_command(const SweepArgs& args, std::ostream& out) {
     print_table(out, report, config.output);
   }
   out.flush();
-  if (report.farm.stop_signal == 0) return code(ExitCode::ok);
-  std::cerr << "vibromap: stopped by " << signal_name(report.farm.stop_signal) << " after a checkpoint: "
-            << config.output << " holds " << report.farm.items_resumed + report.farm.items_computed << " of "
-            << report.farm.items << " cells; run the same command with --resume to go on\n";
+  return campaign_exit(report.farm, config.output, "cells");
+}
+
+int campaign_exit(const FarmReport& farm, const std::string& output, const char* noun) {
+  if (farm.stop_signal == 0) return code(ExitCode::ok);
+  std::cerr << "vibromap: stopped by " << signal_name(farm.stop_signal) << " after a checkpoint: " << output << " holds "
+            << farm.items_resumed + farm.items_computed << " of " << farm.items << " " << noun
+            << "; run the same command with --resume to go on\n";
   return code(ExitCode::stopped);
 }
 

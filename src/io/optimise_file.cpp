@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "vibromap/io/hdf5_file.hpp"
+#include "regime_flags.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 
 // The layout is documented in optimise_file.hpp.
@@ -29,21 +30,6 @@ std::string padded(std::size_t i, int width) {
   std::array<char, 32> buf{};
   std::snprintf(buf.data(), buf.size(), "%0*zu", width, i);
   return std::string(buf.data());
-}
-
-// The regime dataset's CF flags: the map's codes (cell_result.hpp), 0..8 in RegimeKind order.
-void set_regime_flags(Dataset& d) {
-  std::vector<std::int8_t> values;
-  std::string meanings;
-  for (int i = 0; i <= static_cast<int>(RegimeKind::failed); ++i) {
-    const auto kind = static_cast<RegimeKind>(i);
-    values.push_back(regime_code(kind));
-    std::string name = to_string(kind);
-    std::replace(name.begin(), name.end(), '-', '_');
-    meanings.append(meanings.empty() ? "" : " ").append(name);
-  }
-  d.set_attribute("flag_values", std::span<const std::int8_t>(values));
-  d.set_attribute("flag_meanings", meanings);
 }
 
 void write_root(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o, const std::string& scene_text) {
@@ -135,7 +121,7 @@ void write_start(Group& g, const StartRecord& s, std::size_t variables, const st
   g.write_dataset("violation", violation);
   g.write_dataset("feasible", feasible);
   Dataset rd = g.write_dataset("regime", regime);
-  set_regime_flags(rd);
+  detail::set_regime_flags(rd);
   g.write_dataset("n", n);
   g.write_dataset("k", k);
   g.write_dataset("stable", stable);
@@ -198,7 +184,7 @@ void write_soft_check(Group g, const SoftCheck& c, const OptimiseOptions& o) {
     soft.push_back(a.soft ? 1 : 0);
   }
   Dataset rd = g.write_dataset("regime", regime);
-  set_regime_flags(rd);
+  detail::set_regime_flags(rd);
   g.write_dataset("n", n);
   g.write_dataset("k", k);
   g.write_dataset("k_con", k_con);

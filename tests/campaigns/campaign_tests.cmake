@@ -1,4 +1,4 @@
-# The campaigns end to end under mpiexec (pytest: tests/campaigns/sweep, tests/campaigns/multistart),
+# The campaigns end to end under mpiexec (pytest: tests/campaigns/sweep, multistart, basins),
 # and the optimiser's command-line checks. Included from tests/CMakeLists.txt after
 # cli_tests.cmake and postprocess_tests.cmake (which finds the Python interpreter).
 
@@ -27,6 +27,25 @@ vibromap_cli_test(optimise_output_directory_missing RC 4
                   ARGS optimise jobs/paper/optimise_box.toml -o no_such_dir/o.h5
                   ERR "no_such_dir/o\\.h5: cannot write the optimisation: directory 'no_such_dir' does not exist")
 
+# `vibromap basins`: command-line checks. Bad options are refused before any MPI or file work
+# (no file, no lock file is left behind), with one line naming the option and what it allows.
+vibromap_cli_test(basins_help RC 0 ARGS basins --help
+                  OUT "--plane.*--grid.*--at.*--resume.*--overwrite.*census.*-1 unresolved.*plot_basins.*Exit codes")
+vibromap_cli_test(basins_unknown_variable RC 2 ARGS basins jobs/paper/table2.toml --plane x1,q1 -o no_file.h5
+                  ERR "--plane x1,q1: unknown variable 'q1' \\(allowed: x1, x2, v1, v2\\)")
+vibromap_cli_test(basins_same_variable RC 2 ARGS basins jobs/paper/table2.toml --plane v1,v1 -o no_file.h5
+                  ERR "--plane v1,v1: the two variables must differ")
+vibromap_cli_test(basins_bad_grid RC 2 ARGS basins jobs/paper/table2.toml --grid 200x1 -o no_file.h5
+                  ERR "--grid 200x1: must be NxM with N and M whole numbers from 2 to 4096")
+vibromap_cli_test(basins_grid_not_nxm RC 2 ARGS basins jobs/paper/table2.toml --grid 200 -o no_file.h5
+                  ERR "--grid 200: must be NxM")
+vibromap_cli_test(basins_at_plane_variable RC 2 ARGS basins jobs/paper/table2.toml --plane x1,v1 --at v1=0.1
+                  -o no_file.h5 ERR "--at v1=0\\.1: v1 is a plane variable; fix only the other two")
+vibromap_cli_test(basins_at_bad_value RC 2 ARGS basins jobs/paper/table2.toml --at x2=abc -o no_file.h5
+                  ERR "--at x2=abc: the value must be a finite number")
+vibromap_cli_test(basins_bad_census RC 2 ARGS basins jobs/paper/table2.toml --set "census.x1=[1, 0]" -o no_file.h5
+                  ERR "census\\.x1=\\[1, 0\\]: must be an array \\[lo, hi\\]")
+
 if(NOT VibromapPython_FOUND)
   message(WARNING "campaign tests not added: no Python with numpy, h5py and pytest")
   return()
@@ -39,10 +58,11 @@ function(vibromap_campaign_pytest name folder)
            COMMAND "${VibromapPython_EXECUTABLE}" -m pytest -q -p no:cacheprovider tests/campaigns/${folder}
            WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
   set_tests_properties(${name} PROPERTIES
-    ENVIRONMENT "VIBROMAP_EXE=$<TARGET_FILE:vibromap>;VIBROMAP_MPIEXEC=${MPIEXEC_EXECUTABLE};PYTHONDONTWRITEBYTECODE=1;MPLCONFIGDIR=${CMAKE_CURRENT_BINARY_DIR}/mplconfig"
+    ENVIRONMENT "VIBROMAP_EXE=$<TARGET_FILE:vibromap>;VIBROMAP_BASINS_BRUTE=$<TARGET_FILE:basins_brute_force>;VIBROMAP_MPIEXEC=${MPIEXEC_EXECUTABLE};PYTHONDONTWRITEBYTECODE=1;MPLCONFIGDIR=${CMAKE_CURRENT_BINARY_DIR}/mplconfig"
     TIMEOUT 900
     RUN_SERIAL TRUE)
 endfunction()
 
 vibromap_campaign_pytest(sweep_mpi sweep)
 vibromap_campaign_pytest(optimise_mpi multistart)
+vibromap_campaign_pytest(basins_mpi basins)

@@ -1,0 +1,55 @@
+#pragma once
+// The output file of `vibromap basins` (HDF5, CF-1.8 conventions; read by
+// postprocess/vibromap_h5.py and plot_basins.py). A plane of initial states (basins_plane.hpp),
+// each pixel labelled by the attractor its motion settles into (census.hpp's CensusFollower).
+//
+// Layout (A: N0 x N1 pixels of the plane variables P0, P1; A attractors, S the longest period):
+//   root attributes  title, Conventions, vibromap_version, scene (the scene text), identity
+//       (what --resume must match: the scene's canonical values, the plane, the grid and the
+//       fixed state), plane ("x1,v1"), grid ("N0xN1"), fixed ("x2=0.05 v2=0": the variables not
+//       in the plane), fixed_state (4 float64: the state before the plane variables are set,
+//       m and m/s), complete (0 | 1), pixels, pixels_done, pixels_overlap, attractors, soft_kcon
+//   /P0 (N0), /P1 (N1) float64 coordinates (dimension scales), units m or m/s
+//   /label (N1, N0) int32: the pixel's attractor index; -1 unresolved (budget ran out while
+//       settling), -2 unlisted (more attractors than max_attractors), -3 overlap (x1 > x2 at
+//       the start: not followed), -4 not computed yet (flag_values, flag_meanings)
+//   /done  (N1, N0) uint8: 1 where the label is final (what --resume skips)
+//   /attractor (A) int32 coordinate; per attractor (A):
+//       regime (int8, the map's regime codes with flag_values/flag_meanings), n, k (int32),
+//       periodic, hertz_valid, soft (uint8), stable (int8: 1, 0, -1 unknown), T_con (s),
+//       k_con, F_max (N), z_ratio, z_max (m), v_in (m/s), impulse (N s), max_floquet,
+//       pixels (int64), fraction (pixels / pixels followed, overlap excluded), first_pixel
+//       (int64, flat: j N0 + i), strobe_points (int32, n or 0), strobe (A, S, 4) float64: the
+//       stroboscopic states (x1, x2, v1, v2), NaN past strobe_points
+// Attractors are numbered by pixel count, descending, ties by first pixel: the file does not
+// depend on the number of MPI ranks. Written atomically (write_hdf5_atomically).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vibromap/core/analysis/basins_plane.hpp"
+#include "vibromap/core/analysis/census.hpp"
+
+namespace vibromap {
+
+constexpr int kNotComputedLabel = -4;  // a pixel not done yet
+
+struct BasinsContent {
+  std::string scene_text;
+  std::string identity;                   // what a resume must match
+  BasinsPlane plane;
+  double soft_kcon = 10.0;                // the census's soft_kcon (attribute)
+  std::vector<std::int32_t> labels;       // per pixel (plane.pixels())
+  std::vector<std::uint8_t> done;         // per pixel
+  std::vector<Attractor> attractors;      // count = pixels; fraction filled by the writer's caller
+  std::vector<std::int64_t> first_pixel;  // per attractor
+  bool complete = false;
+};
+
+// Writes `c` atomically (tmp + rename). Throws IoError naming the path.
+void write_basins_file(const std::string& path, const BasinsContent& c);
+// Reads a file written by write_basins_file. Throws IoError when it is not one.
+BasinsContent read_basins_file(const std::string& path);
+
+}  // namespace vibromap

@@ -1,0 +1,186 @@
+// The basins campaign: see basins_run.hpp.
+
+#include "vibromap/campaigns/basins/basins_run.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "basins_sink.hpp"
+#include "pixel_codec.hpp"
+#include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/core/grid.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_lock.hpp"
+#include "vibromap/io/scene/identity.hpp"
+#include "vibromap/parallel/campaign.hpp"
+
+namespace vibromap {
+namespace {
+
+std::string number(double x) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
+constexpr int kNoRecurrenceCapture = 100'000;  // CensusOptions::recurrences' largest value
+
+// The census options the followers use: the scene's [census], without recurrence capture. A
+// state recurring on a non-periodic set a follower found earlier is decided "non-periodic" at
+// once; on the Table 2 point that set is a chaotic saddle, whose long transients mostly end on
+// (3,3), and which pixels it captures depends on what the rank followed before (measured on a
+// 48x48 plane: 112 pixels non-periodic with capture, 9 without; two 2-rank runs of 200x200
+// differed by 920 pixels). Without it a pixel is non-periodic only when it has not settled
+// after analysis.max_periods, as brute force decides, whatever its rank followed before;
+// captures by periodic orbits stay (they are provable: census.cpp). Cost: 16 % more time.
+CensusOptions follower_census(const Scene& scene) {
+  CensusOptions c = scene.census.value_or(CensusOptions{});
+  c.recurrences = kNoRecurrenceCapture;
+  return c;
+}
+
+// What a resume must match: the point's canonical values (its [census] keys included; a
+// [sweep] or [optimise] section plays no part in a plane), the plane, its axes and the fixed
+// state, one sorted "key = value" line each.
+std::string run_identity(const Scene& scene, const BasinsPlane& plane) {
+  Scene point = scene;
+  point.sweep.reset();
+  point.optimise.reset();
+  std::vector<std::string> lines;
+  std::istringstream in(canonical_text(point, IdentityScope::sweep));
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  lines.push_back("basins.plane = " + plane.name());
+  for (std::size_t d = 0; d < 2; ++d) {
+    const auto& a = plane.axes[d];
+    lines.push_back(cat("basins.axis.", std::to_string(d), " = [", number(a.front()), ", ", number(a.back()), "] n ",
+                        std::to_string(a.size())));
+  }
+  lines.push_back(cat("basins.fixed = ", number(plane.fixed[0]), " ", number(plane.fixed[1]), " ", number(plane.fixed[2]),
+                      " ", number(plane.fixed[3])));
+  std::sort(lines.begin(), lines.end());
+  std::string out;
+  for (const std::string& l : lines) out += l + "\n";
+  return out;
+}
+
+BasinsContent new_content(const Scene& scene, const BasinsPlane& plane) {
+  BasinsContent c;
+  c.scene_text = scene.text;
+  c.identity = run_identity(scene, plane);
+  c.plane = plane;
+  c.soft_kcon = scene.census.value_or(CensusOptions{}).soft_kcon;
+  c.labels.assign(static_cast<std::size_t>(plane.pixels()), kNotComputedLabel);
+  c.done.assign(c.labels.size(), 0);
+  return c;
+}
+
+// A file being resumed must be this run's; the error names the values that differ.
+BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, const std::string& path) {
+  BasinsContent have = read_basins_file(path);
+  BasinsContent want = new_content(scene, plane);
+  const std::vector<std::string> diff = canonical_differences(have.identity, want.identity);
+  if (!diff.empty() || have.labels.size() != want.labels.size()) {
+    std::string keys;
+    for (std::size_t i = 0; i < diff.size() && i < 4; ++i) keys += cat(i ? ", " : "", diff[i]);
+    if (diff.size() > 4) keys += cat(" and ", std::to_string(diff.size() - 4), " more");
+    throw SceneError(cat(path, ": --resume: the file was made by another run than this one: ",
+                         keys.empty() ? std::string("the grid") : keys, "; use --overwrite or another --output"));
+  }
+  have.scene_text = scene.text;
+  return have;
+}
+
+// Rank 0: the lock, and the sink over a new plane or the file resumed.
+std::unique_ptr<detail::BasinsSink> prepare_sink(const Scene& scene, const BasinsPlane& plane,
+                                                 const BasinsRunConfig& config, const detail::PixelCodec& codec,
+                                                 std::unique_ptr<OutputLock>& lock) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path dir = fs::path(config.output).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec))
+    throw IoError(cat(config.output, ": cannot write the basins: directory '", dir.string(), "' does not exist"));
+  lock = std::make_unique<OutputLock>(config.output);
+  const bool exists = fs::exists(config.output, ec);
+  if (config.resume && exists)
+    return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
+                                                resumed_content(scene, plane, config.output));
+  if (exists && !config.overwrite)
+    throw SceneError(cat(config.output, ": already exists; use --resume to continue it or --overwrite to replace it"));
+  return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
+                                              new_content(scene, plane));
+}
+
+// One pixel, on the rank's follower. An exception is the pixel's label, never the run's.
+detail::PixelResult solve_pixel(CensusFollower& follower, const BasinsPlane& plane, std::uint64_t pixel) {
+  detail::PixelResult r;
+  if (plane.overlapping(pixel)) {
+    r.label = kOverlapLabel;
+    return r;
+  }
+  try {
+    const CensusFollower::Outcome out = follower.follow(plane.state(pixel));
+    r.label = out.label;
+    r.periods = out.periods;
+    r.early = out.early;
+    if (out.label >= 0) r.attractor = follower.attractor(static_cast<std::size_t>(out.label));
+  } catch (const std::exception&) {
+    r.label = kUnresolvedLabel;
+  }
+  return r;
+}
+
+FarmOptions farm_options(const BasinsRunConfig& config) {
+  FarmOptions o;
+  o.label = "basins";
+  o.noun = "pixels";
+  o.checkpoint_interval = config.checkpoint_interval;
+  o.progress = config.progress;
+  o.exit_code_of = exit_status_of;
+  return o;
+}
+
+}  // namespace
+
+BasinsPlane make_basins_plane(const Scene& scene, const BasinsSpec& spec) {
+  const auto box = census_box(scene.params, scene.census.value_or(CensusOptions{}));
+  Parameters at_rest = scene.params;
+  at_rest.initial.reset();
+  BasinsPlane plane;
+  plane.vars = spec.vars;
+  plane.fixed = at_rest.initial_state();
+  for (const auto& [var, value] : spec.at) plane.fixed[var] = value;
+  for (std::size_t d = 0; d < 2; ++d) {
+    const auto& side = box[static_cast<std::size_t>(spec.vars[d])];
+    plane.axes[d] = axis_points(side[0], side[1], spec.n[d], AxisScale::lin);
+  }
+  return plane;
+}
+
+BasinsReport run_basins(const MpiSession& mpi, const Scene& scene, const BasinsPlane& plane,
+                        const BasinsRunConfig& config) {
+  const detail::PixelCodec codec;
+  std::unique_ptr<OutputLock> lock;
+  std::unique_ptr<detail::BasinsSink> sink;
+  mpi.agree([&] { sink = prepare_sink(scene, plane, config, codec, lock); }, exit_status_of);
+  // One follower per rank for the whole run, made at its first pixel.
+  std::optional<CensusFollower> follower;
+  Campaign<detail::PixelResult> campaign;
+  campaign.solve = [&](std::uint64_t pixel) {
+    if (!follower) follower.emplace(scene.params, scene.options, follower_census(scene));
+    return solve_pixel(*follower, plane, pixel);
+  };
+  campaign.codec = &codec;
+  campaign.sink = sink.get();
+  BasinsReport report;
+  report.farm = run_campaign(mpi, farm_options(config), campaign);
+  if (sink) report.content = sink->written();
+  return report;
+}
+
+}  // namespace vibromap

@@ -1,0 +1,186 @@
+// `vibromap basins`: the attractor of every initial state of a plane, on all MPI ranks, into one
+// HDF5 file (the basins campaign).
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cstdio>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+#include "commands.hpp"
+#include "vibromap/campaigns/basins/basins_run.hpp"
+#include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/scene/scene.hpp"
+#include "vibromap/parallel/mpi_session.hpp"
+#include "vibromap/parallel/signals.hpp"
+
+namespace vibromap::cli {
+namespace {
+
+constexpr int kMinPoints = 2, kMaxPoints = 4096;  // points along each plane variable
+constexpr const char* kVariables = "x1, x2, v1, v2";
+
+std::string default_output(const std::string& scene_path) {
+  return std::filesystem::path(scene_path).stem().string() + "_basins.h5";
+}
+
+int variable(const std::string& option, const std::string& value, std::string_view name) {
+  const int i = state_index(name);
+  if (i < 0)
+    throw SceneError(cat(option, " ", value, ": unknown variable '", std::string(name), "' (allowed: ", kVariables, ")"));
+  return i;
+}
+
+std::array<int, 2> parse_plane(const std::string& text) {
+  const auto comma = text.find(',');
+  if (comma == std::string::npos)
+    throw SceneError(cat("--plane ", text, ": must be two variables A,B of ", kVariables, " (e.g. x1,v1)"));
+  const std::array<int, 2> vars{variable("--plane", text, std::string_view(text).substr(0, comma)),
+                                variable("--plane", text, std::string_view(text).substr(comma + 1))};
+  if (vars[0] == vars[1]) throw SceneError(cat("--plane ", text, ": the two variables must differ (of ", kVariables, ")"));
+  return vars;
+}
+
+int parse_points(const std::string& text, std::string_view part) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), n);
+  if (ec != std::errc() || end != part.data() + part.size() || part.empty() || n < kMinPoints || n > kMaxPoints)
+    throw SceneError(cat("--grid ", text, ": must be NxM with N and M whole numbers from ", std::to_string(kMinPoints),
+                         " to ", std::to_string(kMaxPoints), " (e.g. 200x200)"));
+  return n;
+}
+
+std::array<int, 2> parse_grid(const std::string& text) {
+  const auto x = text.find('x');
+  const std::string_view all(text);
+  if (x == std::string::npos) return {parse_points(text, ""), 0};
+  return {parse_points(text, all.substr(0, x)), parse_points(text, all.substr(x + 1))};
+}
+
+void parse_at(const std::string& text, BasinsSpec& spec) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos)
+    throw SceneError(cat("--at ", text, ": must be VARIABLE=VALUE with a variable of ", kVariables, " (e.g. x2=0.05)"));
+  const int var = variable("--at", text, std::string_view(text).substr(0, eq));
+  if (var == spec.vars[0] || var == spec.vars[1])
+    throw SceneError(cat("--at ", text, ": ", std::string(kStateNames[static_cast<std::size_t>(var)]),
+                         " is a plane variable; fix only the other two"));
+  double value = 0.0;
+  const std::string_view v = std::string_view(text).substr(eq + 1);
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
+  if (ec != std::errc() || end != v.data() + v.size() || v.empty() || !std::isfinite(value))
+    throw SceneError(cat("--at ", text, ": the value must be a finite number in m or m/s"));
+  spec.at[var] = value;
+}
+
+BasinsSpec parse_spec(const BasinsArgs& args) {
+  BasinsSpec spec;
+  spec.vars = parse_plane(args.plane);
+  spec.n = parse_grid(args.grid);
+  for (const std::string& at : args.at) parse_at(at, spec);
+  if (!(args.checkpoint > 0.0) || !std::isfinite(args.checkpoint))
+    throw SceneError(cat("--checkpoint ", std::to_string(args.checkpoint), ": must be a positive number of seconds"));
+  return spec;
+}
+
+long count_label(const BasinsContent& c, int label) {
+  return static_cast<long>(std::count(c.labels.begin(), c.labels.end(), label));
+}
+
+double rate(const FarmReport& f) { return f.wall_s > 0 ? static_cast<double>(f.items_computed) / f.wall_s : 0.0; }
+
+void print_json(std::ostream& out, const BasinsReport& r, const std::string& output) {
+  const BasinsContent& c = r.content;
+  const FarmReport& f = r.farm;
+  JsonWriter w(out);
+  w.begin_object()
+      .field("output", output)
+      .field("plane", c.plane.name())
+      .field("pixels", f.items)
+      .field("pixels_resumed", f.items_resumed)
+      .field("pixels_computed", f.items_computed)
+      .field("complete", f.complete())
+      .field("ranks", f.ranks)
+      .field("wall_s", f.wall_s)
+      .field("pixels_per_s", rate(f))
+      .field("stopped_by", f.stop_signal ? signal_name(f.stop_signal) : std::string())
+      .field("unresolved", count_label(c, kUnresolvedLabel))
+      .field("unlisted", count_label(c, kUnlistedLabel))
+      .field("overlap", count_label(c, kOverlapLabel));
+  w.key("attractors").begin_array();
+  for (const Attractor& a : c.attractors) {
+    w.begin_object()
+        .field("regime", a.regime.label())
+        .field("n", a.regime.n)
+        .field("k", a.regime.k)
+        .field("k_con", a.k_con)
+        .field("T_con", a.T_con)
+        .field("F_max", a.F_max)
+        .field("max_floquet", a.max_floquet)
+        .field("soft", a.soft)
+        .field("pixels", a.count)
+        .field("fraction", a.fraction);
+    w.key("stable");
+    if (a.stable < 0) w.null();
+    else w.value(a.stable == 1);
+    w.end_object();
+  }
+  w.end_array().end_object();
+  out << "\n";
+}
+
+void print_table(std::ostream& out, const BasinsReport& r, const std::string& output) {
+  const BasinsContent& c = r.content;
+  const FarmReport& f = r.farm;
+  out << "basins         " << output
+      << (f.stop_signal ? "  (stopped by " + signal_name(f.stop_signal) + ": go on with --resume)" : "") << "\n"
+      << "plane          " << c.plane.name() << ", " << c.plane.axes[0].size() << " x " << c.plane.axes[1].size()
+      << " pixels (" << f.items_resumed << " from the resumed file, " << f.items_computed << " computed now)\n"
+      << "ranks          " << f.ranks << "\n"
+      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << rate(f) << " pixels/s\n"
+      << "unresolved     " << count_label(c, kUnresolvedLabel) << ", unlisted " << count_label(c, kUnlistedLabel)
+      << ", overlap " << count_label(c, kOverlapLabel) << " pixels\n\n"
+      << "  #  regime          fraction    pixels   k_con       T_con (s)   F_max (N)   max|mu|   stable  soft\n";
+  for (std::size_t i = 0; i < c.attractors.size(); ++i) {
+    const Attractor& a = c.attractors[i];
+    char line[256];
+    std::snprintf(line, sizeof line, "%3zu  %-14s  %8.4f  %8d  %10.4g  %10.4g  %10.4g  %7.4f   %-6s  %s\n", i,
+                  a.regime.label().c_str(), a.fraction, a.count, a.k_con, a.T_con, a.F_max, a.max_floquet,
+                  a.stable == 1 ? "yes" : a.stable == 0 ? "no" : "?", a.soft ? "yes" : "");
+    out << line;
+  }
+}
+
+}  // namespace
+
+int basins_command(const BasinsArgs& args, std::ostream& out) {
+  const BasinsSpec spec = parse_spec(args);  // the same on every rank: no MPI needed to refuse it
+  const MpiSession mpi;
+  const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
+  BasinsPlane plane;
+  mpi.agree([&] {
+    if (const std::string e = validate(scene.census.value_or(CensusOptions{})); !e.empty())
+      throw SceneError(cat(args.scene, ": [census] ", e));
+    plane = make_basins_plane(scene, spec);
+  }, exit_status_of);
+  if (mpi.rank() != 0) plane = make_basins_plane(scene, spec);
+  BasinsRunConfig config;
+  config.output = args.output.empty() ? default_output(args.scene) : args.output;
+  config.resume = args.resume;
+  config.overwrite = args.overwrite;
+  config.progress = !args.quiet;
+  config.checkpoint_interval = args.checkpoint;
+  const BasinsReport report = run_basins(mpi, scene, plane, config);
+  if (mpi.rank() != 0) return report.farm.stop_signal ? code(ExitCode::stopped) : code(ExitCode::ok);
+  if (args.format == "json") print_json(out, report, config.output);
+  else print_table(out, report, config.output);
+  out.flush();
+  return campaign_exit(report.farm, config.output, "pixels");
+}
+
+}  // namespace vibromap::cli
