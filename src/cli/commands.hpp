@@ -4,10 +4,13 @@
 // (parallel/exit_code.hpp) and lets its errors reach main, which prints them as one line and
 // maps them to the exit code (campaigns/exit_status.hpp).
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
+#include "vibromap/core/grid.hpp"
+#include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/exit_code.hpp"
 
 namespace vibromap {
@@ -89,6 +92,34 @@ std::string optimise_journal_path(const std::string& output);
 // Returns the exit code (stopped when a signal stopped the seeding sweep or the starts, with
 // the map or the journal checkpointed).
 int optimise_command(const OptimiseArgs& args, std::ostream& out);
+
+// A command that steps one scene key (`orbit-diagram`, `continue`): the scene loaded (by `load`,
+// with `sets`) with the key's values as a one-axis [sweep] override `axis` (TOML, e.g.
+// "{from=1,to=2,n=5}"), so that the key and its values are checked, and named with unit and
+// meaning, exactly as a sweep axis; errors name --param instead of the override.
+struct ParamScene {
+  Scene scene;
+  Axis axis;  // the stepped key's axis
+};
+using SceneLoader = std::function<Scene(const std::vector<std::string>& sets)>;
+ParamScene scene_with_param(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
+                            const std::string& axis);
+std::string short_number(double x);  // 12 digits: 7.23, for messages
+std::string exact_number(double x);  // 17 digits: the double itself, for overrides
+
+// `vibromap continue SCENE --param KEY --from A --to B [--format table|json] [--set ...]`: the
+// periodic orbit the scene's point settles into from rest at KEY = A, followed to B by
+// pseudo-arclength continuation (core/analysis/continuation.hpp). One process.
+struct ContinueArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string param;
+  double from = 0.0, to = 0.0;
+  double ds_max = 0.05;          // largest step along the branch (scaled arclength)
+  int max_points = 5000;
+  std::string format = "table";
+};
+int continue_command(const ContinueArgs& args, std::ostream& out);
 
 // `vibromap orbit-diagram SCENE --param KEY --from A --to B --steps N [--transient P] [--keep M]
 // [-o FILE.h5] [--overwrite] [-q] [--format table|json] [--set section.key=value]...`.

@@ -213,6 +213,38 @@ CLI::App* add_optimise(CLI::App& app, cli::OptimiseArgs& args) {
   return opt;
 }
 
+CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
+  CLI::App* c = app.add_subcommand("continue", "Follow a periodic orbit in one key: branch, stability, bifurcations");
+  c->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
+  c->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+      ->allow_extra_args(false)
+      ->type_name("SECTION.KEY=VALUE");
+  c->add_option("-p,--param", args.param, "The scene key to follow the orbit in: forcing.omega, omega, m2, ...")
+      ->required()
+      ->type_name("KEY");
+  c->add_option("--from", args.from, "Start value of the key (SI units): the orbit from rest there is followed")
+      ->required()
+      ->type_name("A");
+  c->add_option("--to", args.to, "End value (either side of A)")->required()->type_name("B");
+  c->add_option("--ds-max", args.ds_max, "Largest step along the branch (scaled arclength)")->capture_default_str();
+  c->add_option("--max-points", args.max_points, "Points on the branch at most")->capture_default_str();
+  c->add_option("-f,--format", args.format, "Output on stdout: table or json")
+      ->check(CLI::IsMember({"table", "json"}))
+      ->type_name("table|json")
+      ->capture_default_str();
+  c->footer(
+      "The scene's point with KEY = A is solved from rest; its periodic orbit (period n T) is\n"
+      "followed by pseudo-arclength continuation on the shooting equations P^n(y) - y = 0, the\n"
+      "state scaled by the motion's scale and the key by |B - A|, with step-size control. The\n"
+      "branch goes through folds (it turns back in the key) and ends when it leaves [A, B]. At\n"
+      "every point: Floquet multipliers and stability, the orbit's regime, k_con and F_max.\n"
+      "Bifurcations are detected and located by bisection along the branch: fold (the branch\n"
+      "turns), period-doubling (a multiplier through -1), neimark-sacker (a complex pair through\n"
+      "the unit circle). Not yet: grazing, switching onto the doubled branch, a branch file.\n\n" +
+      main_footer());
+  return c;
+}
+
 CLI::App* add_orbit_diagram(CLI::App& app, cli::OrbitDiagramArgs& args) {
   CLI::App* od = app.add_subcommand("orbit-diagram",
                                     "Brute-force bifurcation diagram: step one key up and down, carrying the state");
@@ -344,12 +376,14 @@ int dispatch(int argc, char** argv) {
   cli::AccuracyArgs accuracy_args;
   cli::OptimiseArgs optimise_args;
   cli::OrbitDiagramArgs orbit_diagram_args;
+  cli::ContinueArgs continue_args;
   cli::BasinsArgs basins_args;
   const CLI::App* run = add_run(app, run_args);
   const CLI::App* sweep = add_sweep(app, sweep_args);
   const CLI::App* accuracy = add_accuracy(app, accuracy_args);
   const CLI::App* optimise = add_optimise(app, optimise_args);
   const CLI::App* orbit_diagram = add_orbit_diagram(app, orbit_diagram_args);
+  const CLI::App* continuation = add_continue(app, continue_args);
   const CLI::App* basins = add_basins(app, basins_args);
   add_keys(app, keys_toml);
   try {
@@ -363,6 +397,7 @@ int dispatch(int argc, char** argv) {
   if (accuracy->parsed()) return cli::accuracy_command(accuracy_args, std::cout);
   if (optimise->parsed()) return cli::optimise_command(optimise_args, std::cout);
   if (orbit_diagram->parsed()) return cli::orbit_diagram_command(orbit_diagram_args, std::cout);
+  if (continuation->parsed()) return cli::continue_command(continue_args, std::cout);
   if (basins->parsed()) return cli::basins_command(basins_args, std::cout);
   return cli::keys_command(keys_toml, std::cout);
 }

@@ -14,20 +14,6 @@
 namespace vibromap::cli {
 namespace {
 
-std::string number(double x) {
-  std::ostringstream os;
-  os << std::setprecision(17) << x;
-  return os.str();
-}
-
-// The scene with `--param`'s range as a one-axis [sweep] override, so that the key, its range
-// and its values are checked (and named, with unit and meaning) exactly as a sweep axis.
-Axis diagram_axis(const Scene& scene, const std::string& param) {
-  for (const Axis& a : scene.sweep->axes)
-    if (a.key == param || a.name == param) return a;
-  throw SceneError(cat("--param ", param, ": not a numeric scene key (see 'vibromap keys')"));
-}
-
 void print_json(std::ostream& out, const OrbitDiagramReport& r, const OrbitDiagramArgs& args) {
   JsonWriter w(out);
   w.begin_object().field("key", r.data.axis.key).field("output", args.output).field("wall_s", r.farm.wall_s);
@@ -64,7 +50,7 @@ int branches(const DiagramStep& s) {
 
 void print_table(std::ostream& out, const OrbitDiagramReport& r, const OrbitDiagramArgs& args) {
   const Axis& a = r.data.axis;
-  out << "orbit diagram  " << a.key << " from " << number(a.values.front()) << " to " << number(a.values.back())
+  out << "orbit diagram  " << a.key << " from " << short_number(a.values.front()) << " to " << short_number(a.values.back())
       << " " << a.units << ", " << a.values.size() << " points, up and down\n"
       << "kept           " << r.data.options.keep << " stroboscopic states after " << r.data.options.transient
       << " periods at each point\n"
@@ -94,25 +80,18 @@ void print_table(std::ostream& out, const OrbitDiagramReport& r, const OrbitDiag
 int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out) {
   const MpiSession mpi;
   if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from < args.to))
-    throw SceneError(cat("--from ", number(args.from), " --to ", number(args.to), ": need finite values with from < to"));
+    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite values with from < to"));
   if (args.steps < 2 || args.steps > 1'000'000) throw SceneError("--steps must be in [2, 1000000]");
   OrbitDiagramConfig config;
   config.options.transient = args.transient;
   config.options.keep = args.keep;
   if (const std::string err = validate(config.options); !err.empty()) throw SceneError("--" + err);
-  std::vector<std::string> sets = args.sets;
-  sets.push_back(cat("sweep.", args.param, "={from=", number(args.from), ",to=", number(args.to),
-                     ",n=", std::to_string(args.steps), ",scale=\"", args.scale, "\"}"));
-  Scene scene;
-  try {
-    scene = load_scene_everywhere(mpi, args.scene, sets);
-  } catch (const SceneError& e) {  // name the option, not the override made of it
-    std::string what = e.what();
-    const std::string made = "--set " + sets.back();
-    if (const auto at = what.find(made); at != std::string::npos) what.replace(at, made.size(), "--param " + args.param);
-    throw SceneError(what);
-  }
-  config.axis = diagram_axis(scene, args.param);
+  const ParamScene ps = scene_with_param(
+      [&](const auto& sets) { return load_scene_everywhere(mpi, args.scene, sets); }, args.sets, args.param,
+      cat("{from=", exact_number(args.from), ",to=", exact_number(args.to), ",n=", std::to_string(args.steps),
+          ",scale=\"", args.scale, "\"}"));
+  const Scene& scene = ps.scene;
+  config.axis = ps.axis;
   config.output = args.output;
   config.overwrite = args.overwrite;
   config.progress = !args.quiet;

@@ -164,3 +164,14 @@ vibromap_cli_test(orbit_diagram_bad_range RC 2 ARGS orbit-diagram jobs/paper/tab
 vibromap_cli_test(orbit_diagram_out_of_range RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param m2 --from -1 --to 8
                   ERR "--param m2: .*must be > 0")
 vibromap_cli_test(orbit_diagram_help RC 0 ARGS orbit-diagram --help OUT "--param.*--from.*--transient.*--keep.*hysteresis")
+
+# `vibromap continue` (issue #12): the branch of Table 2's (1,1) up in omega turns at a fold near
+# 8.242 rad/s (checked against the orbit diagram in tests/core/test_continuation.cpp); one line
+# for a start that is not periodic or a bad key.
+vibromap_cli_test(continue_json RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 7.23 --to 8.3
+                  --format json
+                  OUT "\"key\": \"forcing\\.omega\".*\"points\": \\[.*\"multipliers\": \\[.*\"bifurcations\": \\[[^]]*\"type\": \"fold\",[^]]*\"param\": 8\\.242")
+vibromap_cli_test(continue_bad_key RC 2 ARGS continue jobs/paper/table2.toml --param omeg --from 7 --to 8
+                  ERR "--param omeg: unknown key 'omeg'")
+vibromap_cli_test(continue_same_ends RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 7
+                  ERR "--from 7 --to 7: need finite, different values")

@@ -193,4 +193,13 @@ ShootingResult shoot(const Model& model, const IntegratorOptions& integration, c
   return r;
 }
 
+IntegrationStatus period_map(const Model& model, const IntegratorOptions& integration, const State& y, int n,
+                             State& image, Eigen::Matrix4d& jac, IntegrationCounters& counters) {
+  return map_n(model, integration, y, n, image, jac, counters);
+}
+
+std::vector<std::complex<double>> floquet_multipliers(const Eigen::Matrix4d& monodromy) {
+  return eigenvalues_by_size(monodromy);
+}
+
 }  // namespace vibromap

@@ -39,6 +39,13 @@ struct ShootingResult {
 ShootingResult shoot(const Model& model, const IntegratorOptions& integration, const State& y0,
                      const ShootingOptions& options, IntegrationCounters& counters);
 
+// P^n(y) into `image` and its Jacobian dP^n/dy (the monodromy at a periodic orbit) into `jac`,
+// integrated with the variational equations. counters accumulates the work.
+IntegrationStatus period_map(const Model& model, const IntegratorOptions& integration, const State& y, int n,
+                             State& image, Eigen::Matrix4d& jac, IntegrationCounters& counters);
+// The eigenvalues of a monodromy matrix (Floquet multipliers), largest |mu| first.
+std::vector<std::complex<double>> floquet_multipliers(const Eigen::Matrix4d& monodromy);
+
 // The least d dividing n with ||P^d(y) - y|| <= tol (n when there is none): Newton for
 // period n may converge to an orbit of a shorter period. counters accumulates the work.
 int least_period(const Model& model, const IntegratorOptions& integration, const State& y, int n, double tol,

@@ -1,0 +1,110 @@
+// `vibromap continue`: see commands.hpp and include/vibromap/core/analysis/continuation.hpp.
+
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "vibromap/core/analysis/continuation.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/scene/keys.hpp"
+#include "vibromap/io/scene/scene.hpp"
+
+namespace vibromap::cli {
+namespace {
+
+// What continue prints of a branch point: the orbit measured as `run` measures it.
+struct Measured {
+  BranchPoint point;
+  PointSummary orbit;
+};
+
+void multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu) {
+  w.key("multipliers").begin_array();
+  for (const auto& m : mu) w.begin_array().value(m.real()).value(m.imag()).end_array();
+  w.end_array();
+}
+
+double largest(const std::vector<std::complex<double>>& mu) { return mu.empty() ? NAN : std::abs(mu.front()); }
+
+}  // namespace
+
+int continue_command(const ContinueArgs& args, std::ostream& out) {
+  if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from != args.to))
+    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite, different values"));
+  const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
+                                         args.param,
+                                         cat("{values=[", exact_number(std::min(args.from, args.to)), ",",
+                                             exact_number(std::max(args.from, args.to)), "]}"));
+  const Scene& scene = ps.scene;
+  const std::string& key = ps.axis.key;
+  const PointSetter set = point_setter(key);
+  const PointAt at = [&](double lambda) {
+    std::pair<Parameters, PointOptions> point{scene.params, scene.options};
+    set(point.first, point.second, lambda);
+    return point;
+  };
+  // The start: the motion from rest at KEY = from.
+  const auto [p0, o0] = at(args.from);
+  const PointSummary start = solve_point(p0, o0);
+  if (start.status != SolveStatus::ok || start.regime.kind != RegimeKind::periodic)
+    throw SceneError(cat(args.scene, ": at ", key, " = ", short_number(args.from), " the motion from rest is ",
+                         start.regime.label(), " (", to_string(start.status),
+                         "), not a periodic orbit to continue; start elsewhere (--from)"));
+  ContinuationOptions co;
+  co.n = start.regime.n;
+  co.ds_max = args.ds_max;
+  co.ds = std::min(co.ds, co.ds_max);
+  co.max_points = args.max_points;
+  if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
+  const Branch branch = continue_orbit(at, args.from, args.to, start.final_state, co);
+  std::vector<Measured> points;
+  for (const BranchPoint& q : branch.points) {
+    const auto [p, o] = at(q.param);
+    points.push_back({q, measure_orbit(p, o, q.y, co.n)});
+  }
+  if (args.format == "json") {
+    JsonWriter w(out);
+    w.begin_object().field("key", key).field("n", co.n).field("stop", branch.stop);
+    w.key("points").begin_array();
+    for (const Measured& m : points) {
+      w.begin_object().field("param", m.point.param).field("stable", m.point.stable);
+      multipliers_json(w, m.point.multipliers);
+      w.field("T_con", m.orbit.T_con).field("k_con", m.orbit.k_con).field("F_max", m.orbit.F_max);
+      w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
+      w.field("regime", m.orbit.regime.label());
+      w.key("y").begin_array();
+      for (int i = 0; i < 4; ++i) w.value(m.point.y[i]);
+      w.end_array().end_object();
+    }
+    w.end_array();
+    w.key("bifurcations").begin_array();
+    for (const Bifurcation& b : branch.bifurcations) {
+      w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
+      multipliers_json(w, b.at.multipliers);
+      w.end_object();
+    }
+    w.end_array().end_object();
+    out << "\n";
+    return code(ExitCode::ok);
+  }
+  out << "branch         " << key << " from " << short_number(args.from) << " to " << short_number(args.to) << ", period "
+      << co.n << " T (" << start.regime.label() << " at the start)\n"
+      << "points         " << branch.points.size() << "; " << branch.stop << "\n"
+      << "bifurcations   " << branch.bifurcations.size() << "\n";
+  for (const Bifurcation& b : branch.bifurcations)
+    out << "  " << std::setw(16) << to_string(b.type) << "  " << key << " = " << std::setprecision(10) << b.at.param
+        << "  max|mu| " << std::setprecision(6) << largest(b.at.multipliers) << "\n";
+  out << "\n  " << std::setw(14) << "param" << "  stable  " << std::setw(9) << "max|mu|" << "  " << std::setw(8)
+      << "regime" << "  " << std::setw(10) << "k_con" << "  " << std::setw(11) << "F_max (N)" << "\n";
+  for (const Measured& m : points)
+    out << "  " << std::setw(14) << std::setprecision(8) << m.point.param << "  " << std::setw(6)
+        << (m.point.stable ? "yes" : "no") << "  " << std::setw(9) << std::setprecision(5)
+        << largest(m.point.multipliers) << "  " << std::setw(8) << m.orbit.regime.label() << "  " << std::setw(10)
+        << m.orbit.k_con << "  " << std::setw(11) << m.orbit.F_max << "\n";
+  return code(ExitCode::ok);
+}
+
+}  // namespace vibromap::cli

@@ -1,0 +1,178 @@
+// Tests of periodic-orbit continuation (core/analysis/continuation.hpp) against closed forms.
+//
+// Without contact (a clearance larger than any motion) the system is linear: in (x1, w = x2 - D)
+//   M q'' + C q' + K q = (lambda F0 cos(omega t + phi0), 0),
+// whose periodic response is q(t) = Re(H(omega) f e^(i omega t)), H = (K - omega^2 M + i omega C)^-1,
+// f = (lambda F0 e^(i phi0), 0); its Floquet multipliers over T = 2 pi / omega are exp(s_k T),
+// s_k the eigenvalues of the first-order system matrix.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include <Eigen/Dense>
+
+#include "vibromap/core/analysis/continuation.hpp"
+#include "vibromap/core/analysis/orbit_diagram.hpp"
+
+namespace vibromap {
+namespace {
+
+using cd = std::complex<double>;
+
+struct Linear {
+  Eigen::Matrix2d M, C, K;
+  explicit Linear(const Parameters& p) {
+    const double k1 = p.spring1.stiffness(p.m1), k2 = p.spring2.stiffness(p.m2);
+    const double c1 = p.damper1.coefficient(p.m1, k1), c2 = p.damper2.coefficient(p.m2, k2);
+    M << p.m1, 0, 0, p.m2;
+    C << c1 + c2, -c2, -c2, c2;
+    K << k1 + k2, -k2, -k2, k2;
+  }
+  // (x1, x2, v1, v2) at a period start of the periodic response at p.omega.
+  Eigen::Vector4d orbit(const Parameters& p) const {
+    const double w = p.omega;
+    Eigen::Matrix2cd Z = K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>();
+    Eigen::Vector2cd f(p.lambda * p.F0 * std::exp(cd(0, p.phi0)), 0.0);
+    const Eigen::Vector2cd Q = Z.lu().solve(f);
+    return {Q[0].real(), Q[1].real() + p.D, (cd(0, w) * Q[0]).real(), (cd(0, w) * Q[1]).real()};
+  }
+  std::vector<cd> multipliers(double T) const {
+    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    A.topRightCorner<2, 2>() = Eigen::Matrix2d::Identity();
+    A.bottomLeftCorner<2, 2>() = -M.inverse() * K;
+    A.bottomRightCorner<2, 2>() = -M.inverse() * C;
+    const Eigen::EigenSolver<Eigen::Matrix4d> es(A, false);
+    std::vector<cd> mu;
+    for (int i = 0; i < 4; ++i) mu.push_back(std::exp(es.eigenvalues()[i] * T));
+    return mu;
+  }
+};
+
+TEST(Continuation, WithoutContactTheBranchIsTheLinearFrequencyResponse) {
+  Parameters base;
+  base.D = 10.0;  // m: far beyond the motion (at most ~0.6 m at resonance)
+  PointOptions options;
+  options.integrator.rtol = 1e-12;
+  options.integrator.atol = 1e-15;
+  const PointAt at = [&](double omega) {
+    Parameters p = base;
+    p.omega = omega;
+    return std::make_pair(p, options);
+  };
+  ContinuationOptions o;
+  o.tol = 1e-13;
+  const Linear linear(base);
+  Parameters start = base;
+  start.omega = 2.0;
+  const Branch b = continue_orbit(at, 2.0, 12.0, start.initial_state(), o);
+  ASSERT_GT(b.points.size(), 20u) << b.stop;
+  EXPECT_EQ(b.stop, "reached the end of the interval");
+  EXPECT_DOUBLE_EQ(b.points.back().param, 12.0);
+  EXPECT_TRUE(b.bifurcations.empty());
+  double worst = 0.0, worst_mu = 0.0;
+  for (const BranchPoint& q : b.points) {
+    Parameters p = base;
+    p.omega = q.param;
+    const Eigen::Vector4d ref = linear.orbit(p);
+    const double scale_x = std::max(std::abs(ref[0]), std::abs(ref[1] - p.D));
+    const double scale_v = std::max(std::abs(ref[2]), std::abs(ref[3]));
+    Eigen::Vector4d err = q.y - ref;
+    worst = std::max({worst, std::abs(err[0]) / scale_x, std::abs(err[1]) / scale_x, std::abs(err[2]) / scale_v,
+                      std::abs(err[3]) / scale_v});
+    std::vector<cd> mu = linear.multipliers(p.period());
+    for (const cd& m : q.multipliers) {
+      double nearest = 1e300;
+      for (const cd& r : mu) nearest = std::min(nearest, std::abs(m - r) / std::abs(r));
+      worst_mu = std::max(worst_mu, nearest);
+    }
+    EXPECT_TRUE(q.stable);
+  }
+  EXPECT_LT(worst, 1e-8) << "state, relative to the amplitude";
+  EXPECT_LT(worst_mu, 1e-8) << "Floquet multipliers, relative";
+  std::printf("%zu points from omega = 2 to %.3f rad/s; worst relative error: state %.2e, multipliers %.2e\n",
+              b.points.size(), b.points.back().param, worst, worst_mu);
+}
+
+TEST(Continuation, BadOptionsAndAStartWithoutOrbitAreSaid) {
+  ContinuationOptions o;
+  o.ds = 2.0;
+  const PointAt at = [](double) { return std::make_pair(Parameters{}, PointOptions{}); };
+  EXPECT_EQ(continue_orbit(at, 2.0, 3.0, Parameters{}.initial_state(), o).stop,
+            "steps must satisfy 0 < ds_min <= ds <= ds_max <= 1");
+  EXPECT_EQ(continue_orbit(at, 2.0, 2.0, Parameters{}.initial_state(), ContinuationOptions{}).stop,
+            "the interval is empty (from = to)");
+}
+
+// Table 2 (m2 310 kg, omega2 3.606 rad/s, E1 1.4e10 Pa, E2 1e6 Pa): the soft (1,1) orbit followed
+// up in omega from 7.23 rad/s turns back at a fold. The orbit diagram swept up with a step of
+// 0.02 rad/s follows the branch (to 1e-3 m) at every step below the fold and has left it at the
+// first step above: the fold brackets the up-sweep's jump within one diagram step.
+TEST(Continuation, TheFoldBracketsTheJumpOfTheUpSweep) {
+  Parameters base;
+  base.m2 = 310.0;
+  base.spring2 = {Spring::Form::frequency, 3.606};
+  base.E1 = 1.4e10;
+  base.E2 = 1.0e6;
+  const PointOptions options;
+  const PointAt at = [&](double omega) {
+    Parameters p = base;
+    p.omega = omega;
+    return std::make_pair(p, options);
+  };
+  Parameters start = base;
+  start.omega = 7.23;
+  const PointSummary s = solve_point(start, options);
+  ASSERT_EQ(s.regime.label(), "(1,1)");
+  ContinuationOptions o;
+  o.max_points = 600;
+  const Branch b = continue_orbit(at, 7.23, 8.6, s.final_state, o);
+  ASSERT_FALSE(b.bifurcations.empty()) << b.stop;
+  const Bifurcation& fold = b.bifurcations.front();
+  ASSERT_EQ(fold.type, BifurcationType::fold);
+  // The multiplier through +1 at the fold.
+  double nearest_one = 1e300;
+  for (const auto& mu : fold.at.multipliers) nearest_one = std::min(nearest_one, std::abs(mu - 1.0));
+  EXPECT_LT(nearest_one, 1e-4);
+  // x1 at period starts along the stable part, below the fold (param increasing there).
+  std::vector<std::pair<double, double>> stable;
+  for (const BranchPoint& q : b.points) {
+    if (q.param > fold.at.param || (!stable.empty() && q.param < stable.back().first)) break;
+    stable.emplace_back(q.param, q.y[0]);
+  }
+  const auto branch_x1 = [&](double w) {
+    for (std::size_t i = 1; i < stable.size(); ++i)
+      if (stable[i].first >= w) {
+        const double f = (w - stable[i - 1].first) / (stable[i].first - stable[i - 1].first);
+        return stable[i - 1].second + f * (stable[i].second - stable[i - 1].second);
+      }
+    return stable.back().second;
+  };
+  // The sweep starts on the branch: at its first point at or above 7.9 rad/s, from its state.
+  const auto on = std::find_if(b.points.begin(), b.points.end(), [](const BranchPoint& q) { return q.param >= 7.9; });
+  ASSERT_NE(on, b.points.end());
+  std::vector<std::pair<Parameters, PointOptions>> path;
+  std::vector<double> omegas;
+  for (double w = on->param; w <= 8.5 + 1e-9; w += 0.02) {
+    omegas.push_back(w);
+    path.push_back(at(w));
+  }
+  OrbitDiagramOptions d;
+  d.transient = 600;
+  d.keep = 2;
+  const auto steps = orbit_diagram(path, on->y, d);
+  std::size_t above = 0;
+  while (above < omegas.size() && omegas[above] < fold.at.param) ++above;
+  ASSERT_GT(above, 1u);
+  ASSERT_LT(above, omegas.size());
+  for (std::size_t k = 0; k < above; ++k)
+    EXPECT_NEAR(steps[k].strobe.back()[0], branch_x1(omegas[k]), 1e-3) << "omega " << omegas[k];
+  EXPECT_GT(std::abs(steps[above].strobe.back()[0] - fold.at.y[0]), 1e-2) << "omega " << omegas[above];
+  std::printf("fold at omega = %.9f rad/s; the up-sweep follows the branch at %.2f and has left it at %.2f\n",
+              fold.at.param, omegas[above - 1], omegas[above]);
+}
+
+}  // namespace
+}  // namespace vibromap
