@@ -84,7 +84,9 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
     for (const Bifurcation& b : branch.bifurcations) {
       w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
       multipliers_json(w, b.at.multipliers);
-      w.end_object();
+      w.key("y").begin_array();
+      for (int i = 0; i < 4; ++i) w.value(b.at.y[i]);
+      w.end_array().end_object();
     }
     w.end_array().end_object();
     out << "\n";

@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Plot a branch of `vibromap continue --format json` (saved to a file): the stroboscopic x1 of
+the periodic orbit against the key, stable parts solid and unstable parts dashed, each located
+bifurcation marked and named; over the orbit diagram of the same key when --diagram names an
+orbit-diagram file (vibromap orbit-diagram -o).
+
+  build/vibromap continue SCENE --param KEY --from A --to B --format json > branch.json
+  postprocess/vmpy plot_branch branch.json [--diagram od.h5] [-o branch.png] [--dpi 150]
+
+Exit status: 0 on success, 2 for a bad argument or an unreadable file (one line on stderr),
+3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+
+PROG = "plot_branch"
+
+from vibromap_deps import missing_module
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only: no display needed on a cluster node
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    import plot_orbit_diagram
+    from vibromap_h5 import VibromapFileError, save_figure
+except ImportError as exc:
+    missing_module(PROG, exc)
+
+MARKERS = {"fold": ("o", "#000000"), "period-doubling": ("s", "#ff7f0e"), "neimark-sacker": ("D", "#9467bd")}
+
+
+def read_branch(path: str):
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except OSError as exc:
+        raise VibromapFileError(f"{path}: cannot read ({exc.strerror or exc})") from exc
+    except json.JSONDecodeError as exc:
+        raise VibromapFileError(f"{path}: not JSON ({exc.msg} at line {exc.lineno})") from exc
+    if not isinstance(data, dict) or "points" not in data or "key" not in data:
+        raise VibromapFileError(f"{path}: not a branch of vibromap continue --format json (no key or points)")
+    return data
+
+
+def segments(params, x1, stable):
+    """Runs of consecutive points of equal stability, each including the point where it changes."""
+    runs, start = [], 0
+    for i in range(1, len(params) + 1):
+        if i == len(params) or stable[i] != stable[start]:
+            end = min(i + 1, len(params))
+            runs.append((params[start:end], x1[start:end], stable[start]))
+            start = i
+    return runs
+
+
+def plot(branch: dict, diagram: str | None = None):
+    fig, ax = plt.subplots(figsize=(9.0, 5.5), constrained_layout=True)
+    if diagram:
+        name, units, values, states, key = plot_orbit_diagram.read_diagram(diagram, "x1")
+        keep = states.shape[2]
+        for d, color in enumerate(("#9ecae1", "#fcbba1")):
+            ax.scatter(np.repeat(values, keep), states[d].reshape(-1), s=4, color=color,
+                       label=f"orbit diagram, sweep {'up' if d == 0 else 'down'}")
+    points = branch["points"]
+    params = np.array([p["param"] for p in points])
+    x1 = np.array([p["y"][0] for p in points])
+    stable = [bool(p["stable"]) for p in points]
+    shown = set()
+    for xs, ys, st in segments(params, x1, stable):
+        label = "stable" if st else "unstable"
+        ax.plot(xs, ys, "-" if st else "--", color="#08306b", linewidth=1.6,
+                label=None if label in shown else f"branch, {label}", gid=f"branch-{label}")
+        shown.add(label)
+    for b in branch.get("bifurcations", []):
+        marker, color = MARKERS.get(b["type"], ("x", "#d62728"))
+        y = b["y"][0]  # the located point's own state (the branch may pass the parameter more than once)
+        ax.scatter([b["param"]], [y], marker=marker, s=45, color=color, zorder=5,
+                   label=None if b["type"] in shown else b["type"], gid=f"bifurcation-{b['type']}")
+        shown.add(b["type"])
+        ax.annotate(f"{b['param']:.4f}", (b["param"], y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+    ax.set_xlabel(branch["key"])
+    ax.set_ylabel("x1 at the period start, m")
+    ax.set_title(f"branch of the period-{branch.get('n', 1)} orbit ({len(points)} points, "
+                 f"{len(branch.get('bifurcations', []))} bifurcations): {branch.get('stop', '')}", fontsize=10)
+    ax.legend(loc="best", fontsize=8)
+    return fig
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog=PROG, description="Plot a branch of vibromap continue --format json.")
+    parser.add_argument("branch", help="JSON file written from vibromap continue --format json")
+    parser.add_argument("--diagram", help="orbit-diagram file (HDF5) of the same key to draw underneath")
+    parser.add_argument("-o", "--output", help="PNG to write (default: BRANCH with .png)")
+    parser.add_argument("--dpi", type=int, default=150, help="resolution, dots per inch (default 150)")
+    args = parser.parse_args(argv)
+    if args.dpi <= 0:
+        parser.error("--dpi must be positive")
+    output = args.output or os.path.splitext(args.branch)[0] + ".png"
+    try:
+        save_figure(plot(read_branch(args.branch), args.diagram), output, args.dpi)
+    except VibromapFileError as exc:
+        print(f"{PROG}: error: {exc}", file=sys.stderr)
+        return 2
+    print(f"{PROG}: wrote {output}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,46 @@
+"""Tests of postprocess/plot_branch.py on a branch in the JSON of vibromap continue: a made-up
+branch over omega 1..5 (x1 = omega / 10), stable up to 3 and unstable after, with a fold at 3
+(its own state x1 = -1, away from the branch, to check the marker uses it)."""
+import json
+import os
+
+import numpy as np
+
+import conftest
+from conftest import png_size, run
+import plot_branch
+
+SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_branch.py")
+
+
+def branch(path):
+    points = [{"param": w, "stable": w <= 3, "y": [w / 10, 0.05, 0, 0], "multipliers": [[0.5, 0]]}
+              for w in (1.0, 2.0, 3.0, 4.0, 5.0)]
+    data = {"key": "forcing.omega", "n": 1, "stop": "reached the end of the interval", "points": points,
+            "bifurcations": [{"type": "fold", "param": 3.0, "multipliers": [[1, 0]], "y": [-1.0, 0, 0, 0]}]}
+    path.write_text(json.dumps(data))
+
+
+def test_stable_solid_unstable_dashed_and_the_bifurcation_at_its_state(tmp_path):
+    path = tmp_path / "b.json"
+    branch(path)
+    fig = plot_branch.plot(plot_branch.read_branch(str(path)))
+    ax = fig.axes[0]
+    lines = {line.get_gid(): line for line in ax.get_lines()}
+    np.testing.assert_allclose(lines["branch-stable"].get_xdata(), [1, 2, 3, 4])  # up to the change, included
+    assert lines["branch-stable"].get_linestyle() == "-"
+    np.testing.assert_allclose(lines["branch-unstable"].get_xdata(), [4, 5])
+    assert lines["branch-unstable"].get_linestyle() == "--"
+    fold = [c for c in ax.collections if c.get_gid() == "bifurcation-fold"][0]
+    np.testing.assert_allclose(fold.get_offsets(), [[3.0, -1.0]])
+    out = tmp_path / "b.png"
+    proc = run([SCRIPT, str(path), "-o", str(out)])
+    assert proc.returncode == 0, proc.stderr
+    assert png_size(out) == (1350, 825)
+
+
+def test_a_file_that_is_not_a_branch_is_one_line_exit_2(tmp_path):
+    path = tmp_path / "x.json"
+    path.write_text("[1, 2]")
+    proc = run([SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
+    assert proc.returncode == 2 and proc.stderr.count("\n") == 1 and "not a branch" in proc.stderr
