@@ -34,7 +34,8 @@ try:
 except ImportError as exc:
     missing_module(PROG, exc)
 
-MARKERS = {"fold": ("o", "#000000"), "period-doubling": ("s", "#ff7f0e"), "neimark-sacker": ("D", "#9467bd")}
+MARKERS = {"fold": ("o", "#000000"), "period-doubling": ("s", "#ff7f0e"), "neimark-sacker": ("D", "#9467bd"),
+           "grazing": ("v", "#2ca02c")}
 
 
 def read_branch(path: str):

@@ -49,12 +49,13 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   // The start: the motion from rest at KEY = from.
   const auto [p0, o0] = at(args.from);
   const PointSummary start = solve_point(p0, o0);
-  if (start.status != SolveStatus::ok || start.regime.kind != RegimeKind::periodic)
+  const bool periodic = start.regime.kind == RegimeKind::periodic || start.regime.kind == RegimeKind::no_contact;
+  if (start.status != SolveStatus::ok || !periodic)
     throw SceneError(cat(args.scene, ": at ", key, " = ", short_number(args.from), " the motion from rest is ",
                          start.regime.label(), " (", to_string(start.status),
                          "), not a periodic orbit to continue; start elsewhere (--from)"));
   ContinuationOptions co;
-  co.n = start.regime.n;
+  co.n = std::max(start.regime.n, 1);  // a motion without contact repeats every period
   co.ds_max = args.ds_max;
   co.ds = std::min(co.ds, co.ds_max);
   co.max_points = args.max_points;
@@ -74,6 +75,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
       multipliers_json(w, m.point.multipliers);
       w.field("T_con", m.orbit.T_con).field("k_con", m.orbit.k_con).field("F_max", m.orbit.F_max);
       w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
+      w.field("x1_max", m.point.x1_max).field("x2_max", m.point.x2_max).field("clearance_min", m.point.clearance_min);
       w.field("regime", m.orbit.regime.label());
       w.key("y").begin_array();
       for (int i = 0; i < 4; ++i) w.value(m.point.y[i]);

@@ -240,7 +240,9 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       "every point: Floquet multipliers and stability, the orbit's regime, k_con and F_max.\n"
       "Bifurcations are detected and located by bisection along the branch: fold (the branch\n"
       "turns), period-doubling (a multiplier through -1), neimark-sacker (a complex pair through\n"
-      "the unit circle). Not yet: grazing, switching onto the doubled branch, a branch file.\n\n" +
+      "the unit circle), grazing (the closest approach x2 - x1 reaches zero: an impact appears\n"
+      "or vanishes; the branch goes on across it when Newton converges beyond). Not yet:\n"
+      "switching onto the doubled branch, a branch file.\n\n" +
       main_footer());
   return c;
 }

@@ -170,7 +170,7 @@ vibromap_cli_test(orbit_diagram_help RC 0 ARGS orbit-diagram --help OUT "--param
 # for a start that is not periodic or a bad key.
 vibromap_cli_test(continue_json RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 7.23 --to 8.3
                   --format json
-                  OUT "\"key\": \"forcing\\.omega\".*\"points\": \\[.*\"multipliers\": \\[.*\"bifurcations\": \\[[^]]*\"type\": \"fold\",[^]]*\"param\": 8\\.242")
+                  OUT "\"key\": \"forcing\\.omega\".*\"points\": \\[.*\"multipliers\": \\[.*\"clearance_min\": .*\"bifurcations\": \\[[^]]*\"type\": \"fold\",[^]]*\"param\": 8\\.242")
 vibromap_cli_test(continue_bad_key RC 2 ARGS continue jobs/paper/table2.toml --param omeg --from 7 --to 8
                   ERR "--param omeg: unknown key 'omeg'")
 vibromap_cli_test(continue_same_ends RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 7

@@ -174,5 +174,48 @@ TEST(Continuation, TheFoldBracketsTheJumpOfTheUpSweep) {
               fold.at.param, omegas[above - 1], omegas[above]);
 }
 
+// Grazing: Table 1's system (D = 0.05 m) followed up in omega from 2 rad/s, where its motion is
+// the contact-free linear response, reaches contact where the closed-form relative amplitude
+// |Q2 - Q1| equals D (its closest approach D - |Q2 - Q1| crosses zero). The continuation locates
+// that omega to 1e-6 relative against the closed form's own root (bisection to 1e-14).
+TEST(Continuation, GrazingIsLocatedWhereTheClosedFormApproachReachesContact) {
+  const Parameters base;  // Table 1
+  const Linear linear(base);
+  const auto approach = [&](double w) {
+    Parameters p = base;
+    p.omega = w;
+    const Eigen::Vector4d q = linear.orbit(p);
+    // x2 - x1 = D + Re((Q2 - Q1) e^(i w t)): its least value is D - |Q2 - Q1|.
+    const double re = (q[1] - p.D) - q[0], im = (q[3] - q[2]) / w;
+    return p.D - std::hypot(re, im);
+  };
+  double lo = 2.0, hi = 6.2;
+  ASSERT_GT(approach(lo), 0.0);
+  ASSERT_LT(approach(hi), 0.0);
+  while (hi - lo > 1e-14 * hi) {
+    const double mid = 0.5 * (lo + hi);
+    (approach(mid) > 0.0 ? lo : hi) = mid;
+  }
+  const double reference = 0.5 * (lo + hi);
+  PointOptions options;
+  const PointAt at = [&](double omega) {
+    Parameters p = base;
+    p.omega = omega;
+    return std::make_pair(p, options);
+  };
+  Parameters start = base;
+  start.omega = 2.0;
+  const Branch b = continue_orbit(at, 2.0, 6.2, linear.orbit(start), ContinuationOptions{});
+  const auto grazing = std::find_if(b.bifurcations.begin(), b.bifurcations.end(),
+                                    [](const Bifurcation& x) { return x.type == BifurcationType::grazing; });
+  ASSERT_NE(grazing, b.bifurcations.end()) << b.stop;
+  EXPECT_NEAR(grazing->at.param, reference, 1e-6 * reference);
+  EXPECT_NEAR(grazing->at.clearance_min, 0.0, 1e-6 * base.D);
+  std::printf("grazing at omega = %.10f rad/s (closed form %.10f, relative %.1e); clearance there %.2e m; "
+              "the branch then: %zu points, %s\n",
+              grazing->at.param, reference, std::abs(grazing->at.param - reference) / reference,
+              grazing->at.clearance_min, b.points.size(), b.stop.c_str());
+}
+
 }  // namespace
 }  // namespace vibromap

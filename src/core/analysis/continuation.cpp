@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include "vibromap/core/analysis/orbit_extent.hpp"
 #include "vibromap/core/analysis/shooting.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 #include "vibromap/core/model/system.hpp"
@@ -26,14 +27,18 @@ std::string to_string(BifurcationType t) {
   switch (t) {
     case BifurcationType::fold: return "fold";
     case BifurcationType::period_doubling: return "period-doubling";
-    case BifurcationType::neimark_sacker: break;
+    case BifurcationType::neimark_sacker: return "neimark-sacker";
+    case BifurcationType::grazing: break;
   }
-  return "neimark-sacker";
+  return "grazing";
 }
 
 namespace {
 
 using Vector5d = Eigen::Matrix<double, 5, 1>;
+
+// A point whose closest approach is within this many motion scales of zero is at a grazing.
+constexpr double kGrazingTolerance = 1e-6;
 using Matrix5d = Eigen::Matrix<double, 5, 5>;
 
 // G and its Jacobian at one point z = (y scaled by the motion's scale, l): lambda = from + l span.
@@ -123,15 +128,26 @@ class Problem {
     return t / t.norm();
   }
 
-  BranchPoint point(const Vector5d& z, const Eval& e) const {
+  BranchPoint point(const Vector5d& z, const Eval& e) {
     BranchPoint b;
     b.param = lambda(z[4]);
     b.y = Model::to_physical(state(z));
     b.multipliers = floquet_multipliers(e.M);
     b.stable = std::abs(b.multipliers.front()) < 1.0;
     b.residual = e.F.cwiseAbs().maxCoeff();
+    const OrbitExtent x = extent(z);
+    b.x1_max = x.x1_max;
+    b.x2_max = x.x2_max;
+    b.clearance_min = x.clearance_min;
     return b;
   }
+
+  OrbitExtent extent(const Vector5d& z) {
+    const auto [p, opt] = point_at_(lambda(z[4]));
+    return orbit_extent(Model(p), opt.integrator, state(z), o_.n, counters);
+  }
+
+  double length_scale() const { return unit_[0]; }
 
   IntegrationCounters counters;
 
@@ -197,23 +213,50 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
     const auto next = pb.correct(z + ds * t, t, &iterations);
     if (!next) {
       ds /= 2.0;
-      if (ds < o.ds_min) {
-        b.stop = "the step fell below ds_min (Newton does not converge: a grazing or a nonsmooth point?)";
+      if (ds >= o.ds_min) continue;
+      // Steps that fail down to ds_min: at a grazing the map stops being smooth (an impact
+      // appears), and Newton converges up to it from this side only, so the last point is the
+      // grazing point to within ds_min. It is marked, and the branch is continued across with
+      // steps from ds_min up, each accepted once Newton converges on the far side.
+      const BranchPoint& last = b.points.back();
+      const double touching = kGrazingTolerance * pb.length_scale();
+      if (!(std::abs(last.clearance_min) <= touching)) {
+        b.stop = "the step fell below ds_min (Newton does not converge: a nonsmooth point?)";
         break;
       }
+      if (b.bifurcations.empty() || b.bifurcations.back().type != BifurcationType::grazing ||
+          b.bifurcations.back().at.param != last.param)
+        b.bifurcations.push_back({BifurcationType::grazing, last});
+      std::optional<std::pair<Vector5d, Eval>> across;
+      double jump = o.ds_min;
+      for (; jump <= o.ds_max && !across; jump *= 4.0) {
+        const auto far = pb.correct(z + jump * t, t);
+        if (far && (pb.extent(far->first).clearance_min > 0.0) != (last.clearance_min > 0.0)) across = far;
+      }
+      if (!across) {
+        b.stop = "grazing: Newton does not converge beyond it";
+        break;
+      }
+      z = across->first;
+      e = across->second;
+      t = Problem::tangent(*e, t);
+      b.points.push_back(pb.point(z, *e));
+      ds = std::max(jump, o.ds);
       continue;
     }
     const auto& [z1, e1] = *next;
     const Vector5d t1 = Problem::tangent(e1, t);
-    // Bifurcations between z and z1: bisection in the arclength s from z along t.
-    const auto locate = [&](auto test_changed, BifurcationType type) {
+    // Bifurcations between z and z1: bisection in the arclength s from z along t, on a test
+    // `changed(z_m, eval at z_m, tangent at z_m)` that is false at z and true at z1; the point
+    // located is the first one found with it true, within locate_tol of the change.
+    const auto locate = [&](auto changed, BifurcationType type) {
       double lo = 0.0, hi = ds;
       std::optional<std::pair<Vector5d, Eval>> best = next;
       while ((hi - lo) > o.locate_tol) {
         const double mid = 0.5 * (lo + hi);
         const auto m = pb.correct(z + mid * t, t);
         if (!m) break;
-        if (test_changed(m->second, Problem::tangent(m->second, t))) {
+        if (changed(m->first, m->second, Problem::tangent(m->second, t))) {
           hi = mid;
           best = m;
         } else {
@@ -223,14 +266,20 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
       b.bifurcations.push_back({type, pb.point(best->first, best->second)});
     };
     if ((t[4] > 0.0) != (t1[4] > 0.0))
-      locate([&](const Eval&, const Vector5d& tm) { return (tm[4] > 0.0) != (t[4] > 0.0); }, BifurcationType::fold);
+      locate([&](const Vector5d&, const Eval&, const Vector5d& tm) { return (tm[4] > 0.0) != (t[4] > 0.0); },
+             BifurcationType::fold);
     const double pd0 = pd_test(*e);
     if ((pd0 > 0.0) != (pd_test(e1) > 0.0))
-      locate([&](const Eval& em, const Vector5d&) { return (pd_test(em) > 0.0) != (pd0 > 0.0); },
+      locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return (pd_test(em) > 0.0) != (pd0 > 0.0); },
              BifurcationType::period_doubling);
     const int ns0 = ns_count(*e);
     if (ns0 != ns_count(e1))
-      locate([&](const Eval& em, const Vector5d&) { return ns_count(em) != ns0; }, BifurcationType::neimark_sacker);
+      locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return ns_count(em) != ns0; },
+             BifurcationType::neimark_sacker);
+    const bool apart0 = b.points.back().clearance_min > 0.0;
+    if (apart0 != (pb.extent(z1).clearance_min > 0.0))
+      locate([&](const Vector5d& zm, const Eval&, const Vector5d&) { return (pb.extent(zm).clearance_min > 0.0) != apart0; },
+             BifurcationType::grazing);
     if (z1[4] < -1e-12 || z1[4] > 1.0 + 1e-12) {
       // The branch leaves the interval: its last point is at the end it crosses, corrected
       // with the parameter fixed there.

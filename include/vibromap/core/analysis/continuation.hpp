@@ -7,10 +7,13 @@
 //   fold              the tangent's parameter component changes sign (a multiplier through +1)
 //   period doubling   det(M + I) changes sign (a real multiplier through -1)
 //   Neimark-Sacker    the number of complex multipliers outside the unit circle changes
+//   grazing           the orbit's closest approach x2 - x1 (orbit_extent.hpp) crosses zero:
+//                     an impact appears on the orbit or vanishes; the map is not smooth there,
+//                     and the branch goes on across it when Newton converges on the far side
 // (after BifurcationKit's and AUTO's test functions). Unknowns are scaled: the state by the
 // motion's scale (StateScale), the parameter by the length of its interval, so one step size
 // serves every key. The period follows the forcing when the parameter is omega (the model at
-// each lambda has its own period). Grazing and branch switching are not handled here yet.
+// each lambda has its own period). Branch switching is not handled here yet.
 
 #include <complex>
 #include <functional>
@@ -36,8 +39,8 @@ struct ContinuationOptions {
 };
 std::string validate(const ContinuationOptions& o);
 
-enum class BifurcationType { fold, period_doubling, neimark_sacker };
-std::string to_string(BifurcationType t);  // "fold", "period-doubling", "neimark-sacker"
+enum class BifurcationType { fold, period_doubling, neimark_sacker, grazing };
+std::string to_string(BifurcationType t);  // "fold", "period-doubling", "neimark-sacker", "grazing"
 
 struct BranchPoint {
   double param = 0.0;
@@ -45,6 +48,8 @@ struct BranchPoint {
   std::vector<std::complex<double>> multipliers;  // largest |mu| first
   bool stable = false;                          // every |mu| < 1
   double residual = 0.0;                        // scaled |P^n(y) - y|
+  double x1_max = 0.0, x2_max = 0.0;            // the largest displacements over the cycle, m
+  double clearance_min = 0.0;                   // the least x2 - x1 over the cycle, m (< 0: contact)
 };
 
 struct Bifurcation {

@@ -1,0 +1,88 @@
+#include "vibromap/core/analysis/orbit_extent.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace vibromap {
+namespace {
+
+constexpr int kSamples = 64;       // per step
+constexpr int kGoldenSteps = 60;   // golden-section iterations: the bracket shrinks by 0.618^60 ~ 3e-13
+
+// The largest of f over [a, b] near the sample at `at` (its neighbours bracket it).
+double refine_max(const std::function<double(double)>& f, double a, double b) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int i = 0; i < kGoldenSteps && b - a > 0.0; ++i) {
+    if (fc >= fd) {
+      b = d, d = c, fd = fc;
+      c = b - g * (b - a);
+      fc = f(c);
+    } else {
+      a = c, c = d, fc = fd;
+      d = a + g * (b - a);
+      fd = f(d);
+    }
+  }
+  return std::max(fc, fd);
+}
+
+class ExtentObserver final : public Observer {
+ public:
+  void on_step(const StepView& step) override {
+    if (!(step.tau1 > step.tau0)) return;
+    const auto physical = [&](double tau) { return Model::to_physical(step.eval(tau)); };
+    // f_k(tau) for x1, x2 and -(x2 - x1): each maximised.
+    const std::function<double(const Eigen::Vector4d&)> parts[3] = {
+        [](const Eigen::Vector4d& x) { return x[0]; }, [](const Eigen::Vector4d& x) { return x[1]; },
+        [](const Eigen::Vector4d& x) { return x[0] - x[1]; }};
+    double* best[3] = {&x1_max, &x2_max, &overlap_max};
+    std::array<double, kSamples + 1> taus{};
+    std::array<Eigen::Vector4d, kSamples + 1> xs;
+    for (int i = 0; i <= kSamples; ++i) {
+      taus[static_cast<std::size_t>(i)] = step.tau0 + (step.tau1 - step.tau0) * i / kSamples;
+      xs[static_cast<std::size_t>(i)] = physical(taus[static_cast<std::size_t>(i)]);
+    }
+    for (int k = 0; k < 3; ++k) {
+      int at = 0;
+      for (int i = 1; i <= kSamples; ++i)
+        if (parts[k](xs[static_cast<std::size_t>(i)]) > parts[k](xs[static_cast<std::size_t>(at)])) at = i;
+      double value = parts[k](xs[static_cast<std::size_t>(at)]);
+      if (at > 0 && at < kSamples)  // an interior maximum: refine it between its neighbours
+        value = std::max(value, refine_max([&](double tau) { return parts[k](physical(tau)); },
+                                           taus[static_cast<std::size_t>(at - 1)], taus[static_cast<std::size_t>(at + 1)]));
+      *best[k] = std::max(*best[k], value);
+    }
+  }
+  double x1_max = -std::numeric_limits<double>::infinity();
+  double x2_max = -std::numeric_limits<double>::infinity();
+  double overlap_max = -std::numeric_limits<double>::infinity();  // max of x1 - x2
+};
+
+}  // namespace
+
+OrbitExtent orbit_extent(const Model& model, const IntegratorOptions& integration, const State& y, int n,
+                         IntegrationCounters& counters) {
+  OrbitExtent e;
+  const auto integ = make_integrator(model, integration);
+  State u = y;
+  integ->reset(u);
+  ExtentObserver obs;
+  for (int i = 0; i < n; ++i)
+    if (integ->advance_period(u, obs) != IntegrationStatus::ok) {
+      counters += integ->counters();
+      return e;
+    }
+  counters += integ->counters();
+  e.ok = true;
+  e.x1_max = obs.x1_max;
+  e.x2_max = obs.x2_max;
+  e.clearance_min = -obs.overlap_max;
+  return e;
+}
+
+}  // namespace vibromap
