@@ -1,11 +1,12 @@
 #!/usr/bin/python3
-"""Plot a branch of `vibromap continue --format json` (saved to a file): the stroboscopic x1 of
+"""Plot a branch of `vibromap continue` (its -o HDF5 file, or its --format json output saved to a
+file): the stroboscopic x1 of
 the periodic orbit against the key, stable parts solid and unstable parts dashed, each located
 bifurcation marked and named; over the orbit diagram of the same key when --diagram names an
 orbit-diagram file (vibromap orbit-diagram -o).
 
-  build/vibromap continue SCENE --param KEY --from A --to B --format json > branch.json
-  postprocess/vmpy plot_branch branch.json [--diagram od.h5] [-o branch.png] [--dpi 150]
+  build/vibromap continue SCENE --param KEY --from A --to B -o branch.h5
+  postprocess/vmpy plot_branch branch.h5 [--diagram od.h5] [-o branch.png] [--dpi 150]
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable file (one line on stderr),
 3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
@@ -30,7 +31,7 @@ try:
     import numpy as np
 
     import plot_orbit_diagram
-    from vibromap_h5 import VibromapFileError, save_figure
+    from vibromap_h5 import VibromapFileError, _text, open_h5, read_dataset, save_figure
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -38,7 +39,34 @@ MARKERS = {"fold": ("o", "#000000"), "period-doubling": ("s", "#ff7f0e"), "neima
            "grazing": ("v", "#2ca02c")}
 
 
+BIFURCATION_TYPES = ("fold", "period-doubling", "neimark-sacker", "grazing")  # flag values 0..3 of the file
+
+
+def read_branch_file(path: str) -> dict:
+    """A branch file (HDF5, include/vibromap/io/branch_file.hpp) as the JSON's structure."""
+    with open_h5(path) as f:
+        if "param" not in f or "bifurcation_type" not in f or "key" not in f.attrs:
+            raise VibromapFileError(f"{path}: not a branch file of vibromap continue (no param, bifurcation_type or key)")
+        get = {name: np.asarray(read_dataset(f[name], path)) for name in
+               ("param", "stable", "x1", "x2", "v1", "v2", "bifurcation_type", "bifurcation_param",
+                "bifurcation_x1", "bifurcation_x2", "bifurcation_v1", "bifurcation_v2")}
+        data = {"key": _text(f.attrs["key"]), "n": int(f.attrs.get("n", 1)), "stop": _text(f.attrs.get("stop", ""))}
+    data["points"] = [{"param": float(p), "stable": bool(s), "y": [float(get[c][i]) for c in ("x1", "x2", "v1", "v2")]}
+                      for i, (p, s) in enumerate(zip(get["param"], get["stable"]))]
+    data["bifurcations"] = [{"type": BIFURCATION_TYPES[int(t)], "param": float(p),
+                             "y": [float(get["bifurcation_" + c][i]) for c in ("x1", "x2", "v1", "v2")]}
+                            for i, (t, p) in enumerate(zip(get["bifurcation_type"], get["bifurcation_param"]))]
+    return data
+
+
 def read_branch(path: str):
+    """A branch from an HDF5 branch file or from a saved --format json output."""
+    try:
+        with open(path, "rb") as f:
+            if f.read(8) == b"\x89HDF\r\n\x1a\n":
+                return read_branch_file(path)
+    except OSError as exc:
+        raise VibromapFileError(f"{path}: cannot read ({exc.strerror or exc})") from exc
     try:
         with open(path, encoding="utf-8") as f:
             data = json.load(f)
@@ -96,8 +124,8 @@ def plot(branch: dict, diagram: str | None = None):
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog=PROG, description="Plot a branch of vibromap continue --format json.")
-    parser.add_argument("branch", help="JSON file written from vibromap continue --format json")
+    parser = argparse.ArgumentParser(prog=PROG, description="Plot a branch of vibromap continue.")
+    parser.add_argument("branch", help="branch file of vibromap continue -o (HDF5), or its --format json output")
     parser.add_argument("--diagram", help="orbit-diagram file (HDF5) of the same key to draw underneath")
     parser.add_argument("-o", "--output", help="PNG to write (default: BRANCH with .png)")
     parser.add_argument("--dpi", type=int, default=150, help="resolution, dots per inch (default 150)")

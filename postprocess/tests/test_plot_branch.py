@@ -44,3 +44,35 @@ def test_a_file_that_is_not_a_branch_is_one_line_exit_2(tmp_path):
     path.write_text("[1, 2]")
     proc = run([SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1 and "not a branch" in proc.stderr
+
+
+def branch_file(path):
+    """The same branch as branch(), in the HDF5 layout of include/vibromap/io/branch_file.hpp."""
+    import h5py
+
+    w = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    with h5py.File(path, "w") as f:
+        f.create_dataset("param", data=w)
+        f.create_dataset("stable", data=(w <= 3).astype(np.int8))
+        f.create_dataset("x1", data=w / 10)
+        for name in ("x2", "v1", "v2"):
+            f.create_dataset(name, data=np.zeros(5))
+        f.create_dataset("bifurcation_type", data=np.array([0], dtype=np.int8))
+        f.create_dataset("bifurcation_param", data=np.array([3.0]))
+        f.create_dataset("bifurcation_x1", data=np.array([-1.0]))
+        for name in ("x2", "v1", "v2"):
+            f.create_dataset("bifurcation_" + name, data=np.zeros(1))
+        f.attrs["key"] = "forcing.omega"
+        f.attrs["n"] = 1
+        f.attrs["stop"] = "reached the end of the interval"
+
+
+def test_the_hdf5_branch_file_reads_as_the_json(tmp_path):
+    json_path, h5_path = tmp_path / "b.json", tmp_path / "b.h5"
+    branch(json_path)
+    branch_file(h5_path)
+    a, b = plot_branch.read_branch(str(json_path)), plot_branch.read_branch(str(h5_path))
+    assert b["key"] == a["key"] and b["stop"] == a["stop"]
+    assert [(p["param"], p["stable"], p["y"][0]) for p in b["points"]] == [
+        (p["param"], p["stable"], p["y"][0]) for p in a["points"]]
+    assert b["bifurcations"] == [{"type": "fold", "param": 3.0, "y": [-1.0, 0.0, 0.0, 0.0]}]

@@ -117,6 +117,8 @@ struct ContinueArgs {
   double from = 0.0, to = 0.0;
   double ds_max = 0.05;          // largest step along the branch (scaled arclength)
   int max_points = 5000;
+  std::string output;            // branch file (HDF5); empty: none
+  bool overwrite = false;        // replace an existing branch file
   std::string format = "table";
 };
 int continue_command(const ContinueArgs& args, std::ostream& out);

@@ -1,6 +1,7 @@
 // `vibromap continue`: see commands.hpp and include/vibromap/core/analysis/continuation.hpp.
 
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "commands.hpp"
 #include "vibromap/core/analysis/continuation.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/scene/scene.hpp"
@@ -60,12 +62,18 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   co.ds = std::min(co.ds, co.ds_max);
   co.max_points = args.max_points;
   if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
+  if (!args.output.empty() && std::filesystem::exists(args.output) && !args.overwrite)
+    throw SceneError(cat(args.output, ": already exists; use --overwrite to replace it"));
   const Branch branch = continue_orbit(at, args.from, args.to, start.final_state, co);
   std::vector<Measured> points;
+  BranchData data{ps.axis, co.n, branch, {}, scene.text};
   for (const BranchPoint& q : branch.points) {
     const auto [p, o] = at(q.param);
     points.push_back({q, measure_orbit(p, o, q.y, co.n)});
+    const PointSummary& m = points.back().orbit;
+    data.cycles.push_back({m.T_con, m.k_con, m.F_max, static_cast<int>(m.impacts.size())});
   }
+  if (!args.output.empty()) write_branch(args.output, data);
   if (args.format == "json") {
     JsonWriter w(out);
     w.begin_object().field("key", key).field("n", co.n).field("stop", branch.stop);
@@ -98,6 +106,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
       << co.n << " T (" << start.regime.label() << " at the start)\n"
       << "points         " << branch.points.size() << "; " << branch.stop << "\n"
       << "bifurcations   " << branch.bifurcations.size() << "\n";
+  if (!args.output.empty()) out << "file           " << args.output << "\n";
   for (const Bifurcation& b : branch.bifurcations)
     out << "  " << std::setw(16) << to_string(b.type) << "  " << key << " = " << std::setprecision(10) << b.at.param
         << "  max|mu| " << std::setprecision(6) << largest(b.at.multipliers) << "\n";

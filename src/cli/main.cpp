@@ -228,6 +228,9 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
   c->add_option("--to", args.to, "End value (either side of A)")->required()->type_name("B");
   c->add_option("--ds-max", args.ds_max, "Largest step along the branch (scaled arclength)")->capture_default_str();
   c->add_option("--max-points", args.max_points, "Points on the branch at most")->capture_default_str();
+  c->add_option("-o,--output", args.output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)")
+      ->type_name("FILE.h5");
+  c->add_flag("--overwrite", args.overwrite, "Replace an existing branch file");
   c->add_option("-f,--format", args.format, "Output on stdout: table or json")
       ->check(CLI::IsMember({"table", "json"}))
       ->type_name("table|json")
@@ -242,7 +245,7 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       "turns), period-doubling (a multiplier through -1), neimark-sacker (a complex pair through\n"
       "the unit circle), grazing (the closest approach x2 - x1 reaches zero: an impact appears\n"
       "or vanishes; the branch goes on across it when Newton converges beyond). Not yet:\n"
-      "switching onto the doubled branch, a branch file.\n\n" +
+      "switching onto the doubled branch.\n\n" +
       main_footer());
   return c;
 }

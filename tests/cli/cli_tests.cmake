@@ -175,3 +175,9 @@ vibromap_cli_test(continue_bad_key RC 2 ARGS continue jobs/paper/table2.toml --p
                   ERR "--param omeg: unknown key 'omeg'")
 vibromap_cli_test(continue_same_ends RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 7
                   ERR "--from 7 --to 7: need finite, different values")
+vibromap_cli_test(continue_file RC 0 ARGS continue jobs/paper/table1.toml --set system.D=10 --param omega --from 2 --to 3
+                  -o ${CMAKE_CURRENT_BINARY_DIR}/cli_branch.h5 --overwrite
+                  OUT "bifurcations +0\nfile +.*cli_branch\\.h5")
+vibromap_cli_test(continue_file_exists RC 2 ARGS continue jobs/paper/table1.toml --param omega --from 7 --to 7.5
+                  -o jobs/paper/table2.toml
+                  ERR "jobs/paper/table2\\.toml: already exists; use --overwrite to replace it")
