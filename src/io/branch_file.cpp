@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <span>
 
+#include "provenance.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
 namespace vibromap {
@@ -91,11 +92,7 @@ void write_branch(const std::string& path, const BranchData& data) {
     for (int c = 0; c < 4; ++c)
       per_bif(std::string("bifurcation_") + names[c], [c](const BranchPoint& q) { return q.y[c]; }, units[c],
               std::string(names[c]) + " of the orbit at the bifurcation");
-    file.set_attribute("title", "vibromap periodic-orbit branch");
-    file.set_attribute("Conventions", "CF-1.8");
-    file.set_attribute("vibromap_version", VIBROMAP_VERSION);
-    file.set_attribute("scene", data.scene_text);
-    file.set_attribute("key", data.axis.key);
+    detail::set_provenance(file, "vibromap periodic-orbit branch", data.scene_text, data.axis.key);
     file.set_attribute("units", data.axis.units);
     file.set_attribute("n", data.n);
     file.set_attribute("stop", data.branch.stop);

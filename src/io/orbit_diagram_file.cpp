@@ -5,6 +5,7 @@
 #include <limits>
 #include <span>
 
+#include "provenance.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
 namespace vibromap {
@@ -52,11 +53,7 @@ void write_orbit_diagram(const std::string& path, const OrbitDiagramData& data) 
       x.set_attribute("units", units[c]);
       x.set_attribute("long_name", std::string(names[c]) + " at the period starts kept after the transient");
     }
-    file.set_attribute("title", "vibromap orbit diagram");
-    file.set_attribute("Conventions", "CF-1.8");
-    file.set_attribute("vibromap_version", VIBROMAP_VERSION);
-    file.set_attribute("scene", data.scene_text);
-    file.set_attribute("key", data.axis.key);
+    detail::set_provenance(file, "vibromap orbit diagram", data.scene_text, data.axis.key);
     file.set_attribute("transient", data.options.transient);
     file.set_attribute("keep", data.options.keep);
   });
