@@ -1,5 +1,6 @@
 #include "vibromap/core/analysis/continuation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -168,6 +169,30 @@ int ns_count(const Eval& e) {
   return outside;
 }
 
+// Whether the multipliers at a located point are those of its bifurcation: one at +1 (fold), one
+// at -1 (period doubling), a complex pair on the unit circle (Neimark-Sacker), within
+// kCriticalMultiplier. A test function also changes sign where the map is not smooth (a grazing
+// in the step makes the Jacobian jump); such a change has no critical multiplier and is no
+// bifurcation of the smooth theory: it is not reported (the grazing is).
+constexpr double kCriticalMultiplier = 1e-2;
+bool has_critical_multiplier(BifurcationType type, const std::vector<std::complex<double>>& mu) {
+  for (const auto& m : mu) {
+    switch (type) {
+      case BifurcationType::fold:
+        if (std::abs(m - 1.0) <= kCriticalMultiplier) return true;
+        break;
+      case BifurcationType::period_doubling:
+        if (std::abs(m + 1.0) <= kCriticalMultiplier) return true;
+        break;
+      case BifurcationType::neimark_sacker:
+        if (std::abs(m.imag()) > kCriticalMultiplier && std::abs(std::abs(m) - 1.0) <= kCriticalMultiplier) return true;
+        break;
+      case BifurcationType::grazing: return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 Branch continue_orbit(const PointAt& point_at, double from, double to, const Eigen::Vector4d& y0,
@@ -224,9 +249,10 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
         b.stop = "the step fell below ds_min (Newton does not converge: a nonsmooth point?)";
         break;
       }
-      if (b.bifurcations.empty() || b.bifurcations.back().type != BifurcationType::grazing ||
-          b.bifurcations.back().at.param != last.param)
-        b.bifurcations.push_back({BifurcationType::grazing, last});
+      const bool known = std::any_of(b.bifurcations.begin(), b.bifurcations.end(), [&](const Bifurcation& g) {
+        return g.type == BifurcationType::grazing && std::abs(g.at.param - last.param) <= 1e-6 * std::abs(to - from);
+      });
+      if (!known) b.bifurcations.push_back({BifurcationType::grazing, last});
       std::optional<std::pair<Vector5d, Eval>> across;
       double jump = o.ds_min;
       for (; jump <= o.ds_max && !across; jump *= 4.0) {
@@ -263,7 +289,9 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
           lo = mid;
         }
       }
-      b.bifurcations.push_back({type, pb.point(best->first, best->second)});
+      BranchPoint at = pb.point(best->first, best->second);
+      if (type != BifurcationType::grazing && !has_critical_multiplier(type, at.multipliers)) return;
+      b.bifurcations.push_back({type, at});
     };
     if ((t[4] > 0.0) != (t1[4] > 0.0))
       locate([&](const Vector5d&, const Eval&, const Vector5d& tm) { return (tm[4] > 0.0) != (t[4] > 0.0); },
