@@ -1,0 +1,309 @@
+// The map file's layout (map_file.hpp documents it): making its datasets, reading its layout
+// back and checking it, and one chunk of every dataset (MapDatasets). MapWriter and the readers
+// (map_file.cpp) use these.
+
+#include "map_layout.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string_view>
+
+#include "vibromap/core/text.hpp"
+
+// CF conventions (cfconventions.org, 1.8): a coordinate variable is a 1-D variable named after
+// its dimension (here an HDF5 dimension scale, which netCDF-4 reads as such);
+// flag_values/flag_meanings label the integer codes of status and regime (CF section 3.5);
+// _FillValue marks float cells not computed.
+
+namespace vibromap::detail {
+
+constexpr std::size_t kChunkCacheBytes = 4u << 20;   // per dataset: a few chunks in flight
+
+FileOptions writer_options() {
+  FileOptions o;
+  o.locking = false;  // readers may open the map while it runs; the sweep holds its own lock
+  o.chunk_cache_bytes = kChunkCacheBytes;
+  return o;
+}
+
+[[noreturn]] void malformed(const std::string& path, std::string_view what) {
+  fail(path, cat("not a valid vibromap map: ", what));
+}
+
+namespace {
+
+std::string shape_text(const Shape& shape) {
+  std::string text;
+  for (const std::size_t n : shape) text.append(text.empty() ? "" : "x").append(std::to_string(n));
+  return text.empty() ? "scalar" : text;
+}
+
+// ---- Making a map ------------------------------------------------------------------------
+
+DatasetOptions chunked(const Shape& chunk, std::optional<double> fill, bool fill_attribute) {
+  DatasetOptions o;
+  o.chunk = chunk;
+  o.fletcher32 = true;
+  o.allocate_early = true;
+  o.fill_value = fill;
+  o.fill_attribute = fill_attribute;
+  return o;
+}
+
+}  // namespace
+
+std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
+  std::vector<Dataset> scales;
+  for (const Axis& axis : grid.axes()) {
+    DatasetOptions o;
+    o.fletcher32 = true;  // one chunk: the whole axis
+    Dataset coordinate = file.write_dataset(axis.name, std::span<const double>(axis.values), {}, o);
+    coordinate.make_dimension_scale(axis.name);
+    coordinate.set_attribute("units", axis.units);
+    coordinate.set_attribute("long_name", axis.long_name);
+    coordinate.set_attribute("key", axis.key);
+    coordinate.set_attribute("scale", to_string(axis.scale));
+    scales.push_back(std::move(coordinate));
+  }
+  return scales;
+}
+
+// The shape of field f's dataset (per (cell, attractor): one more dimension), and its chunks:
+// the cells of a chunk are those of every other dataset's chunk, so chunk spans agree.
+Shape with_slots(Shape shape, const MapField& f) {
+  if (f.slots > 0) shape.push_back(f.slots);
+  return shape;
+}
+
+// `scales`: the axes' coordinates, then (with a census) /attractor.
+Dataset make_field(Hdf5File& file, const MapField& f, const Shape& shape, const Shape& chunk,
+                   const std::vector<Dataset>& scales) {
+  Dataset d = file.create_dataset(f.name, f.file_type, with_slots(shape, f),
+                                  chunked(with_slots(chunk, f), f.fill, f.fill_attribute));
+  const std::size_t dims = shape.size() + (f.slots > 0 ? 1 : 0);
+  for (std::size_t i = 0; i < dims; ++i) d.attach_dimension_scale(scales[i], i);
+  d.set_attribute("long_name", f.long_name);
+  if (!f.units.empty()) d.set_attribute("units", f.units);
+  if (!f.flag_values.empty()) {
+    d.set_attribute("flag_values", std::span<const std::int8_t>(f.flag_values));
+    d.set_attribute("flag_meanings", f.flag_meanings);
+  }
+  return d;
+}
+
+void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
+  std::string stored;
+  for (const Quantity q : layout.stored) stored.append(stored.empty() ? "" : " ").append(to_string(q));
+  file.set_attribute("title", "vibromap regime map");
+  file.set_attribute("Conventions", "CF-1.8");
+  file.set_attribute("vibromap_version", VIBROMAP_VERSION);
+  file.set_attribute("scene", layout.scene_text);
+  file.set_attribute("identity", layout.identity);
+  file.set_attribute("ranks", ranks);
+  file.set_attribute("cells_total", layout.grid.size());
+  file.set_attribute("cells_done", 0);
+  file.set_attribute("complete", 0);
+  file.set_attribute("stored", stored);
+  file.set_attribute("census_attractors", layout.attractors);
+}
+
+// Refuses a layout the file cannot hold, before any file is touched.
+void check_layout(const std::string& path, const MapLayout& layout) {
+  const auto refuse = [&](std::string_view why) { fail(path, cat("cannot write map: ", why)); };
+  if (layout.grid.axes().empty()) refuse("the grid has no axes");
+  const auto& axes = layout.grid.axes();
+  for (std::size_t i = 0; i < axes.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (axes[i].name == axes[j].name) refuse(cat("axis '", axes[i].name, "' appears twice"));
+  for (std::size_t i = 0; i < layout.stored.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (layout.stored[i] == layout.stored[j]) refuse(cat("quantity '", to_string(layout.stored[i]), "' is stored twice"));
+}
+
+// The census's attractor index 0..A-1 as a coordinate.
+Dataset write_attractor_scale(Hdf5File& file, std::size_t attractors) {
+  std::vector<int> index(attractors);
+  for (std::size_t a = 0; a < attractors; ++a) index[a] = static_cast<int>(a);
+  DatasetOptions o;
+  o.fletcher32 = true;
+  Dataset coordinate = file.write_dataset("attractor", std::span<const int>(index), {}, o);
+  coordinate.make_dimension_scale("attractor");
+  coordinate.set_attribute("long_name", "index of the attractor in the cell's census, by basin fraction");
+  coordinate.set_attribute("units", "1");
+  return coordinate;
+}
+
+// ---- Reading a map's layout ----------------------------------------------------------------
+
+namespace {
+
+void require_attribute(const Hdf5Object& object, const std::string& path, std::string_view name) {
+  if (!object.has_attribute(name))
+    malformed(path, object.name() == "/" ? cat("no root attribute '", name, "'")
+                                         : cat("no attribute '", name, "' on dataset '", object.name(), "'"));
+}
+
+// One axis from the dimension scale attached to dimension `dim` of /done.
+Axis read_axis(const Hdf5File& file, const Dataset& done, std::size_t dim) {
+  const std::string& path = file.path();
+  const std::vector<std::string> scales = done.attached_scales(dim);
+  if (scales.size() != 1)
+    malformed(path, cat("dimension ", std::to_string(dim), " of dataset '/done' has ", std::to_string(scales.size()),
+                        " coordinates attached, expected 1"));
+  const Dataset coordinate = file.open_dataset(scales.front());
+  Axis axis;
+  axis.name = coordinate.dimension_scale_name();
+  if (coordinate.shape().size() != 1) malformed(path, cat("coordinate '", coordinate.name(), "' is not 1-D"));
+  try {
+    axis.values = coordinate.read_double();
+  } catch (const IoError& e) {
+    fail(path, cat("coordinate '", coordinate.name(), "' is damaged (", e.what(), "); the map's axes cannot be trusted: make it again with --overwrite"));
+  }
+  for (const char* name : {"scale", "units", "long_name", "key"}) require_attribute(coordinate, path, name);
+  axis.units = coordinate.read_string_attribute("units");
+  axis.long_name = coordinate.read_string_attribute("long_name");
+  axis.key = coordinate.read_string_attribute("key");
+  try {
+    axis.scale = parse_axis_scale(coordinate.read_string_attribute("scale"));
+  } catch (const std::invalid_argument& e) {
+    malformed(path, cat("coordinate '", coordinate.name(), "': ", e.what()));
+  }
+  if (const std::string err = validate_axis(axis); !err.empty())
+    malformed(path, cat("coordinate '", coordinate.name(), "': ", err));
+  return axis;
+}
+
+std::vector<Quantity> read_stored(const Hdf5File& file) {
+  require_attribute(file, file.path(), "stored");
+  const std::string text = file.read_string_attribute("stored");
+  std::vector<Quantity> stored;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t end = std::min(text.find(' ', begin), text.size());
+    if (end > begin) {
+      const std::string_view name = std::string_view(text).substr(begin, end - begin);
+      try {
+        stored.push_back(parse_quantity(name));
+      } catch (const std::invalid_argument&) {
+        malformed(file.path(), cat("root attribute 'stored' names an unknown quantity '", clip(name), "'"));
+      }
+    }
+    begin = end + 1;
+  }
+  return stored;
+}
+
+}  // namespace
+
+MapLayout read_layout(const Hdf5File& file) {
+  const std::string& path = file.path();
+  MapLayout layout;
+  layout.stored = read_stored(file);
+  for (const char* name : {"title", "Conventions", "vibromap_version", "scene", "identity", "ranks", "cells_total",
+                           "cells_done", "complete"})
+    require_attribute(file, path, name);
+  if (!file.exists("done")) malformed(path, "no dataset '/done'");
+  const Dataset done = file.open_dataset("done");
+  std::vector<Axis> axes;
+  for (std::size_t d = 0; d < done.shape().size(); ++d) axes.push_back(read_axis(file, done, d));
+  if (axes.empty()) malformed(path, "dataset '/done' is a scalar, expected one dimension per axis");
+  layout.grid = Grid(std::move(axes));
+  layout.scene_text = file.read_string_attribute("scene");
+  layout.identity = file.read_string_attribute("identity");
+  if (file.has_attribute("census_attractors")) {  // maps made before the census have none
+    const std::int64_t a = file.read_int_attribute("census_attractors");
+    if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");
+    layout.attractors = static_cast<std::size_t>(a);
+  }
+  if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(layout.grid.size()))
+    malformed(path, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(layout.grid.size()),
+                        " cells"));
+  return layout;
+}
+
+namespace {
+
+// Opens /<name> and checks that it has the grid's shape.
+Dataset open_field(const Hdf5File& file, std::string_view name, const Shape& shape) {
+  if (!file.exists(name)) malformed(file.path(), cat("no dataset '/", name, "'"));
+  Dataset dataset = file.open_dataset(name);
+  if (dataset.shape() != shape)
+    malformed(file.path(), cat("dataset '", dataset.name(), "' has shape ", shape_text(dataset.shape()), ", expected ",
+                               shape_text(shape), " (the axes' lengths)"));
+  return dataset;
+}
+
+
+}  // namespace
+
+// ---- One chunk of every dataset ----------------------------------------------------------------
+
+void MapDatasets::open(const Hdf5File& file, const MapLayout& layout) {
+  fields = map_fields(layout.stored, layout.attractors);
+  const Shape shape = layout.grid.shape();
+  done = open_field(file, "done", shape);
+  for (const MapField& f : fields) data.push_back(open_field(file, f.name, with_slots(shape, f)));
+  reals.resize(fields.size());
+  ints.resize(fields.size());
+}
+
+
+bool MapDatasets::read(int i, const CellSpan& span, std::string* why) {
+  const std::size_t n = static_cast<std::size_t>(span.end - span.begin);
+  try {
+    if (i < 0) {
+      done_buffer.resize(n);
+      done.read_flat(span.begin, std::span<std::uint8_t>(done_buffer));
+      return true;
+    }
+    const auto u = static_cast<std::size_t>(i);
+    const std::size_t w = fields[u].width();
+    if (fields[u].integer) {
+      ints[u].resize(n * w);
+      data[u].read_flat(span.begin * w, std::span<std::int64_t>(ints[u]));
+    } else {
+      reals[u].resize(n * w);
+      data[u].read_flat(span.begin * w, std::span<double>(reals[u]));
+    }
+  } catch (const IoError& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+  return true;
+}
+
+
+CellResult MapDatasets::cell(std::size_t k, const std::string& path) const {
+  CellResult c;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const MapField& f = fields[i];
+    const std::size_t w = f.width();
+    for (std::size_t a = 0; a < w; ++a) {
+      if (!f.integer) {
+        f.set_real(c, a, reals[i][k * w + a]);
+        continue;
+      }
+      const std::int64_t v = ints[i][k * w + a];
+      if (v < f.lo || v > f.hi)
+        malformed(path, cat("dataset '/", f.name, "' holds ", std::to_string(v), ", outside ", std::to_string(f.lo),
+                            "..", std::to_string(f.hi)));
+      f.set_int(c, a, v);
+    }
+  }
+  return c;
+}
+
+
+void MapDatasets::fill_chunk(const CellSpan& span, const Shape& shape) {
+  Shape offset(shape.size());
+  std::uint64_t flat = span.begin;
+  for (std::size_t d = shape.size(); d-- > 0;) {
+    offset[d] = static_cast<std::size_t>(flat % shape[d]);
+    flat /= shape[d];
+  }
+  done.reset_chunk(offset, 0.0);
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    data[i].reset_chunk(fields[i].slots > 0 ? with_slots(offset, fields[i]) : offset, fields[i].fill.value_or(0.0));
+}
+
+}  // namespace vibromap::detail
