@@ -272,6 +272,7 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
     }
     const auto& [z1, e1] = *next;
     const Vector5d t1 = Problem::tangent(e1, t);
+    BranchPoint p1 = pb.point(z1, e1);  // its extent once: the grazing test and the branch use it
     // Bifurcations between z and z1: bisection in the arclength s from z along t, on a test
     // `changed(z_m, eval at z_m, tangent at z_m)` that is false at z and true at z1; the point
     // located is the first one found with it true, within locate_tol of the change.
@@ -305,7 +306,7 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
       locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return ns_count(em) != ns0; },
              BifurcationType::neimark_sacker);
     const bool apart0 = b.points.back().clearance_min > 0.0;
-    if (apart0 != (pb.extent(z1).clearance_min > 0.0))
+    if (apart0 != (p1.clearance_min > 0.0))
       locate([&](const Vector5d& zm, const Eval&, const Vector5d&) { return (pb.extent(zm).clearance_min > 0.0) != apart0; },
              BifurcationType::grazing);
     if (z1[4] < -1e-12 || z1[4] > 1.0 + 1e-12) {
@@ -324,7 +325,7 @@ Branch continue_orbit(const PointAt& point_at, double from, double to, const Eig
     z = z1;
     e = e1;
     t = t1;
-    b.points.push_back(pb.point(z, *e));
+    b.points.push_back(std::move(p1));
     if (iterations <= 3) ds = std::min(1.5 * ds, o.ds_max);
   }
   if (b.stop.empty()) b.stop = "max_points reached";
