@@ -92,7 +92,6 @@ long count_label(const BasinsContent& c, int label) {
   return static_cast<long>(std::count(c.labels.begin(), c.labels.end(), label));
 }
 
-double rate(const FarmReport& f) { return f.wall_s > 0 ? static_cast<double>(f.items_computed) / f.wall_s : 0.0; }
 
 void print_json(std::ostream& out, const BasinsReport& r, const std::string& output) {
   const BasinsContent& c = r.content;
@@ -107,7 +106,7 @@ void print_json(std::ostream& out, const BasinsReport& r, const std::string& out
       .field("complete", f.complete())
       .field("ranks", f.ranks)
       .field("wall_s", f.wall_s)
-      .field("pixels_per_s", rate(f))
+      .field("pixels_per_s", f.items_per_s())
       .field("stopped_by", f.stop_signal ? signal_name(f.stop_signal) : std::string())
       .field("unresolved", count_label(c, kUnresolvedLabel))
       .field("unlisted", count_label(c, kUnlistedLabel))
@@ -142,7 +141,7 @@ void print_table(std::ostream& out, const BasinsReport& r, const std::string& ou
       << "plane          " << c.plane.name() << ", " << c.plane.axes[0].size() << " x " << c.plane.axes[1].size()
       << " pixels (" << f.items_resumed << " from the resumed file, " << f.items_computed << " computed now)\n"
       << "ranks          " << f.ranks << "\n"
-      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << rate(f) << " pixels/s\n"
+      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s() << " pixels/s\n"
       << "unresolved     " << count_label(c, kUnresolvedLabel) << ", unlisted " << count_label(c, kUnlistedLabel)
       << ", overlap " << count_label(c, kOverlapLabel) << " pixels\n\n"
       << "  #  regime          fraction    pixels   k_con       T_con (s)   F_max (N)   max|mu|   stable  soft\n";

@@ -18,9 +18,8 @@ std::string default_output(const std::string& scene_path) {
   return std::filesystem::path(scene_path).stem().string() + ".h5";
 }
 
-double rate(const FarmReport& f) { return f.wall_s > 0 ? static_cast<double>(f.items_computed) / f.wall_s : 0.0; }
 // A census map: initial states followed per second (K per cell computed).
-double state_rate(const SweepReport& r) { return rate(r.farm) * r.census_initial_conditions; }
+double state_rate(const SweepReport& r) { return r.farm.items_per_s() * r.census_initial_conditions; }
 
 void print_json(std::ostream& out, const SweepReport& r, const std::string& output) {
   const FarmReport& f = r.farm;
@@ -33,7 +32,7 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
       .field("complete", f.complete())
       .field("ranks", f.ranks)
       .field("wall_s", f.wall_s)
-      .field("cells_per_s", rate(f))
+      .field("cells_per_s", f.items_per_s())
       .field("checkpoints", f.checkpoints)
       .field("checkpoint_s", f.checkpoint_s)
       .field("checkpoint_max_s", f.checkpoint_max_s)
@@ -56,7 +55,7 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
       << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
       << " computed now)\n"
       << "ranks          " << f.ranks << "\n"
-      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << rate(f) << " cells/s\n"
+      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s() << " cells/s\n"
       << "checkpoints    " << f.checkpoints << " (" << f.checkpoint_s << " s writing, longest " << f.checkpoint_max_s
       << " s)\n";
   if (r.census_initial_conditions > 0)

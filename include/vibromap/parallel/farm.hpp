@@ -115,6 +115,8 @@ struct FarmReport {
   long requests = 0;                 // requests rank 0 served for the other ranks
   double request_s = 0.0;            // rank 0's time serving them, s
   bool complete() const { return stop_signal == 0 && items_resumed + items_computed == items; }
+  // Items computed by this run per second of the farm's time (0 when no time passed).
+  double items_per_s() const { return wall_s > 0 ? static_cast<double>(items_computed) / wall_s : 0.0; }
 };
 
 // Collective: every rank calls it; `sink` is used on rank 0 only (nullptr elsewhere).
