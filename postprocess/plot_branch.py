@@ -43,19 +43,42 @@ BIFURCATION_TYPES = ("fold", "period-doubling", "neimark-sacker", "grazing")  # 
 
 
 def read_branch_file(path: str) -> dict:
-    """A branch file (HDF5, include/vibromap/io/branch_file.hpp) as the JSON's structure."""
+    """A branch file (HDF5, include/vibromap/io/branch_file.hpp) as the JSON's structure: the first
+    branch's points and bifurcations at the top, the switched branches under "branches"."""
     with open_h5(path) as f:
         if "param" not in f or "bifurcation_type" not in f or "key" not in f.attrs:
             raise VibromapFileError(f"{path}: not a branch file of vibromap continue (no param, bifurcation_type or key)")
-        get = {name: np.asarray(read_dataset(f[name], path)) for name in
-               ("param", "stable", "x1", "x2", "v1", "v2", "bifurcation_type", "bifurcation_param",
-                "bifurcation_x1", "bifurcation_x2", "bifurcation_v1", "bifurcation_v2")}
+        names = ["param", "stable", "x1", "x2", "v1", "v2", "bifurcation_type", "bifurcation_param",
+                 "bifurcation_x1", "bifurcation_x2", "bifurcation_v1", "bifurcation_v2"]
+        names += [n for n in ("point_branch", "bifurcation_branch", "strobe_x1", "branch_n", "branch_parent",
+                              "branch_born_at") if n in f]
+        get = {name: np.asarray(read_dataset(f[name], path)) for name in names}
         data = {"key": _text(f.attrs["key"]), "n": int(f.attrs.get("n", 1)), "stop": _text(f.attrs.get("stop", ""))}
-    data["points"] = [{"param": float(p), "stable": bool(s), "y": [float(get[c][i]) for c in ("x1", "x2", "v1", "v2")]}
-                      for i, (p, s) in enumerate(zip(get["param"], get["stable"]))]
-    data["bifurcations"] = [{"type": BIFURCATION_TYPES[int(t)], "param": float(p),
-                             "y": [float(get["bifurcation_" + c][i]) for c in ("x1", "x2", "v1", "v2")]}
-                            for i, (t, p) in enumerate(zip(get["bifurcation_type"], get["bifurcation_param"]))]
+        stops = _text(f.attrs.get("stops", data["stop"])).split("\n")
+    count = len(get["param"])
+    owner = get.get("point_branch", np.zeros(count, dtype=int))
+    bif_owner = get.get("bifurcation_branch", np.zeros(len(get["bifurcation_type"]), dtype=int))
+    ns = get.get("branch_n", np.array([data["n"]]))
+
+    def points(k):
+        out = []
+        for i in np.flatnonzero(owner == k):
+            p = {"param": float(get["param"][i]), "stable": bool(get["stable"][i]),
+                 "y": [float(get[c][i]) for c in ("x1", "x2", "v1", "v2")]}
+            if "strobe_x1" in get:
+                p["strobe_x1"] = [float(x) for x in get["strobe_x1"][i] if np.isfinite(x)]
+            out.append(p)
+        return out
+
+    def bifurcations(k):
+        return [{"type": BIFURCATION_TYPES[int(get["bifurcation_type"][i])], "param": float(get["bifurcation_param"][i]),
+                 "y": [float(get["bifurcation_" + c][i]) for c in ("x1", "x2", "v1", "v2")]}
+                for i in np.flatnonzero(bif_owner == k)]
+
+    data["points"], data["bifurcations"] = points(0), bifurcations(0)
+    data["branches"] = [{"n": int(ns[k]), "parent": int(get["branch_parent"][k]), "born_at": int(get["branch_born_at"][k]),
+                         "stop": stops[k] if k < len(stops) else "", "points": points(k), "bifurcations": bifurcations(k)}
+                        for k in range(1, len(ns))]
     return data
 
 
@@ -90,6 +113,39 @@ def segments(params, x1, stable):
     return runs
 
 
+SWITCHED_COLORS = ("#d62728", "#8c564b", "#e377c2", "#17becf", "#bcbd22")
+
+
+def strobe_x1(point: dict) -> list:
+    """x1 at the period starts of a point's cycle (the state's x1 alone when not given)."""
+    return point.get("strobe_x1") or [point["y"][0]]
+
+
+def draw_branch(ax, branch: dict, gid: str, color: str, shown: set, name: str = "branch"):
+    """One branch: each period start's x1 against the key (a period-n branch draws n curves),
+    stable solid and unstable dashed, its bifurcations marked at their own states."""
+    points = branch["points"]
+    if not points:
+        return
+    params = np.array([p["param"] for p in points])
+    stable = [bool(p["stable"]) for p in points]
+    n = min(len(strobe_x1(p)) for p in points)
+    for k in range(n):
+        x1 = np.array([strobe_x1(p)[k] for p in points])
+        for xs, ys, st in segments(params, x1, stable):
+            label = f"{name}, {'stable' if st else 'unstable'}"
+            ax.plot(xs, ys, "-" if st else "--", color=color, linewidth=1.6 if gid == "branch" else 1.2,
+                    label=None if label in shown else label, gid=f"{gid}-{'stable' if st else 'unstable'}")
+            shown.add(label)
+    for b in branch.get("bifurcations", []):
+        marker, mcolor = MARKERS.get(b["type"], ("x", "#d62728"))
+        y = b["y"][0]  # the located point's own state (the branch may pass the parameter more than once)
+        ax.scatter([b["param"]], [y], marker=marker, s=45, color=mcolor, zorder=5,
+                   label=None if b["type"] in shown else b["type"], gid=f"bifurcation-{b['type']}")
+        shown.add(b["type"])
+        ax.annotate(f"{b['param']:.4f}", (b["param"], y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+
+
 def plot(branch: dict, diagram: str | None = None):
     fig, ax = plt.subplots(figsize=(9.0, 5.5), constrained_layout=True)
     if diagram:
@@ -98,27 +154,17 @@ def plot(branch: dict, diagram: str | None = None):
         for d, color in enumerate(("#9ecae1", "#fcbba1")):
             ax.scatter(np.repeat(values, keep), states[d].reshape(-1), s=4, color=color,
                        label=f"orbit diagram, sweep {'up' if d == 0 else 'down'}")
-    points = branch["points"]
-    params = np.array([p["param"] for p in points])
-    x1 = np.array([p["y"][0] for p in points])
-    stable = [bool(p["stable"]) for p in points]
     shown = set()
-    for xs, ys, st in segments(params, x1, stable):
-        label = "stable" if st else "unstable"
-        ax.plot(xs, ys, "-" if st else "--", color="#08306b", linewidth=1.6,
-                label=None if label in shown else f"branch, {label}", gid=f"branch-{label}")
-        shown.add(label)
-    for b in branch.get("bifurcations", []):
-        marker, color = MARKERS.get(b["type"], ("x", "#d62728"))
-        y = b["y"][0]  # the located point's own state (the branch may pass the parameter more than once)
-        ax.scatter([b["param"]], [y], marker=marker, s=45, color=color, zorder=5,
-                   label=None if b["type"] in shown else b["type"], gid=f"bifurcation-{b['type']}")
-        shown.add(b["type"])
-        ax.annotate(f"{b['param']:.4f}", (b["param"], y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+    draw_branch(ax, branch, "branch", "#08306b", shown)
+    for k, switched in enumerate(branch.get("branches", []), start=1):
+        draw_branch(ax, switched, f"branch{k}", SWITCHED_COLORS[(k - 1) % len(SWITCHED_COLORS)], shown,
+                    f"period-{switched.get('n', 2)} branch {k}")
     ax.set_xlabel(branch["key"])
     ax.set_ylabel("x1 at the period start, m")
-    ax.set_title(f"branch of the period-{branch.get('n', 1)} orbit ({len(points)} points, "
-                 f"{len(branch.get('bifurcations', []))} bifurcations): {branch.get('stop', '')}", fontsize=10)
+    switched = branch.get("branches", [])
+    ax.set_title(f"branch of the period-{branch.get('n', 1)} orbit ({len(branch['points'])} points, "
+                 f"{len(branch.get('bifurcations', []))} bifurcations): {branch.get('stop', '')}"
+                 + (f"; {len(switched)} switched at period doublings" if switched else ""), fontsize=10)
     ax.legend(loc="best", fontsize=8)
     return fig
 

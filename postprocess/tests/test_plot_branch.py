@@ -76,3 +76,22 @@ def test_the_hdf5_branch_file_reads_as_the_json(tmp_path):
     assert [(p["param"], p["stable"], p["y"][0]) for p in b["points"]] == [
         (p["param"], p["stable"], p["y"][0]) for p in a["points"]]
     assert b["bifurcations"] == [{"type": "fold", "param": 3.0, "y": [-1.0, 0.0, 0.0, 0.0]}]
+
+
+def test_a_switched_period_two_branch_draws_one_curve_per_period_start(tmp_path):
+    """A period-2 branch switched onto at the fold's place: its two stroboscopic x1 per point are
+    two curves (x1 = +-(3 - omega) / 10 over omega 2..3), stable solid, in the branch's own gid."""
+    path = tmp_path / "b.json"
+    branch(path)
+    data = json.loads(path.read_text())
+    data["branches"] = [{"n": 2, "parent": 0, "born_at": 0, "stop": "rejoined the period-1 orbit",
+                         "points": [{"param": w, "stable": True, "y": [(3 - w) / 10, 0.05, 0, 0],
+                                     "strobe_x1": [(3 - w) / 10, -(3 - w) / 10]} for w in (3.0, 2.5, 2.0)],
+                         "bifurcations": []}]
+    path.write_text(json.dumps(data))
+    ax = plot_branch.plot(plot_branch.read_branch(str(path))).axes[0]
+    curves = [line for line in ax.get_lines() if line.get_gid() == "branch1-stable"]
+    assert len(curves) == 2
+    np.testing.assert_allclose(curves[0].get_ydata(), [0.0, 0.05, 0.1])
+    np.testing.assert_allclose(curves[1].get_ydata(), [0.0, -0.05, -0.1])
+    assert "period-2 branch 1, stable" in [t.get_text() for t in ax.get_legend().get_texts()]

@@ -116,7 +116,8 @@ struct ContinueArgs {
   std::string param;
   double from = 0.0, to = 0.0;
   double ds_max = 0.05;          // largest step along the branch (scaled arclength)
-  int max_points = 5000;
+  int max_points = 5000;         // per branch
+  int pd_depth = 1;              // period-doubling generations switched onto (0: none)
   std::string output;            // branch file (HDF5); empty: none
   bool overwrite = false;        // replace an existing branch file
   std::string format = "table";

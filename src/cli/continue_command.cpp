@@ -31,6 +31,46 @@ void multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu
 
 double largest(const std::vector<std::complex<double>>& mu) { return mu.empty() ? NAN : std::abs(mu.front()); }
 
+void state_json(JsonWriter& w, const char* name, const Eigen::Vector4d& y) {
+  w.key(name).begin_array();
+  for (int i = 0; i < 4; ++i) w.value(y[i]);
+  w.end_array();
+}
+
+void points_json(JsonWriter& w, const std::vector<Measured>& points) {
+  w.key("points").begin_array();
+  for (const Measured& m : points) {
+    w.begin_object().field("param", m.point.param).field("stable", m.point.stable);
+    multipliers_json(w, m.point.multipliers);
+    w.field("T_con", m.orbit.T_con).field("k_con", m.orbit.k_con).field("F_max", m.orbit.F_max);
+    w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
+    w.field("x1_max", m.point.x1_max).field("x2_max", m.point.x2_max).field("clearance_min", m.point.clearance_min);
+    w.field("regime", m.orbit.regime.label());
+    state_json(w, "y", m.point.y);
+    w.key("strobe_x1").begin_array();
+    for (const Eigen::Vector4d& x : m.point.strobe) w.value(x[0]);
+    w.end_array().end_object();
+  }
+  w.end_array();
+}
+
+void bifurcations_json(JsonWriter& w, const std::vector<Bifurcation>& bifurcations) {
+  w.key("bifurcations").begin_array();
+  for (const Bifurcation& b : bifurcations) {
+    w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
+    multipliers_json(w, b.at.multipliers);
+    state_json(w, "y", b.at.y);
+    w.end_object();
+  }
+  w.end_array();
+}
+
+void bifurcations_table(std::ostream& out, const std::string& key, const std::vector<Bifurcation>& bifurcations) {
+  for (const Bifurcation& b : bifurcations)
+    out << "  " << std::setw(16) << to_string(b.type) << "  " << key << " = " << std::setprecision(10) << b.at.param
+        << "  max|mu| " << std::setprecision(6) << largest(b.at.multipliers) << "\n";
+}
+
 }  // namespace
 
 int continue_command(const ContinueArgs& args, std::ostream& out) {
@@ -64,39 +104,36 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
   if (!args.output.empty() && std::filesystem::exists(args.output) && !args.overwrite)
     throw SceneError(cat(args.output, ": already exists; use --overwrite to replace it"));
-  const Branch branch = continue_orbit(at, args.from, args.to, start.final_state, co);
-  std::vector<Measured> points;
-  BranchData data{ps.axis, co.n, branch, {}, scene.text};
-  for (const BranchPoint& q : branch.points) {
-    const auto [p, o] = at(q.param);
-    points.push_back({q, measure_orbit(p, o, q.y, co.n)});
-    const PointSummary& m = points.back().orbit;
-    data.cycles.push_back({m.T_con, m.k_con, m.F_max, static_cast<int>(m.impacts.size())});
+  co.pd_depth = args.pd_depth;
+  const std::vector<Branch> branches = continue_branches(at, args.from, args.to, start.final_state, co);
+  std::vector<std::vector<Measured>> measured;
+  BranchData data{ps.axis, branches, {}, scene.text};
+  for (const Branch& branch : branches) {
+    measured.emplace_back();
+    data.cycles.emplace_back();
+    for (const BranchPoint& q : branch.points) {
+      const auto [p, o] = at(q.param);
+      measured.back().push_back({q, measure_orbit(p, o, q.y, branch.n)});
+      const PointSummary& m = measured.back().back().orbit;
+      data.cycles.back().push_back({m.T_con, m.k_con, m.F_max, static_cast<int>(m.impacts.size())});
+    }
   }
   if (!args.output.empty()) write_branch(args.output, data);
+  const Branch& branch = branches.front();
   if (args.format == "json") {
     JsonWriter w(out);
     w.begin_object().field("key", key).field("n", co.n).field("stop", branch.stop);
-    w.key("points").begin_array();
-    for (const Measured& m : points) {
-      w.begin_object().field("param", m.point.param).field("stable", m.point.stable);
-      multipliers_json(w, m.point.multipliers);
-      w.field("T_con", m.orbit.T_con).field("k_con", m.orbit.k_con).field("F_max", m.orbit.F_max);
-      w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
-      w.field("x1_max", m.point.x1_max).field("x2_max", m.point.x2_max).field("clearance_min", m.point.clearance_min);
-      w.field("regime", m.orbit.regime.label());
-      w.key("y").begin_array();
-      for (int i = 0; i < 4; ++i) w.value(m.point.y[i]);
-      w.end_array().end_object();
-    }
-    w.end_array();
-    w.key("bifurcations").begin_array();
-    for (const Bifurcation& b : branch.bifurcations) {
-      w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
-      multipliers_json(w, b.at.multipliers);
-      w.key("y").begin_array();
-      for (int i = 0; i < 4; ++i) w.value(b.at.y[i]);
-      w.end_array().end_object();
+    points_json(w, measured.front());
+    bifurcations_json(w, branch.bifurcations);
+    w.key("branches").begin_array();
+    for (std::size_t i = 1; i < branches.size(); ++i) {
+      const Branch& s = branches[i];
+      w.begin_object().field("n", s.n).field("parent", s.parent).field("born_at", s.born_at);
+      w.field("born_at_param", branches[static_cast<std::size_t>(s.parent)].bifurcations[static_cast<std::size_t>(s.born_at)].at.param);
+      w.field("stop", s.stop);
+      points_json(w, measured[i]);
+      bifurcations_json(w, s.bifurcations);
+      w.end_object();
     }
     w.end_array().end_object();
     out << "\n";
@@ -107,16 +144,25 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
       << "points         " << branch.points.size() << "; " << branch.stop << "\n"
       << "bifurcations   " << branch.bifurcations.size() << "\n";
   if (!args.output.empty()) out << "file           " << args.output << "\n";
-  for (const Bifurcation& b : branch.bifurcations)
-    out << "  " << std::setw(16) << to_string(b.type) << "  " << key << " = " << std::setprecision(10) << b.at.param
-        << "  max|mu| " << std::setprecision(6) << largest(b.at.multipliers) << "\n";
-  out << "\n  " << std::setw(14) << "param" << "  stable  " << std::setw(9) << "max|mu|" << "  " << std::setw(8)
-      << "regime" << "  " << std::setw(10) << "k_con" << "  " << std::setw(11) << "F_max (N)" << "\n";
-  for (const Measured& m : points)
-    out << "  " << std::setw(14) << std::setprecision(8) << m.point.param << "  " << std::setw(6)
-        << (m.point.stable ? "yes" : "no") << "  " << std::setw(9) << std::setprecision(5)
-        << largest(m.point.multipliers) << "  " << std::setw(8) << m.orbit.regime.label() << "  " << std::setw(10)
-        << m.orbit.k_con << "  " << std::setw(11) << m.orbit.F_max << "\n";
+  bifurcations_table(out, key, branch.bifurcations);
+  for (std::size_t i = 1; i < branches.size(); ++i) {
+    const Branch& s = branches[i];
+    out << "switched       branch " << i << ": period " << s.n << " T, born at the period doubling " << key << " = "
+        << std::setprecision(10)
+        << branches[static_cast<std::size_t>(s.parent)].bifurcations[static_cast<std::size_t>(s.born_at)].at.param
+        << " of branch " << s.parent << "; " << s.points.size() << " points; " << s.stop << "\n";
+    bifurcations_table(out, key, s.bifurcations);
+  }
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    out << "\n  branch " << i << " (period " << branches[i].n << " T)\n  " << std::setw(14) << "param" << "  stable  "
+        << std::setw(9) << "max|mu|" << "  " << std::setw(8) << "regime" << "  " << std::setw(10) << "k_con" << "  "
+        << std::setw(11) << "F_max (N)" << "\n";
+    for (const Measured& m : measured[i])
+      out << "  " << std::setw(14) << std::setprecision(8) << m.point.param << "  " << std::setw(6)
+          << (m.point.stable ? "yes" : "no") << "  " << std::setw(9) << std::setprecision(5)
+          << largest(m.point.multipliers) << "  " << std::setw(8) << m.orbit.regime.label() << "  " << std::setw(10)
+          << m.orbit.k_con << "  " << std::setw(11) << m.orbit.F_max << "\n";
+  }
   return code(ExitCode::ok);
 }
 

@@ -227,7 +227,11 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       ->type_name("A");
   c->add_option("--to", args.to, "End value (either side of A)")->required()->type_name("B");
   c->add_option("--ds-max", args.ds_max, "Largest step along the branch (scaled arclength)")->capture_default_str();
-  c->add_option("--max-points", args.max_points, "Points on the branch at most")->capture_default_str();
+  c->add_option("--max-points", args.max_points, "Points on each branch at most")->capture_default_str();
+  c->add_option("--pd-depth", args.pd_depth,
+                "Period-doubling generations to switch onto: 0 none, 1 the doubled branches of the first, 2 also theirs, ...")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
   c->add_option("-o,--output", args.output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)")
       ->type_name("FILE.h5");
   c->add_flag("--overwrite", args.overwrite, "Replace an existing branch file");
@@ -243,9 +247,10 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       "every point: Floquet multipliers and stability, the orbit's regime, k_con and F_max.\n"
       "Bifurcations are detected and located by bisection along the branch: fold (the branch\n"
       "turns), period-doubling (a multiplier through -1), neimark-sacker (a complex pair through\n"
-      "the unit circle), grazing (the closest approach x2 - x1 reaches zero: an impact appears\n"
-      "or vanishes; the branch goes on across it when Newton converges beyond). Not yet:\n"
-      "switching onto the doubled branch.\n\n" +
+      "the unit circle), grazing (the number of contacts per cycle changes: an impact appears\n"
+      "or vanishes; the map is not smooth there, and the branch goes on across it with the new\n"
+      "count). At each period doubling the doubled branch (period 2n T) is switched onto and\n"
+      "followed until it leaves [A, B] or rejoins the period-n orbit, to --pd-depth generations.\n\n" +
       main_footer());
   return c;
 }

@@ -169,8 +169,13 @@ vibromap_cli_test(orbit_diagram_help RC 0 ARGS orbit-diagram --help OUT "--param
 # 8.242 rad/s (checked against the orbit diagram in tests/core/test_continuation.cpp); one line
 # for a start that is not periodic or a bad key.
 vibromap_cli_test(continue_json RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 7.23 --to 8.3
-                  --format json
+                  --format json --pd-depth 0
                   OUT "\"key\": \"forcing\\.omega\".*\"points\": \\[.*\"multipliers\": \\[.*\"clearance_min\": .*\"bifurcations\": \\[[^]]*\"type\": \"fold\",[^]]*\"param\": 8\\.242")
+# Table 1's (1,1) down in omega: a period doubling near 6.4617 rad/s, the doubled branch switched
+# onto there (checked against the orbit diagram in tests/core/test_continuation.cpp).
+vibromap_cli_test(continue_switches_at_period_doubling RC 0 ARGS continue jobs/paper/table1.toml --param omega
+                  --from 7.23 --to 6.3
+                  OUT "bifurcations +1\n +period-doubling +forcing\\.omega = 6\\.4617[0-9]+ +max\\|mu\\| 1\nswitched +branch 1: period 2 T, born at the period doubling forcing\\.omega = 6\\.4617[0-9]+ of branch 0; [0-9]+ points")
 vibromap_cli_test(continue_bad_key RC 2 ARGS continue jobs/paper/table2.toml --param omeg --from 7 --to 8
                   ERR "--param omeg: unknown key 'omeg'")
 vibromap_cli_test(continue_same_ends RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 7

@@ -16,6 +16,8 @@
 
 #include "vibromap/core/analysis/continuation.hpp"
 #include "vibromap/core/analysis/orbit_diagram.hpp"
+#include "vibromap/core/analysis/orbit_extent.hpp"
+#include "vibromap/core/analysis/shooting.hpp"
 
 namespace vibromap {
 namespace {
@@ -177,7 +179,8 @@ TEST(Continuation, TheFoldBracketsTheJumpOfTheUpSweep) {
 // Grazing: Table 1's system (D = 0.05 m) followed up in omega from 2 rad/s, where its motion is
 // the contact-free linear response, reaches contact where the closed-form relative amplitude
 // |Q2 - Q1| equals D (its closest approach D - |Q2 - Q1| crosses zero). The continuation locates
-// that omega to 1e-6 relative against the closed form's own root (bisection to 1e-14).
+// that omega to 1e-6 relative against the closed form's own root (bisection to 1e-14), and goes on
+// across it with one contact per cycle.
 TEST(Continuation, GrazingIsLocatedWhereTheClosedFormApproachReachesContact) {
   const Parameters base;  // Table 1
   const Linear linear(base);
@@ -211,10 +214,106 @@ TEST(Continuation, GrazingIsLocatedWhereTheClosedFormApproachReachesContact) {
   ASSERT_NE(grazing, b.bifurcations.end()) << b.stop;
   EXPECT_NEAR(grazing->at.param, reference, 1e-6 * reference);
   EXPECT_NEAR(grazing->at.clearance_min, 0.0, 1e-6 * base.D);
+  // The branch goes on across the grazing with one impact per cycle, to the end of the interval.
+  EXPECT_EQ(b.stop, "reached the end of the interval");
+  const auto beyond = std::find_if(b.points.begin(), b.points.end(),
+                                   [&](const BranchPoint& q) { return q.param > grazing->at.param + 0.01; });
+  ASSERT_NE(beyond, b.points.end());
+  EXPECT_EQ(beyond->contacts, 1);
+  EXPECT_LT(beyond->clearance_min, 0.0);
+  EXPECT_EQ(b.points.front().contacts, 0);
   std::printf("grazing at omega = %.10f rad/s (closed form %.10f, relative %.1e); clearance there %.2e m; "
               "the branch then: %zu points, %s\n",
               grazing->at.param, reference, std::abs(grazing->at.param - reference) / reference,
               grazing->at.clearance_min, b.points.size(), b.stop.c_str());
+}
+
+// Period doubling and the switch onto the doubled branch: Table 1's (1,1) orbit followed down in
+// omega from 7.23 rad/s loses stability at a period doubling near 6.46 rad/s. The orbit diagram
+// swept down in steps of 0.01 rad/s (3000 transient periods) has one stroboscopic x1 above it and
+// two below: the period doubling lies within the step where the points split. The branch
+// switched onto there, corrected at the diagram's points below the doubling (Newton at the
+// parameter fixed, from the branch's nearest point), is the 2T orbit the diagram shows: its two
+// stroboscopic x1 equal the diagram's two values to 1e-6 m, and it is stable.
+TEST(Continuation, PeriodDoublingSwitchesOntoTheTwoPeriodOrbitOfTheDiagram) {
+  const Parameters base;  // Table 1
+  const PointOptions options;
+  const PointAt at = [&](double omega) {
+    Parameters p = base;
+    p.omega = omega;
+    return std::make_pair(p, options);
+  };
+  Parameters start = base;
+  const PointSummary s = solve_point(start, options);
+  ASSERT_EQ(s.regime.label(), "(1,1)");
+  ContinuationOptions o;
+  o.pd_depth = 1;
+  o.max_points = 2000;
+  const std::vector<Branch> branches = continue_branches(at, 7.23, 6.3, s.final_state, o);
+  ASSERT_GE(branches.size(), 2u) << branches.front().stop;
+  const auto pd = std::find_if(branches[0].bifurcations.begin(), branches[0].bifurcations.end(),
+                               [](const Bifurcation& x) { return x.type == BifurcationType::period_doubling; });
+  ASSERT_NE(pd, branches[0].bifurcations.end());
+  double nearest_minus_one = 1e300;
+  for (const auto& mu : pd->at.multipliers) nearest_minus_one = std::min(nearest_minus_one, std::abs(mu + 1.0));
+  EXPECT_LT(nearest_minus_one, 1e-4);
+  const Branch& doubled = branches[1];
+  EXPECT_EQ(doubled.n, 2);
+  EXPECT_EQ(doubled.parent, 0);
+  ASSERT_GE(doubled.points.size(), 3u) << doubled.stop;
+  EXPECT_NEAR(doubled.points.front().param, pd->at.param, 1e-12);
+
+  // The orbit diagram down from 6.52 rad/s, starting on the period-1 orbit there.
+  std::vector<std::pair<Parameters, PointOptions>> path;
+  std::vector<double> omegas;
+  for (int k = 0; k <= 10; ++k) {
+    omegas.push_back(6.52 - 0.01 * k);
+    path.push_back(at(omegas.back()));
+  }
+  OrbitDiagramOptions d;
+  d.transient = 3000;
+  d.keep = 8;
+  const auto steps = orbit_diagram(path, branches[0].points.front().y, d);
+  const auto spread = [&](std::size_t k) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& x : steps[k].strobe) lo = std::min(lo, x[0]), hi = std::max(hi, x[0]);
+    return hi - lo;
+  };
+  std::size_t split = 0;
+  while (split < steps.size() && spread(split) < 1e-4) ++split;
+  ASSERT_GT(split, 0u);
+  ASSERT_LT(split + 1, steps.size());
+  EXPECT_LT(spread(split - 1), 1e-6) << "omega " << omegas[split - 1] << ": the period-1 orbit";
+  EXPECT_LE(omegas[split], pd->at.param);
+  EXPECT_GE(omegas[split - 1], pd->at.param);
+  // The doubled branch at the two diagram points below the split.
+  for (std::size_t k : {split, split + 1}) {
+    const double w = omegas[k];
+    const auto near = std::min_element(doubled.points.begin(), doubled.points.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a.param - w) < std::abs(b.param - w);
+    });
+    ASSERT_LT(std::abs(near->param - w), 0.01) << "the doubled branch does not reach omega " << w;
+    const auto [p, po] = at(w);
+    const Model model(p);
+    ShootingOptions so;
+    so.n = 2;
+    IntegrationCounters counters;
+    const ShootingResult sh = shoot(model, po.integrator, Model::to_internal(near->y), so, counters);
+    ASSERT_TRUE(sh.converged) << sh.message;
+    EXPECT_TRUE(sh.stable()) << "omega " << w;
+    const OrbitExtent x = orbit_extent(model, po.integrator, sh.y, 2, counters);
+    ASSERT_EQ(x.strobe.size(), 2u);
+    std::vector<double> branch_x1{x.strobe[0][0], x.strobe[1][0]}, diagram_x1{steps[k].strobe[0][0], steps[k].strobe[1][0]};
+    std::sort(branch_x1.begin(), branch_x1.end());
+    std::sort(diagram_x1.begin(), diagram_x1.end());
+    EXPECT_GT(branch_x1[1] - branch_x1[0], 1e-4);
+    for (int i = 0; i < 2; ++i) EXPECT_NEAR(branch_x1[i], diagram_x1[i], 1e-6) << "omega " << w;
+    std::printf("omega %.2f: doubled branch x1 = %.7f, %.7f; diagram %.7f, %.7f\n", w, branch_x1[0], branch_x1[1],
+                diagram_x1[0], diagram_x1[1]);
+  }
+  std::printf("period doubling at omega = %.9f rad/s (a multiplier %.1e from -1); the diagram splits between %.2f and "
+              "%.2f; doubled branch: %zu points, %s\n",
+              pd->at.param, nearest_minus_one, omegas[split - 1], omegas[split], doubled.points.size(), doubled.stop.c_str());
 }
 
 }  // namespace

@@ -57,7 +57,37 @@ class ExtentObserver final : public Observer {
                                            taus[static_cast<std::size_t>(at - 1)], taus[static_cast<std::size_t>(at + 1)]));
       *best[k] = std::max(*best[k], value);
     }
+    // z = x1 - x2: its interior maxima, the closest approaches in free flight and the deepest
+    // penetration in contact.
+    const auto z = [&](double tau) { return step.eval(tau)[1]; };
+    for (int i = 1; i < kSamples; ++i) {
+      const double zi = xs[static_cast<std::size_t>(i)][0] - xs[static_cast<std::size_t>(i)][1];
+      const double zl = xs[static_cast<std::size_t>(i - 1)][0] - xs[static_cast<std::size_t>(i - 1)][1];
+      const double zr = xs[static_cast<std::size_t>(i + 1)][0] - xs[static_cast<std::size_t>(i + 1)][1];
+      if (!(zi >= zl && zi >= zr)) continue;
+      const double peak = std::max(zi, refine_max(z, taus[static_cast<std::size_t>(i - 1)], taus[static_cast<std::size_t>(i + 1)]));
+      if (step.mode == ContactMode::contact)
+        contact_peak = std::max(contact_peak, peak);
+      else if (peak < 0.0)
+        graze_gap = std::min(graze_gap, -peak);
+    }
+    if (step.mode == ContactMode::contact)
+      contact_peak = std::max({contact_peak, z(step.tau0), z(step.tau1)});
   }
+  void on_event(const ContactEvent& event) override {
+    if (event.kind == ContactEvent::Kind::entry) {
+      ++contacts;
+    } else {
+      close_contact();
+    }
+  }
+  void close_contact() {
+    if (contact_peak > -std::numeric_limits<double>::infinity()) graze_gap = std::min(graze_gap, contact_peak);
+    contact_peak = -std::numeric_limits<double>::infinity();
+  }
+  int contacts = 0;
+  double graze_gap = std::numeric_limits<double>::infinity();
+  double contact_peak = -std::numeric_limits<double>::infinity();
   double x1_max = -std::numeric_limits<double>::infinity();
   double x2_max = -std::numeric_limits<double>::infinity();
   double overlap_max = -std::numeric_limits<double>::infinity();  // max of x1 - x2
@@ -72,16 +102,22 @@ OrbitExtent orbit_extent(const Model& model, const IntegratorOptions& integratio
   State u = y;
   integ->reset(u);
   ExtentObserver obs;
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i) {
+    e.strobe.push_back(Model::to_physical(u));
     if (integ->advance_period(u, obs) != IntegrationStatus::ok) {
       counters += integ->counters();
+      e.strobe.clear();
       return e;
     }
+  }
   counters += integ->counters();
   e.ok = true;
   e.x1_max = obs.x1_max;
   e.x2_max = obs.x2_max;
   e.clearance_min = -obs.overlap_max;
+  obs.close_contact();
+  e.contacts = obs.contacts;
+  e.graze_gap = obs.graze_gap;
   return e;
 }
 
