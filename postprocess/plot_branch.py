@@ -121,9 +121,10 @@ def strobe_x1(point: dict) -> list:
     return point.get("strobe_x1") or [point["y"][0]]
 
 
-def draw_branch(ax, branch: dict, gid: str, color: str, shown: set, name: str = "branch"):
+def draw_branch(ax, branch: dict, gid: str, color: str, shown: set, name: str = "branch", annotate: bool = True):
     """One branch: each period start's x1 against the key (a period-n branch draws n curves),
-    stable solid and unstable dashed, its bifurcations marked at their own states."""
+    stable solid and unstable dashed, its bifurcations marked at their own states (and their key
+    values written next to them when `annotate`)."""
     points = branch["points"]
     if not points:
         return
@@ -143,7 +144,8 @@ def draw_branch(ax, branch: dict, gid: str, color: str, shown: set, name: str = 
         ax.scatter([b["param"]], [y], marker=marker, s=45, color=mcolor, zorder=5,
                    label=None if b["type"] in shown else b["type"], gid=f"bifurcation-{b['type']}")
         shown.add(b["type"])
-        ax.annotate(f"{b['param']:.4f}", (b["param"], y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        if annotate:
+            ax.annotate(f"{b['param']:.4f}", (b["param"], y), textcoords="offset points", xytext=(4, 4), fontsize=7)
 
 
 def plot(branch: dict, diagram: str | None = None):
@@ -157,15 +159,17 @@ def plot(branch: dict, diagram: str | None = None):
     shown = set()
     draw_branch(ax, branch, "branch", "#08306b", shown)
     for k, switched in enumerate(branch.get("branches", []), start=1):
-        draw_branch(ax, switched, f"branch{k}", SWITCHED_COLORS[(k - 1) % len(SWITCHED_COLORS)], shown,
-                    f"period-{switched.get('n', 2)} branch {k}")
+        n = switched.get("n", 2)
+        generation = max(int(n // branch.get("n", 1)).bit_length() - 2, 0)
+        draw_branch(ax, switched, f"branch{k}", SWITCHED_COLORS[generation % len(SWITCHED_COLORS)], shown,
+                    f"period-{n} branches", annotate=False)
     ax.set_xlabel(branch["key"])
     ax.set_ylabel("x1 at the period start, m")
     switched = branch.get("branches", [])
     ax.set_title(f"branch of the period-{branch.get('n', 1)} orbit ({len(branch['points'])} points, "
                  f"{len(branch.get('bifurcations', []))} bifurcations): {branch.get('stop', '')}"
                  + (f"; {len(switched)} switched at period doublings" if switched else ""), fontsize=10)
-    ax.legend(loc="best", fontsize=8)
+    ax.legend(loc="best", fontsize=7, ncol=2)
     return fig
 
 

@@ -94,4 +94,4 @@ def test_a_switched_period_two_branch_draws_one_curve_per_period_start(tmp_path)
     assert len(curves) == 2
     np.testing.assert_allclose(curves[0].get_ydata(), [0.0, 0.05, 0.1])
     np.testing.assert_allclose(curves[1].get_ydata(), [0.0, -0.05, -0.1])
-    assert "period-2 branch 1, stable" in [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "period-2 branches, stable" in [t.get_text() for t in ax.get_legend().get_texts()]

@@ -197,6 +197,9 @@ constexpr double kAtGrazing = 1e-6;
 constexpr double kSwitchStep = 0.02;
 // A doubled branch rejoins its period-n orbit where |P^n(y) - y| (scaled) is below this.
 constexpr double kRejoinGap = 1e-4;
+// ... and the period doubling where it rejoins is that one of the parent's located within this
+// fraction of the interval (its end is located on the doubled branch, to the branch's accuracy).
+constexpr double kSameDoubling = 1e-3;
 // A branch whose step stays below kStallStep for kStallPoints accepted points in a row stops:
 // Newton converges only on tiny steps (a nonsmooth stretch the grazing logic does not cross).
 constexpr double kStallStep = 1e-4;
@@ -513,8 +516,8 @@ std::vector<Branch> continue_branches(const PointAt& point_at, double from, doub
       if (pd.type != BifurcationType::period_doubling) continue;
       // Already found: a doubled branch of the same parent that ends at this period doubling.
       const bool known = std::any_of(out.begin(), out.end(), [&](const Branch& s) {
-        return s.parent == static_cast<int>(i) && !s.points.empty() &&
-               std::abs(s.points.back().param - pd.at.param) <= 1e-6 * span;
+        return s.parent == static_cast<int>(i) && !s.points.empty() && s.stop.rfind("rejoined", 0) == 0 &&
+               std::abs(s.points.back().param - pd.at.param) <= kSameDoubling * span;
       });
       if (known) continue;
       ContinuationOptions on = o;

@@ -9,7 +9,8 @@
 namespace vibromap {
 namespace {
 
-constexpr int kSamples = 64;       // per step
+constexpr int kSamples = 64;        // per free-flight step (the closed form spans up to a period)
+constexpr int kContactSamples = 8;  // per contact step (a short part of one impact)
 constexpr int kGoldenSteps = 60;   // golden-section iterations: the bracket shrinks by 0.618^60 ~ 3e-13
 
 // The largest of f over [a, b] near the sample at `at` (its neighbours bracket it).
@@ -31,6 +32,14 @@ double refine_max(const std::function<double(double)>& f, double a, double b) {
   return std::max(fc, fd);
 }
 
+// Whether the maximum of a smooth f over [t_l, t_r] can exceed `best`, from its samples f_l <= f_m
+// >= f_r at t_l < t_m < t_r, equally spaced by h: near a maximum f is a parabola, whose peak lies at
+// most (f_m - min(f_l, f_r)) / 4 above f_m (a h^2 / 4 against a h^2 at least); twice that margin
+// is kept. A step whose samples cannot beat the best so far is not refined.
+bool could_exceed(double f_m, double f_l, double f_r, double best) {
+  return f_m + 0.5 * (f_m - std::min(f_l, f_r)) >= best;
+}
+
 class ExtentObserver final : public Observer {
  public:
   void on_step(const StepView& step) override {
@@ -41,18 +50,22 @@ class ExtentObserver final : public Observer {
         [](const Eigen::Vector4d& x) { return x[0]; }, [](const Eigen::Vector4d& x) { return x[1]; },
         [](const Eigen::Vector4d& x) { return x[0] - x[1]; }};
     double* best[3] = {&x1_max, &x2_max, &overlap_max};
+    const int samples = step.mode == ContactMode::contact ? kContactSamples : kSamples;
     std::array<double, kSamples + 1> taus{};
     std::array<Eigen::Vector4d, kSamples + 1> xs;
-    for (int i = 0; i <= kSamples; ++i) {
-      taus[static_cast<std::size_t>(i)] = step.tau0 + (step.tau1 - step.tau0) * i / kSamples;
+    for (int i = 0; i <= samples; ++i) {
+      taus[static_cast<std::size_t>(i)] = step.tau0 + (step.tau1 - step.tau0) * i / samples;
       xs[static_cast<std::size_t>(i)] = physical(taus[static_cast<std::size_t>(i)]);
     }
     for (int k = 0; k < 3; ++k) {
       int at = 0;
-      for (int i = 1; i <= kSamples; ++i)
+      for (int i = 1; i <= samples; ++i)
         if (parts[k](xs[static_cast<std::size_t>(i)]) > parts[k](xs[static_cast<std::size_t>(at)])) at = i;
       double value = parts[k](xs[static_cast<std::size_t>(at)]);
-      if (at > 0 && at < kSamples)  // an interior maximum: refine it between its neighbours
+      // An interior maximum is refined between its neighbours when it can beat the best so far.
+      if (at > 0 && at < samples &&
+          could_exceed(value, parts[k](xs[static_cast<std::size_t>(at - 1)]), parts[k](xs[static_cast<std::size_t>(at + 1)]),
+                       *best[k]))
         value = std::max(value, refine_max([&](double tau) { return parts[k](physical(tau)); },
                                            taus[static_cast<std::size_t>(at - 1)], taus[static_cast<std::size_t>(at + 1)]));
       *best[k] = std::max(*best[k], value);
@@ -60,11 +73,13 @@ class ExtentObserver final : public Observer {
     // z = x1 - x2: its interior maxima, the closest approaches in free flight and the deepest
     // penetration in contact.
     const auto z = [&](double tau) { return step.eval(tau)[1]; };
-    for (int i = 1; i < kSamples; ++i) {
+    for (int i = 1; i < samples; ++i) {
       const double zi = xs[static_cast<std::size_t>(i)][0] - xs[static_cast<std::size_t>(i)][1];
       const double zl = xs[static_cast<std::size_t>(i - 1)][0] - xs[static_cast<std::size_t>(i - 1)][1];
       const double zr = xs[static_cast<std::size_t>(i + 1)][0] - xs[static_cast<std::size_t>(i + 1)][1];
       if (!(zi >= zl && zi >= zr)) continue;
+      if (step.mode == ContactMode::contact ? !could_exceed(zi, zl, zr, contact_peak) : !could_exceed(zi, zl, zr, -graze_gap))
+        continue;
       const double peak = std::max(zi, refine_max(z, taus[static_cast<std::size_t>(i - 1)], taus[static_cast<std::size_t>(i + 1)]));
       if (step.mode == ContactMode::contact)
         contact_peak = std::max(contact_peak, peak);

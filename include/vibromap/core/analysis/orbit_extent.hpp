@@ -8,9 +8,10 @@
 // that is where clearance_min crosses zero, but a further impact can appear on an orbit that
 // already has one (clearance_min stays negative): graze_gap sees both.
 //
-// Each integration step is sampled on its dense output (64 points) and the extreme sample is
-// refined by golden-section search on the step's interpolant, so a smooth extremum inside a step
-// is found to the interpolant's accuracy (the closed form in free flight, the Dormand-Prince
+// Each integration step is sampled on its dense output (64 points in free flight, 8 in a short
+// contact step) and an interior extreme sample that can beat the best so far is refined by
+// golden-section search on the step's interpolant, so a smooth extremum inside a step is found
+// to the interpolant's accuracy (the closed form in free flight, the Dormand-Prince
 // interpolant in contact).
 
 #include <vector>
