@@ -111,8 +111,9 @@ TEST(Continuation, BadOptionsAndAStartWithoutOrbitAreSaid) {
 // Table 2 (m2 310 kg, omega2 3.606 rad/s, E1 1.4e10 Pa, E2 1e6 Pa): the soft (1,1) orbit followed
 // up in omega from 7.23 rad/s turns back at a fold. The orbit diagram swept up with a step of
 // 0.02 rad/s follows the branch (to 1e-3 m) at every step below the fold and has left it at the
-// first step above: the fold brackets the up-sweep's jump within one diagram step.
-TEST(Continuation, TheFoldBracketsTheJumpOfTheUpSweep) {
+// first step above: the fold brackets the up-sweep's jump within one diagram step. Likewise the
+// second fold, where the branch turns up again, and the sweep down along its lower part.
+TEST(Continuation, TheFoldsBracketTheJumpsOfTheUpAndDownSweeps) {
   Parameters base;
   base.m2 = 310.0;
   base.spring2 = {Spring::Form::frequency, 3.606};
@@ -129,7 +130,7 @@ TEST(Continuation, TheFoldBracketsTheJumpOfTheUpSweep) {
   const PointSummary s = solve_point(start, options);
   ASSERT_EQ(s.regime.label(), "(1,1)");
   ContinuationOptions o;
-  o.max_points = 600;
+  o.max_points = 3000;
   const Branch b = continue_orbit(at, 7.23, 8.6, s.final_state, o);
   ASSERT_FALSE(b.bifurcations.empty()) << b.stop;
   const Bifurcation& fold = b.bifurcations.front();
@@ -174,6 +175,53 @@ TEST(Continuation, TheFoldBracketsTheJumpOfTheUpSweep) {
   EXPECT_GT(std::abs(steps[above].strobe.back()[0] - fold.at.y[0]), 1e-2) << "omega " << omegas[above];
   std::printf("fold at omega = %.9f rad/s; the up-sweep follows the branch at %.2f and has left it at %.2f\n",
               fold.at.param, omegas[above - 1], omegas[above]);
+
+  // The down-sweep: the branch turns back at a second fold below the first, and its lower part
+  // (after that fold, the key increasing again) is the motion a sweep down from 8.5 rad/s
+  // follows; the sweep leaves it within one step of that fold.
+  const auto second = std::find_if(b.bifurcations.begin() + 1, b.bifurcations.end(),
+                                   [](const Bifurcation& x) { return x.type == BifurcationType::fold; });
+  ASSERT_NE(second, b.bifurcations.end()) << b.stop;
+  ASSERT_LT(second->at.param, fold.at.param - 0.3);
+  // The points after the second fold: from where the key, having decreased, increases again.
+  auto turn = b.points.begin();
+  while (turn + 1 != b.points.end() && (turn + 1)->param >= turn->param) ++turn;  // up to the first fold
+  while (turn + 1 != b.points.end() && (turn + 1)->param <= turn->param) ++turn;  // down to the second
+  std::vector<std::pair<double, double>> lower;
+  for (auto q = turn; q != b.points.end(); ++q)
+    if (lower.empty() || q->param > lower.back().first) lower.emplace_back(q->param, q->y[0]);
+  EXPECT_NEAR(turn->param, second->at.param, 0.01);
+  ASSERT_GT(lower.size(), 10u);
+  ASSERT_GT(lower.back().first, 8.5);
+  const auto lower_x1 = [&](double w) {
+    for (std::size_t i = 1; i < lower.size(); ++i)
+      if (lower[i].first >= w) {
+        const double f = (w - lower[i - 1].first) / (lower[i].first - lower[i - 1].first);
+        return lower[i - 1].second + f * (lower[i].second - lower[i - 1].second);
+      }
+    return lower.back().second;
+  };
+  const auto top = std::find_if(b.points.rbegin(), b.points.rend(), [](const BranchPoint& q) { return q.param <= 8.5; });
+  ASSERT_NE(top, b.points.rend());
+  std::vector<std::pair<Parameters, PointOptions>> down;
+  std::vector<double> down_omegas;
+  for (double w = top->param; w >= 7.3 - 1e-9; w -= 0.02) {
+    down_omegas.push_back(w);
+    down.push_back(at(w));
+  }
+  const auto down_steps = orbit_diagram(down, top->y, d);
+  std::size_t left = 0;
+  while (left < down_omegas.size() && down_omegas[left] >= second->at.param &&
+         std::abs(down_steps[left].strobe.back()[0] - lower_x1(down_omegas[left])) <= 1e-3)
+    ++left;
+  ASSERT_GT(left, 5u);
+  ASSERT_LT(left, down_omegas.size());
+  // On the lower branch down to its fold, off it within one step of the fold.
+  EXPECT_LE(down_omegas[left], second->at.param + 0.02 + 1e-9) << "the down-sweep leaves the branch early";
+  EXPECT_GE(down_omegas[left], second->at.param - 0.02 - 1e-9);
+  std::printf("second fold at omega = %.9f rad/s; the down-sweep follows the lower branch down to %.2f and has left "
+              "it at %.2f\n",
+              second->at.param, down_omegas[left - 1], down_omegas[left]);
 }
 
 // Grazing: Table 1's system (D = 0.05 m) followed up in omega from 2 rad/s, where its motion is
