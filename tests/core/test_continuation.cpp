@@ -53,17 +53,32 @@ struct Linear {
   }
 };
 
+// The points of base with the forcing frequency omega.
+PointAt omega_path(const Parameters& base, const PointOptions& options) {
+  return [base, options](double omega) {
+    Parameters p = base;
+    p.omega = omega;
+    return std::make_pair(p, options);
+  };
+}
+
+// y at x on the polyline through (x, y) pairs of increasing x (the last y beyond it).
+double interpolate(const std::vector<std::pair<double, double>>& xy, double x) {
+  for (std::size_t i = 1; i < xy.size(); ++i)
+    if (xy[i].first >= x) {
+      const double f = (x - xy[i - 1].first) / (xy[i].first - xy[i - 1].first);
+      return xy[i - 1].second + f * (xy[i].second - xy[i - 1].second);
+    }
+  return xy.back().second;
+}
+
 TEST(Continuation, WithoutContactTheBranchIsTheLinearFrequencyResponse) {
   Parameters base;
   base.D = 10.0;  // m: far beyond the motion (at most ~0.6 m at resonance)
   PointOptions options;
   options.integrator.rtol = 1e-12;
   options.integrator.atol = 1e-15;
-  const PointAt at = [&](double omega) {
-    Parameters p = base;
-    p.omega = omega;
-    return std::make_pair(p, options);
-  };
+  const PointAt at = omega_path(base, options);
   ContinuationOptions o;
   o.tol = 1e-13;
   const Linear linear(base);
@@ -120,11 +135,7 @@ TEST(Continuation, TheFoldsBracketTheJumpsOfTheUpAndDownSweeps) {
   base.E1 = 1.4e10;
   base.E2 = 1.0e6;
   const PointOptions options;
-  const PointAt at = [&](double omega) {
-    Parameters p = base;
-    p.omega = omega;
-    return std::make_pair(p, options);
-  };
+  const PointAt at = omega_path(base, options);
   Parameters start = base;
   start.omega = 7.23;
   const PointSummary s = solve_point(start, options);
@@ -145,14 +156,7 @@ TEST(Continuation, TheFoldsBracketTheJumpsOfTheUpAndDownSweeps) {
     if (q.param > fold.at.param || (!stable.empty() && q.param < stable.back().first)) break;
     stable.emplace_back(q.param, q.y[0]);
   }
-  const auto branch_x1 = [&](double w) {
-    for (std::size_t i = 1; i < stable.size(); ++i)
-      if (stable[i].first >= w) {
-        const double f = (w - stable[i - 1].first) / (stable[i].first - stable[i - 1].first);
-        return stable[i - 1].second + f * (stable[i].second - stable[i - 1].second);
-      }
-    return stable.back().second;
-  };
+  const auto branch_x1 = [&](double w) { return interpolate(stable, w); };
   // The sweep starts on the branch: at its first point at or above 7.9 rad/s, from its state.
   const auto on = std::find_if(b.points.begin(), b.points.end(), [](const BranchPoint& q) { return q.param >= 7.9; });
   ASSERT_NE(on, b.points.end());
@@ -193,14 +197,7 @@ TEST(Continuation, TheFoldsBracketTheJumpsOfTheUpAndDownSweeps) {
   EXPECT_NEAR(turn->param, second->at.param, 0.01);
   ASSERT_GT(lower.size(), 10u);
   ASSERT_GT(lower.back().first, 8.5);
-  const auto lower_x1 = [&](double w) {
-    for (std::size_t i = 1; i < lower.size(); ++i)
-      if (lower[i].first >= w) {
-        const double f = (w - lower[i - 1].first) / (lower[i].first - lower[i - 1].first);
-        return lower[i - 1].second + f * (lower[i].second - lower[i - 1].second);
-      }
-    return lower.back().second;
-  };
+  const auto lower_x1 = [&](double w) { return interpolate(lower, w); };
   const auto top = std::find_if(b.points.rbegin(), b.points.rend(), [](const BranchPoint& q) { return q.param <= 8.5; });
   ASSERT_NE(top, b.points.rend());
   std::vector<std::pair<Parameters, PointOptions>> down;
@@ -249,11 +246,7 @@ TEST(Continuation, GrazingIsLocatedWhereTheClosedFormApproachReachesContact) {
   }
   const double reference = 0.5 * (lo + hi);
   PointOptions options;
-  const PointAt at = [&](double omega) {
-    Parameters p = base;
-    p.omega = omega;
-    return std::make_pair(p, options);
-  };
+  const PointAt at = omega_path(base, options);
   Parameters start = base;
   start.omega = 2.0;
   const Branch b = continue_orbit(at, 2.0, 6.2, linear.orbit(start), ContinuationOptions{});
@@ -286,11 +279,7 @@ TEST(Continuation, GrazingIsLocatedWhereTheClosedFormApproachReachesContact) {
 TEST(Continuation, PeriodDoublingSwitchesOntoTheTwoPeriodOrbitOfTheDiagram) {
   const Parameters base;  // Table 1
   const PointOptions options;
-  const PointAt at = [&](double omega) {
-    Parameters p = base;
-    p.omega = omega;
-    return std::make_pair(p, options);
-  };
+  const PointAt at = omega_path(base, options);
   Parameters start = base;
   const PointSummary s = solve_point(start, options);
   ASSERT_EQ(s.regime.label(), "(1,1)");
