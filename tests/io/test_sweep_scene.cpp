@@ -597,6 +597,23 @@ TEST(SweepScene, ReferenceFileIsTheWriterOutput) {
 // ---------------------------------------------------------------------------------------
 // The sweep jobs
 
+TEST(SweepScene, DemoRestitutionE2IsTable2WithFloresOverEAndThePaperBoxOfE2) {
+  const Scene s = load_scene(source_path("jobs/demo/restitution_e2.toml"));
+  const Scene table2 = load_scene(source_path("jobs/paper/table2.toml"));
+  ASSERT_TRUE(s.sweep.has_value());
+  EXPECT_EQ(s.params.m2, table2.params.m2);
+  EXPECT_EQ(get_parameter(s.params, "omega2"), get_parameter(table2.params, "omega2"));
+  EXPECT_EQ(s.params.E1, table2.params.E1);
+  EXPECT_EQ(s.params.law, ContactLawKind::flores);
+  const SweepOptions& w = *s.sweep;
+  EXPECT_EQ(axis_names(w), (std::vector<std::string>{"restitution", "E2"}));
+  EXPECT_EQ(w.axes[0].values.front(), 0.1);
+  EXPECT_EQ(w.axes[0].values.back(), 1.0);  // e = 1: elastic Hertz, the paper's contact
+  EXPECT_EQ(w.axes[1].values.front(), 2e4);
+  EXPECT_EQ(w.axes[1].values.back(), 2.1e11);
+  EXPECT_EQ(Grid(w.axes).size(), 19u * 22u);
+}
+
 TEST(SweepScene, DemoE1E2IsTheTable2BaseOverThePaperBox) {
   const Scene s = load_scene(source_path("jobs/demo/e1_e2.toml"));
   ASSERT_TRUE(s.sweep.has_value());

@@ -222,7 +222,7 @@ void add_contact_keys(std::vector<Binding>& rows) {
                         "contact law: hertz (elastic), or K z^1.5 (1 + chi w/v_in) with chi calibrated from restitution",
                         enum_field<kLawValues, &P::law>(), enum_names<kLawValues>()));
   rows.push_back(real(s, "restitution", interval(0.0, 1.0, true, false), "-",
-                      "coefficient of restitution e the damped law's chi is calibrated for (1: elastic)",
+                      "restitution e the damping chi is calibrated for (1: elastic)",
                       field<&P::restitution>()));
   rows.push_back(real(s, "damping", ge(0), "-",
                       "damping factor chi of a damped law given directly (replaces the calibration from restitution)",
