@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "problems/free_spheres.hpp"
+#include "support/monodromy_testing.hpp"
 #include "vibromap/core/analysis/impact.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/analysis/restitution.hpp"
@@ -59,34 +60,20 @@ double reference_restitution(double chi, double h) {
   return std::nan("");
 }
 
+// Free bodies of Table 1's masses and E = 1 GPa meeting at v under the law calibrated for e.
 Parameters free_bodies(ContactLawKind law, double e, double v) {
-  Parameters p;
-  p.spring1 = {Spring::Form::stiffness, 0.0};
-  p.spring2 = {Spring::Form::stiffness, 0.0};
-  p.damper1 = {Damper::Form::coefficient, 0.0};
-  p.damper2 = {Damper::Form::coefficient, 0.0};
-  p.F0 = 0.0;
-  p.E1 = p.E2 = 1e9;
-  p.D = 1e-3;
-  p.law = law;
-  p.restitution = e;
-  p.initial = Eigen::Vector4d(0.0, p.D, v, 0.0);
-  return p;
+  Parameters base;
+  base.E1 = base.E2 = 1e9;
+  base.law = law;
+  base.restitution = e;
+  return vibromap::free_bodies(base, v);
 }
 
-// The one impact of a free-body scene, with the relative velocity at exit.
+// The one impact of a free-body scene at rtol 1e-12.
 Impact one_impact(const Parameters& p) {
-  const Model model(p);
-  IntegratorOptions o;
-  o.rtol = 1e-12;
-  o.atol = 1e-16;
-  auto integ = make_integrator(model, o);
-  State u = Model::to_internal(p.initial_state());
-  integ->reset(u);
-  ImpactRecorder rec(model, 4);
-  EXPECT_EQ(integ->advance_period(u, rec), IntegrationStatus::ok);
-  EXPECT_EQ(rec.impacts().size(), 1u);
-  return rec.impacts().empty() ? Impact{} : rec.impacts().front();
+  Impact im;
+  EXPECT_EQ(free_impact(p, RestitutionOptions{}, im), IntegrationStatus::ok);
+  return im;
 }
 
 }  // namespace
@@ -219,35 +206,8 @@ TEST(ContactLaws, DampedJacobianMatchesFiniteDifferences) {
   }
 }
 
-namespace {
-State after_transient(const Model& m, int periods) {
-  auto integ = make_integrator(m, IntegratorOptions{});
-  State u = Model::to_internal(m.parameters().initial_state());
-  integ->reset(u);
-  Observer none;
-  for (int i = 0; i < periods; ++i) integ->advance_period(u, none);
-  return u;
-}
-
-State map_1(const Model& m, const State& y, const IntegratorOptions& o) {
-  auto integ = make_integrator(m, o);
-  State u = y;
-  integ->reset(u);
-  Observer none;
-  integ->advance_period(u, none);
-  return u;
-}
-
-std::vector<double> moduli(const std::vector<std::complex<double>>& mu) {
-  std::vector<double> out;
-  for (auto x : mu) out.push_back(std::abs(x));
-  std::sort(out.begin(), out.end());
-  return out;
-}
-}  // namespace
 
 TEST(ContactLaws, FloquetMultipliersWithADampedLawMatchFiniteDifferenceMonodromy) {
-  constexpr double kFdStep = 1e-5;  // in units of the motion's scale
   for (Method method : {Method::hybrid, Method::dopri5})
     for (ContactLawKind law : {ContactLawKind::hunt_crossley, ContactLawKind::gonthier}) {
       Parameters p;  // Table 2's scene
@@ -263,19 +223,10 @@ TEST(ContactLaws, FloquetMultipliersWithADampedLawMatchFiniteDifferenceMonodromy
       tight.rtol = 1e-12;
       tight.atol = 1e-15;
       IntegrationCounters c;
-      const ShootingResult r = shoot(model, tight, after_transient(model, 40), ShootingOptions{1, 1e-12, 30, 0.5}, c);
+      const ShootingResult r = shoot(model, tight, test::after_transient(model, 40), ShootingOptions{1, 1e-12, 30, 0.5}, c);
       ASSERT_TRUE(r.converged) << r.message;
-      Eigen::Matrix4d fd;
-      const StateScale scale(model);
-      const Eigen::Vector4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
-      for (int j = 0; j < 4; ++j) {
-        State e = State::Zero();
-        e[j] = kFdStep * unit[j];
-        fd.col(j) = (map_1(model, r.y + e, tight) - map_1(model, r.y - e, tight)) / (2 * e[j]);
-      }
-      const Eigen::EigenSolver<Eigen::Matrix4d> es(fd, false);
-      const auto a = moduli(r.multipliers);
-      const auto b = moduli({es.eigenvalues().data(), es.eigenvalues().data() + 4});
+      const Eigen::Matrix4d fd = test::fd_monodromy(model, r.y, 1, tight);
+      const auto a = test::moduli(r.multipliers), b = test::eigenvalue_moduli(fd);
       for (std::size_t i = 0; i < 4; ++i)
         EXPECT_NEAR(a[i], b[i], 1e-6) << to_string(law) << " " << to_string(method) << " mu " << i;
       EXPECT_LT((r.monodromy - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()));

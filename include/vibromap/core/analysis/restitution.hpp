@@ -10,6 +10,7 @@
 
 #include <vector>
 
+#include "vibromap/core/analysis/impact.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 #include "vibromap/core/model/contact_law.hpp"
 
@@ -29,6 +30,14 @@ struct RestitutionResult {
   bool clipped = false;       // the damped force was clipped at 0 before the bodies separated
   IntegrationStatus status = IntegrationStatus::ok;
 };
+
+// `base` with no springs, dampers or forcing, and the bodies 1 mm apart closing at v (m/s):
+// one impact of two free bodies, the rest of the scene (masses, moduli, law) from `base`.
+Parameters free_bodies(Parameters base, double v);
+
+// Integrates the scene `p` (free_bodies()) over one forcing period into `impact`; a status
+// other than ok when the integration fails or does not give exactly one completed impact.
+IntegrationStatus free_impact(const Parameters& p, const RestitutionOptions& options, Impact& impact);
 
 // The free impact of the law calibrated for e (e in (0, 1]).
 RestitutionResult free_impact_restitution(ContactLawKind law, double e, const RestitutionOptions& options = {});
