@@ -524,7 +524,8 @@ TEST(SummaryOutput, JsonHasTheKeysAndAbsoluteImpactTimes) {
   write_summary_json(os, example_summary());
   const std::string j = os.str();
   for (const char* key : {"status", "message", "regime", "n", "k", "T", "T_con", "k_con", "F_max", "z_max", "z_ratio",
-                          "hertz_valid", "impacts", "t_in", "t_out", "v_in", "impulse", "periods", "steps", "rejected",
+                          "hertz_valid", "impacts", "t_in", "t_out", "v_in", "impulse", "v_out", "e_effective",
+                          "energy_dissipated", "clipped", "periods", "steps", "rejected",
                           "rhs_evals", "steady_residual", "wall_s"}) {
     EXPECT_NE(j.find(concat({"\"", key, "\":"})), std::string::npos) << key;
   }
@@ -588,6 +589,24 @@ TEST(SummaryOutput, TableShowsRegimeUnitsAndImpacts) {
   EXPECT_NE(t.find("k_con"), std::string::npos) << t;
   EXPECT_NE(t.find("T_con (s)"), std::string::npos) << t;
   EXPECT_NE(t.find("6.5"), std::string::npos) << t;
+}
+
+TEST(SummaryOutput, TableShowsDissipationOnlyWhereAnImpactLostEnergy) {
+  PointSummary s = example_summary();
+  std::ostringstream elastic;
+  write_summary_table(elastic, s, parse(""));
+  EXPECT_EQ(elastic.str().find("dissipation per impact"), std::string::npos) << elastic.str();
+  s.impacts[0].v_out = -0.125;
+  s.impacts[0].e_effective = 0.625;
+  s.impacts[0].energy_dissipated = 3.5;
+  s.impacts[0].clipped = true;
+  std::ostringstream damped, json;
+  write_summary_table(damped, s, parse(""));
+  EXPECT_NE(damped.str().find("dissipation per impact"), std::string::npos) << damped.str();
+  EXPECT_NE(damped.str().find("-0.125        0.625             3.5      yes"), std::string::npos) << damped.str();
+  write_summary_json(json, s);
+  EXPECT_NE(json.str().find("\"energy_dissipated\": 3.5,"), std::string::npos) << json.str();
+  EXPECT_NE(json.str().find("\"clipped\": true"), std::string::npos) << json.str();
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ struct Axis {
   AxisScale scale = AxisScale::lin;  // how the points were spaced (plots use it for their axes)
   // A categorical axis (a choice key such as contact.law): the names of all the key's
   // choices; values are then indices into them (maps: CF flag_values / flag_meanings).
-  std::vector<std::string> categories;
+  std::vector<std::string> categories = {};
 };
 
 // n points from `from` to `to` inclusive, evenly spaced (lin) or geometrically (log).

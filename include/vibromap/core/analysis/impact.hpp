@@ -22,7 +22,7 @@ struct Impact {
   long period_out = 0;   // forcing period of contact exit
   double tau_out = 0.0;  // exit time since the start of that period, s
   double T_con = 0.0;    // contact duration, s
-  double F_max = 0.0;    // peak contact force, N
+  double F_max = 0.0;    // peak contact force (a damped law: the largest sampled on the steps' quadrature nodes), N
   double z_max = 0.0;    // peak penetration (approach), m
   double z_ratio = 0.0;  // z_max / R*: Hertz validity needs it small, -
   double v_in = 0.0;     // relative approach velocity at entry, m/s
