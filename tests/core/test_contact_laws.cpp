@@ -93,6 +93,30 @@ TEST(ContactLaws, CalibrationsFollowTheirFormulas) {
   EXPECT_THROW(parse_contact_law("kelvin-voigt"), std::invalid_argument);
 }
 
+TEST(ContactLaws, DampingGivenDirectlyReplacesTheCalibrationAndNeedsADampedLaw) {
+  Parameters p;
+  p.law = ContactLawKind::gonthier;
+  p.restitution = 0.5;
+  EXPECT_EQ(p.damping_factor(), 1.5);
+  p.damping = 0.25;
+  EXPECT_EQ(p.damping_factor(), 0.25);
+  EXPECT_EQ(Model(p).contact().damping(), 0.25);
+  EXPECT_TRUE(validate(p).empty());
+  p.law = ContactLawKind::hertz;
+  ASSERT_EQ(validate(p).size(), 1u);
+  EXPECT_NE(validate(p).front().find("needs a dissipative contact law"), std::string::npos);
+  p.damping.reset();
+  p.restitution = 0.0;
+  ASSERT_EQ(validate(p).size(), 1u);
+  EXPECT_NE(validate(p).front().find("restitution = 0: must be in (0, 1]"), std::string::npos);
+  // The law as a categorical parameter: its index in all_contact_laws().
+  set_parameter(p, "law", 3.0);
+  EXPECT_EQ(p.law, ContactLawKind::flores);
+  EXPECT_EQ(get_parameter(p, "law"), 3.0);
+  EXPECT_THROW(set_parameter(p, "law", 5.0), std::invalid_argument);
+  EXPECT_THROW(set_parameter(p, "law", 1.5), std::invalid_argument);
+}
+
 TEST(ContactLaws, EveryLawAtRestitutionOneIsElasticHertz) {
   const Impact elastic = one_impact(free_bodies(ContactLawKind::hertz, 1.0, 0.4));
   const double m_star = 1000.0 * 100.0 / 1100.0;
