@@ -165,17 +165,6 @@ TEST(OptimiseScene, EveryKeyIsRead) {
   EXPECT_EQ(o.soft_check_initial_conditions, 1024);
 }
 
-TEST(OptimiseScene, RestitutionIsAFreeParameterUnderTheSceneLaw) {
-  const Scene s = parse("[contact]\nlaw = \"flores\"\n[optimise]\nrestitution = { min = 0.2, max = 0.9 }\n");
-  ASSERT_TRUE(s.optimise.has_value());
-  ASSERT_EQ(s.optimise->variables.size(), 1u);
-  EXPECT_EQ(s.optimise->variables[0].name, "restitution");
-  EXPECT_EQ(s.optimise->variables[0].max, 0.9);
-  EXPECT_EQ(s.params.law, ContactLawKind::flores);
-  EXPECT_EQ(parameter_override("restitution", 0.5), "contact.restitution=0.5");
-  EXPECT_NE(error_of("[optimise]\nrestitution = { min = 0.2, max = 1.5 }\n").find("restitution"), std::string::npos);
-}
-
 TEST(OptimiseScene, AnyRegimeAndASingleAlgorithmName) {
   const OptimiseOptions o =
       optimise_of("[optimise]\nR1 = { min = 0.09, max = 2 }\nregime = \"any\"\nalgorithm = \"sbplx\"\n");

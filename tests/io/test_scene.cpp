@@ -591,23 +591,5 @@ TEST(SummaryOutput, TableShowsRegimeUnitsAndImpacts) {
   EXPECT_NE(t.find("6.5"), std::string::npos) << t;
 }
 
-TEST(SummaryOutput, TableShowsDissipationOnlyWhereAnImpactLostEnergy) {
-  PointSummary s = example_summary();
-  std::ostringstream elastic;
-  write_summary_table(elastic, s, parse(""));
-  EXPECT_EQ(elastic.str().find("dissipation per impact"), std::string::npos) << elastic.str();
-  s.impacts[0].v_out = -0.125;
-  s.impacts[0].e_effective = 0.625;
-  s.impacts[0].energy_dissipated = 3.5;
-  s.impacts[0].clipped = true;
-  std::ostringstream damped, json;
-  write_summary_table(damped, s, parse(""));
-  EXPECT_NE(damped.str().find("dissipation per impact"), std::string::npos) << damped.str();
-  EXPECT_NE(damped.str().find("-0.125        0.625             3.5      yes"), std::string::npos) << damped.str();
-  write_summary_json(json, s);
-  EXPECT_NE(json.str().find("\"energy_dissipated\": 3.5,"), std::string::npos) << json.str();
-  EXPECT_NE(json.str().find("\"clipped\": true"), std::string::npos) << json.str();
-}
-
 }  // namespace
 }  // namespace vibromap

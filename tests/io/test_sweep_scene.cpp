@@ -200,42 +200,6 @@ TEST(SweepScene, AnyNumericKeyIsAnAxisByItsFullOrShortName) {
   EXPECT_NEAR(omega.values[20], 7.0, 1e-15);
 }
 
-TEST(SweepScene, ContactLawIsACategoricalAxisAndRestitutionANumericOne) {
-  const Scene s = parse(
-      "[contact]\nE2 = 1e6\n[sweep]\n\"contact.law\" = { values = [\"flores\", \"hertz\", \"gonthier\"] }\n"
-      "restitution = { from = 0.1, to = 0.9, n = 5 }\n");
-  ASSERT_TRUE(s.sweep.has_value());
-  const auto& axes = s.sweep->axes;
-  ASSERT_EQ(axis_names(*s.sweep), (std::vector<std::string>{"law", "restitution"}));  // schema order
-  EXPECT_EQ(axes[0].values, (std::vector<double>{3.0, 0.0, 4.0}));  // indices into the choices
-  EXPECT_EQ(axes[0].categories,
-            (std::vector<std::string>{"hertz", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"}));
-  EXPECT_EQ(axes[0].units, "1");
-  EXPECT_TRUE(axes[1].categories.empty());
-  const Grid grid(axes);
-  const CellMaker make(s, grid);
-  const CellPoint first = make(0), last = make(grid.size() - 1);
-  EXPECT_EQ(first.params.law, ContactLawKind::flores);
-  EXPECT_EQ(first.params.restitution, 0.1);
-  EXPECT_EQ(last.params.law, ContactLawKind::gonthier);
-  EXPECT_EQ(last.params.restitution, 0.9);
-  EXPECT_EQ(make(5).params.law, ContactLawKind::hertz);
-  EXPECT_EQ(first.params.E2, 1e6);
-  const Scene again = parse_scene(s.text, s.path);
-  ASSERT_TRUE(again.sweep.has_value());
-  expect_same_sweep(*again.sweep, *s.sweep);
-  EXPECT_EQ(again.sweep->axes[0].categories, axes[0].categories);
-}
-
-TEST(SweepScene, ACategoricalAxisTakesNamesOnly) {
-  EXPECT_NE(error_of("[sweep]\n\"contact.law\" = { from = 0, to = 4, n = 5 }\n").find("is categorical"),
-            std::string::npos);
-  EXPECT_NE(error_of("[sweep]\nlaw = { values = [\"flores\", \"flores\"] }\n").find("repeat"), std::string::npos);
-  const std::string unknown = error_of("[sweep]\nlaw = { values = [\"florez\"] }\n");
-  EXPECT_NE(unknown.find("did you mean \"flores\""), std::string::npos) << unknown;
-  EXPECT_NE(error_of("[contact]\nrestitution = 0\n").find("restitution"), std::string::npos);
-}
-
 TEST(SweepScene, FirstAxesComeFirstThenTheSchemaOrder) {
   const SweepOptions s = sweep_of(
       "[sweep]\nomega = { values = [7.0] }\nxi2 = { values = [0.01] }\nm2 = { values = [310] }\n"
@@ -596,23 +560,6 @@ TEST(SweepScene, ReferenceFileIsTheWriterOutput) {
 
 // ---------------------------------------------------------------------------------------
 // The sweep jobs
-
-TEST(SweepScene, DemoRestitutionE2IsTable2WithFloresOverEAndThePaperBoxOfE2) {
-  const Scene s = load_scene(source_path("jobs/demo/restitution_e2.toml"));
-  const Scene table2 = load_scene(source_path("jobs/paper/table2.toml"));
-  ASSERT_TRUE(s.sweep.has_value());
-  EXPECT_EQ(s.params.m2, table2.params.m2);
-  EXPECT_EQ(get_parameter(s.params, "omega2"), get_parameter(table2.params, "omega2"));
-  EXPECT_EQ(s.params.E1, table2.params.E1);
-  EXPECT_EQ(s.params.law, ContactLawKind::flores);
-  const SweepOptions& w = *s.sweep;
-  EXPECT_EQ(axis_names(w), (std::vector<std::string>{"restitution", "E2"}));
-  EXPECT_EQ(w.axes[0].values.front(), 0.1);
-  EXPECT_EQ(w.axes[0].values.back(), 1.0);  // e = 1: elastic Hertz, the paper's contact
-  EXPECT_EQ(w.axes[1].values.front(), 2e4);
-  EXPECT_EQ(w.axes[1].values.back(), 2.1e11);
-  EXPECT_EQ(Grid(w.axes).size(), 19u * 22u);
-}
 
 TEST(SweepScene, DemoE1E2IsTheTable2BaseOverThePaperBox) {
   const Scene s = load_scene(source_path("jobs/demo/e1_e2.toml"));
