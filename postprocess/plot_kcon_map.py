@@ -108,13 +108,13 @@ def threshold_segments(sl: MapSlice, k_con: np.ma.MaskedArray, threshold: float)
     wide horizontal segments at the crossings along y."""
     z = np.ma.log10(k_con)
     level = np.log10(threshold)
-    u = _axis_coordinates(sl.x, sl.x.values)
+    u = _axis_coordinates(sl.x, sl.x.plot_values)
     if sl.y is None or z.shape[0] == 1:
         y_edges = maps.cell_edges(sl.y) if sl.y is not None else np.array([0.0, 1.0])
         return [
             np.array([[x, y_edges[0]], [x, y_edges[-1]]]) for x in _from_coordinates(sl.x, _crossings(u, z[0], level))
         ]
-    v = _axis_coordinates(sl.y, sl.y.values)
+    v = _axis_coordinates(sl.y, sl.y.plot_values)
     if z.shape[1] == 1:
         x_edges = maps.cell_edges(sl.x)
         return [

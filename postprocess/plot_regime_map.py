@@ -177,6 +177,8 @@ def setup_axes(ax, sl: MapSlice):
     ax.set_xlabel(sl.x.label())
     if sl.x.is_log:
         ax.set_xscale("log")
+    if sl.x.categories:  # contact.law: one named column per law
+        ax.set_xticks(sl.x.plot_values, sl.x.tick_labels())
     if sl.y is None:
         y_edges = np.array([0.0, 1.0])
         ax.set_yticks([])
@@ -185,6 +187,8 @@ def setup_axes(ax, sl: MapSlice):
         ax.set_ylabel(sl.y.label())
         if sl.y.is_log:
             ax.set_yscale("log")
+        if sl.y.categories:
+            ax.set_yticks(sl.y.plot_values, sl.y.tick_labels())
     return x_edges, y_edges
 
 

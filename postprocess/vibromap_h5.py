@@ -181,10 +181,25 @@ class MapAxis:
     units: str  # e.g. "Pa"
     long_name: str  # e.g. "Young's modulus of body 1"
     key: str = ""  # the full scene key, e.g. "forcing.omega" ("" in maps written before it was kept)
+    # A categorical axis (contact.law): every choice's name; values are indices into it (the
+    # coordinate's CF flag_meanings). Empty for a numeric axis.
+    categories: list[str] = dataclasses.field(default_factory=list)
 
     @property
     def is_log(self) -> bool:
-        return self.scale == "log"
+        return self.scale == "log" and not self.categories
+
+    @property
+    def plot_values(self) -> np.ndarray:
+        """Where the grid points sit on a plot: the values, or 0, 1, ... for a categorical axis
+        (whose values are indices in any order)."""
+        if self.categories:
+            return np.arange(self.values.size, dtype=np.float64)
+        return np.asarray(self.values, dtype=np.float64)
+
+    def tick_labels(self) -> list[str]:
+        """The category name of each grid point of a categorical axis."""
+        return [self.categories[int(v)] if 0 <= int(v) < len(self.categories) else str(v) for v in self.values]
 
     def label(self) -> str:
         """Axis label for a plot, e.g. "E1 (Young's modulus of body 1), Pa"."""
@@ -329,6 +344,7 @@ def _map_axes(f: h5py.File, path: str) -> dict[str, MapAxis]:
             units=_text(scale.attrs.get("units", "")),
             long_name=_text(scale.attrs.get("long_name", "")),
             key=_text(scale.attrs.get("key", "")),
+            categories=_text(scale.attrs.get("flag_meanings", "")).split(),
         )
     return axes
 
@@ -509,7 +525,7 @@ def cell_edges(axis: MapAxis) -> np.ndarray:
     """Cell edges around the grid values for pcolormesh: midpoints between neighbours, the ends
     half a spacing out; computed in log10 for a log axis, so the cells are even on a log plot.
     A one-point axis gets a cell of relative width 1 (a factor 10 on a log axis)."""
-    values = axis.values
+    values = axis.plot_values
     log = axis.is_log and np.all(values > 0)
     u = np.log10(values) if log else values.astype(np.float64)
     if u.size == 1:

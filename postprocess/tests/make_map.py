@@ -30,8 +30,9 @@ import sys
 import h5py
 import numpy as np
 
-AXIS_UNITS = {"E1": "Pa", "E2": "Pa", "R1": "m", "R2": "m", "m2": "kg", "k2": "N/m", "omega2": "rad/s"}
+AXIS_UNITS = {"law": "1", "E1": "Pa", "E2": "Pa", "R1": "m", "R2": "m", "m2": "kg", "k2": "N/m", "omega2": "rad/s"}
 AXIS_LONG_NAMES = {
+    "law": "contact law",
     "E1": "Young's modulus of body 1",
     "E2": "Young's modulus of body 2",
     "R1": "radius of the contact surface of body 1",
@@ -96,11 +97,13 @@ def write_map(
     ranks=2,
     attach_scales=True,
     title="vibromap regime map",
+    categories=None,
 ):
     """Writes a map file. axes: [(name, values, scale), ...] in order (first slowest);
     regime, n, k and the optional arrays have the grid's shape; done defaults to regime != -1,
     status to ok where done, stable to unknown (-1) everywhere; quantities: {name: array} of the optional stored quantities.
-    attach_scales=False leaves the axes unattached (a malformed map, for the reader's checks)."""
+    attach_scales=False leaves the axes unattached (a malformed map, for the reader's checks);
+    categories: {axis name: [choice names]} makes that axis categorical (CF flag_meanings)."""
     shape = tuple(len(values) for _, values, _ in axes)
     regime = np.asarray(regime)
     assert regime.shape == shape, (regime.shape, shape)
@@ -123,6 +126,9 @@ def write_map(
             axis.attrs["units"] = AXIS_UNITS[name]
             axis.attrs["long_name"] = AXIS_LONG_NAMES[name]
             axis.attrs["scale"] = scale
+            if categories and name in categories:
+                axis.attrs["flag_values"] = np.arange(len(categories[name]), dtype=np.int8)
+                axis.attrs["flag_meanings"] = " ".join(categories[name])
             axis.make_scale(name)
             scales.append(axis)
 

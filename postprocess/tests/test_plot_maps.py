@@ -403,6 +403,33 @@ def test_regime_figure_legend_counts_log_axes_and_cell_edges(map2d):
         matplotlib.pyplot.close(fig)
 
 
+def test_a_categorical_law_axis_is_drawn_one_named_column_per_law(tmp_path):
+    """contact.law as an axis: values are indices in the order swept (here flores, hertz), drawn
+    at 0, 1, ... with the laws' names as ticks; k_con's threshold sits between the columns."""
+    path = tmp_path / "law.h5"
+    laws = ["hertz", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"]
+    regime = np.zeros((2, 3), dtype=np.int8)
+    k_con = np.array([[5.0, 20.0], [5.0, 20.0], [5.0, 20.0]]).T  # law x E2: soft under flores
+    make_map.write_map(path, [("law", [3.0, 0.0], "lin"), ("E2", [1e4, 1e6, 1e8], "log")], regime,
+                       np.ones((2, 3), dtype=np.int32), np.ones((2, 3), dtype=np.int32),
+                       quantities={"k_con": k_con}, categories={"law": laws})
+    m = vibromap_h5.read_map(str(path))
+    assert m.axes["law"].categories == laws and not m.axes["law"].is_log
+    assert m.axes["law"].tick_labels() == ["flores", "hertz"]
+    sl = plot_regime_map.choose_slice(m, "law", "E2", {})
+    fig = plot_regime_map.plot(m, sl)
+    try:
+        ax = fig.axes[0]
+        assert [t.get_text() for t in ax.get_xticklabels()] == ["flores", "hertz"]
+        [mesh] = ax.collections
+        np.testing.assert_allclose(mesh.get_coordinates()[0, :, 0], [-0.5, 0.5, 1.5])
+    finally:
+        matplotlib.pyplot.close(fig)
+    [segment] = plot_kcon_map.threshold_segments(sl, np.ma.masked_invalid(m.data["k_con"].T), 10.0)
+    assert len(segment) >= 2
+    np.testing.assert_allclose(segment[:, 0], 0.5)  # halfway between the two laws' columns
+
+
 def test_regime_figure_hatches_the_unstable_cells(map2d, tmp_path):
     path, arrays = map2d
     stable = np.where(arrays["regime"] == R["periodic"], 1, -1)

@@ -171,6 +171,16 @@ int campaign_exit(const FarmReport& farm, const std::string& output, const char*
 // other ranks parse the text it read, so only rank 0 needs to see the file.
 Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets);
 
+// `vibromap restitution [--law L]... [--e E]... [--format table|json]`: the effective restitution
+// of a free two-body impact for each law (default: every dissipative law) and target e
+// (default 0.1, 0.2, ..., 1). Throws SceneError for an unknown law or an e outside (0, 1].
+struct RestitutionArgs {
+  std::vector<std::string> laws;  // contact law names
+  std::vector<double> e;          // target restitutions
+  std::string format = "table";   // "table" or "json" (a list of {law, e, chi, e_effective})
+};
+int restitution_command(const RestitutionArgs& args, std::ostream& out);
+
 // `vibromap keys [--toml]`: the scene schema as a table, or as a reference scene.
 int keys_command(bool as_toml, std::ostream& out);
 

@@ -41,7 +41,8 @@ std::string main_footer() {
          "\n'vibromap run --help' explains a run, 'vibromap sweep --help' a sweep, 'vibromap accuracy\n"
          "--help' the accuracy study, 'vibromap optimise --help' the optimisation, 'vibromap basins\n"
          "--help' the basin pictures, 'vibromap orbit-diagram --help' the bifurcation diagram;\n"
-         "'vibromap keys' lists the scene keys.";
+         "'vibromap restitution' the contact laws' effective restitution; 'vibromap keys' lists\n"
+         "the scene keys.";
 }
 
 std::string run_footer() {
@@ -350,6 +351,26 @@ CLI::App* add_basins(CLI::App& app, cli::BasinsArgs& args) {
   return b;
 }
 
+CLI::App* add_restitution(CLI::App& app, cli::RestitutionArgs& args) {
+  CLI::App* r = app.add_subcommand("restitution", "Effective restitution of each contact law for a target e");
+  r->add_option("--law", args.laws, "Contact law (repeatable; default: every dissipative law)")
+      ->allow_extra_args(false)
+      ->type_name("hunt-crossley|lankarani-nikravesh|flores|gonthier|hertz");
+  r->add_option("--e", args.e, "Target restitution in (0, 1] (repeatable; default 0.1, 0.2, ..., 1)")
+      ->allow_extra_args(false)
+      ->type_name("E");
+  r->add_option("-f,--format", args.format, "Output on stdout: a table, or JSON (a list of {law, e, chi, e_effective})")
+      ->check(CLI::IsMember({"table", "json"}))
+      ->type_name("table|json")
+      ->capture_default_str();
+  r->footer("Each law's force is K z^1.5 (1 + chi w / v_in), chi calibrated from e (SPEC.md, 'Dissipative\n"
+            "contact laws'). For two free bodies one impact depends on chi alone, so the effective\n"
+            "restitution |v_out / v_in| is a property of the law and e: this command integrates that\n"
+            "impact at rtol 1e-12. postprocess/vmpy plot_restitution draws the JSON output.\n\n" +
+            main_footer());
+  return r;
+}
+
 CLI::App* add_keys(CLI::App& app, bool& as_toml) {
   CLI::App* keys = app.add_subcommand("keys", "List every scene key: default, unit, allowed values, meaning");
   keys->add_flag("--toml", as_toml, "Print a reference scene instead (every key with its default)");
@@ -388,6 +409,7 @@ int dispatch(int argc, char** argv) {
   cli::OrbitDiagramArgs orbit_diagram_args;
   cli::ContinueArgs continue_args;
   cli::BasinsArgs basins_args;
+  cli::RestitutionArgs restitution_args;
   const CLI::App* run = add_run(app, run_args);
   const CLI::App* sweep = add_sweep(app, sweep_args);
   const CLI::App* accuracy = add_accuracy(app, accuracy_args);
@@ -395,6 +417,7 @@ int dispatch(int argc, char** argv) {
   const CLI::App* orbit_diagram = add_orbit_diagram(app, orbit_diagram_args);
   const CLI::App* continuation = add_continue(app, continue_args);
   const CLI::App* basins = add_basins(app, basins_args);
+  const CLI::App* restitution = add_restitution(app, restitution_args);
   add_keys(app, keys_toml);
   try {
     check_command_name(app, argc, argv);
@@ -409,6 +432,7 @@ int dispatch(int argc, char** argv) {
   if (orbit_diagram->parsed()) return cli::orbit_diagram_command(orbit_diagram_args, std::cout);
   if (continuation->parsed()) return cli::continue_command(continue_args, std::cout);
   if (basins->parsed()) return cli::basins_command(basins_args, std::cout);
+  if (restitution->parsed()) return cli::restitution_command(restitution_args, std::cout);
   return cli::keys_command(keys_toml, std::cout);
 }
 

@@ -38,6 +38,9 @@ std::string validate_axis(const Axis& axis) {
   for (double v : axis.values) {
     if (!std::isfinite(v)) return "axis " + axis.name + " has a non-finite value";
     if (axis.scale == AxisScale::log && v <= 0.0) return "log axis " + axis.name + " needs values > 0";
+    if (!axis.categories.empty() &&
+        !(v >= 0.0 && v < static_cast<double>(axis.categories.size()) && v == std::trunc(v)))
+      return "categorical axis " + axis.name + " has a value that indexes none of its categories";
   }
   std::vector<double> sorted = axis.values;
   std::sort(sorted.begin(), sorted.end());

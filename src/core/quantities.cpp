@@ -63,6 +63,14 @@ constexpr std::array kQuantities = {
              &CellResult::max_multiplier),
     real_row(Quantity::lyapunov, "lyapunov", "1/s", "largest Lyapunov exponent (NaN where not computed)",
              &CellResult::lyapunov),
+    real_row(Quantity::e_effective, "e_effective", "1",
+             "effective restitution |v_out / v_in| of the relative velocity in the longest impact",
+             &CellResult::e_effective),
+    real_row(Quantity::energy_dissipated, "energy_dissipated", "J",
+             "energy the contact dissipates in the longest impact (0 for elastic Hertz)",
+             &CellResult::energy_dissipated),
+    int_row<&CellResult::clipped_impacts>(Quantity::clipped_impacts, "clipped_impacts",
+                                          "impacts of the steady cycle where the damped force was clipped at 0"),
 };
 
 // Row i describes Quantity(i) and has exactly one way in, so info() can index the table.
@@ -159,7 +167,10 @@ CellResult summarize(const PointSummary& s) {
   if (longest != s.impacts.end()) {
     c.v_in = longest->v_in;
     c.impulse = longest->impulse;
+    c.e_effective = longest->e_effective;
+    c.energy_dissipated = longest->energy_dissipated;
   }
+  c.clipped_impacts = std::count_if(s.impacts.begin(), s.impacts.end(), [](const Impact& im) { return im.clipped; });
   return c;
 }
 

@@ -24,8 +24,8 @@ std::string fixed_text(const BasinsPlane& p) {
     if (i == p.vars[0] || i == p.vars[1]) continue;
     char value[64];
     const auto end = std::to_chars(value, value + sizeof value, p.fixed[i]).ptr;  // shortest round trip
-    out += (out.empty() ? "" : " ") + std::string(kStateNames[static_cast<std::size_t>(i)]) + "=" +
-           std::string(value, end);
+    if (!out.empty()) out += ' ';
+    out.append(kStateNames[static_cast<std::size_t>(i)]).append("=").append(value, end);
   }
   return out;
 }

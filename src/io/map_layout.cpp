@@ -63,6 +63,16 @@ std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
     coordinate.set_attribute("long_name", axis.long_name);
     coordinate.set_attribute("key", axis.key);
     coordinate.set_attribute("scale", to_string(axis.scale));
+    if (!axis.categories.empty()) {  // CF: the index's names, space-separated
+      std::string meanings;
+      std::vector<std::int8_t> codes;
+      for (const std::string& c : axis.categories) {
+        meanings += (meanings.empty() ? "" : " ") + c;
+        codes.push_back(static_cast<std::int8_t>(codes.size()));
+      }
+      coordinate.set_attribute("flag_values", std::span<const std::int8_t>(codes));
+      coordinate.set_attribute("flag_meanings", meanings);
+    }
     scales.push_back(std::move(coordinate));
   }
   return scales;
@@ -163,6 +173,14 @@ Axis read_axis(const Hdf5File& file, const Dataset& done, std::size_t dim) {
   axis.units = coordinate.read_string_attribute("units");
   axis.long_name = coordinate.read_string_attribute("long_name");
   axis.key = coordinate.read_string_attribute("key");
+  if (coordinate.has_attribute("flag_meanings")) {
+    const std::string meanings = coordinate.read_string_attribute("flag_meanings");
+    for (std::size_t begin = 0; begin < meanings.size();) {
+      const std::size_t end = std::min(meanings.find(' ', begin), meanings.size());
+      if (end > begin) axis.categories.push_back(meanings.substr(begin, end - begin));
+      begin = end + 1;
+    }
+  }
   try {
     axis.scale = parse_axis_scale(coordinate.read_string_attribute("scale"));
   } catch (const std::invalid_argument& e) {

@@ -24,6 +24,10 @@ void write_impact_json(JsonWriter& w, const Impact& im, double T) {
       .field("z_ratio", im.z_ratio)
       .field("v_in", im.v_in)
       .field("impulse", im.impulse)
+      .field("v_out", im.v_out)
+      .field("e_effective", im.e_effective)
+      .field("energy_dissipated", im.energy_dissipated)
+      .field("clipped", im.clipped)
       .end_object();
 }
 
@@ -136,6 +140,25 @@ void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) 
   row(os, "wall time", num(s.wall_s, "%.3g"), "s");
 }
 
+// With a dissipative contact law (some impact lost energy): each impact's exit velocity,
+// effective restitution, dissipated energy and whether the damped force was clipped at 0.
+void write_dissipation(std::ostream& os, const PointSummary& s) {
+  if (std::none_of(s.impacts.begin(), s.impacts.end(), [](const Impact& im) { return im.energy_dissipated != 0.0; }))
+    return;
+  static const std::vector<std::string> heads = {"#", "v_out (m/s)", "e_effective", "dissipated (J)", "clipped"};
+  static const std::vector<std::size_t> widths = {3, 11, 11, 14, 7};
+  os << "\n  dissipation per impact (e_effective = |v_out / v_in|):\n";
+  for (std::size_t c = 0; c < heads.size(); ++c) os << "  " << pad_left(heads[c], widths[c]);
+  os << "\n";
+  for (std::size_t i = 0; i < s.impacts.size(); ++i) {
+    const Impact& im = s.impacts[i];
+    const std::vector<std::string> cells = {std::to_string(i + 1), num(im.v_out), num(im.e_effective),
+                                            num(im.energy_dissipated), im.clipped ? "yes" : "no"};
+    for (std::size_t c = 0; c < cells.size(); ++c) os << "  " << pad_left(cells[c], widths[c]);
+    os << "\n";
+  }
+}
+
 void write_impacts(std::ostream& os, const PointSummary& s) {
   if (s.impacts.empty()) {
     os << "\n  no impacts in the steady cycle\n";
@@ -155,6 +178,7 @@ void write_impacts(std::ostream& os, const PointSummary& s) {
     for (std::size_t c = 0; c < cells.size(); ++c) os << "  " << pad_left(cells[c], widths[c]);
     os << "\n";
   }
+  write_dissipation(os, s);
 }
 
 // floquet: [{re, im, abs}, ...]; stable: true, false or null (unknown); lyapunov: 1/s or null.

@@ -186,3 +186,14 @@ vibromap_cli_test(continue_file RC 0 ARGS continue jobs/paper/table1.toml --set 
 vibromap_cli_test(continue_file_exists RC 2 ARGS continue jobs/paper/table1.toml --param omega --from 7 --to 7.5
                   -o jobs/paper/table2.toml
                   ERR "jobs/paper/table2\\.toml: already exists; use --overwrite to replace it")
+
+# `vibromap restitution` (issue #13): the effective restitution of a free impact per law and e
+# (values checked against an independent integration in tests/core/test_contact_laws.cpp);
+# e = 1 gives chi = 0 (elastic Hertz); one line for an unknown law or an e outside (0, 1].
+vibromap_cli_test(restitution_json RC 0 ARGS restitution --law gonthier --e 0.5 --e 1 --format json
+                  OUT "\"law\": \"gonthier\",[^}]*\"e\": 0\\.5,[^}]*\"chi\": 1\\.5,[^}]*\"e_effective\": 0\\.48774.*\"e\": 1,[^}]*\"chi\": 0,")
+vibromap_cli_test(restitution_table RC 0 ARGS restitution --law flores --e 0.1
+                  OUT "flores +0\\.1 +14\\.4 +0\\.069444 +-0\\.030556 +no")
+vibromap_cli_test(restitution_bad_law RC 2 ARGS restitution --law kelvin
+                  ERR "--law: unknown contact law 'kelvin' \\(one of hertz, hunt-crossley")
+vibromap_cli_test(restitution_bad_e RC 2 ARGS restitution --e 1.5 ERR "--e 1\\.5: a restitution must be in \\(0, 1\\]")

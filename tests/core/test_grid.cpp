@@ -118,7 +118,8 @@ TEST(CellResult, EveryQuantityIsSetAndReadThroughItsTableRow) {
       {Quantity::T_con, 1.5e-3}, {Quantity::k_con, 42.0},  {Quantity::F_max, 3e5},
       {Quantity::z_max, 2e-6},   {Quantity::z_ratio, 1e-4}, {Quantity::v_in, -0.25},
       {Quantity::impulse, 9.0},  {Quantity::hertz_valid, 1}, {Quantity::periods, 250},
-      {Quantity::rhs_evals, 123456}, {Quantity::max_multiplier, 1.25}, {Quantity::lyapunov, -0.5}};
+      {Quantity::rhs_evals, 123456}, {Quantity::max_multiplier, 1.25}, {Quantity::lyapunov, -0.5},
+      {Quantity::e_effective, 0.625}, {Quantity::energy_dissipated, 12.5}, {Quantity::clipped_impacts, 3}};
   ASSERT_EQ(written.size(), all_quantities().size());
   CellResult c;
   for (const auto& [q, v] : written) set_quantity(c, q, v);
@@ -129,6 +130,9 @@ TEST(CellResult, EveryQuantityIsSetAndReadThroughItsTableRow) {
   EXPECT_EQ(c.rhs_evals, 123456);
   EXPECT_EQ(c.max_multiplier, 1.25);
   EXPECT_EQ(c.lyapunov, -0.5);
+  EXPECT_EQ(c.e_effective, 0.625);
+  EXPECT_EQ(c.energy_dissipated, 12.5);
+  EXPECT_EQ(c.clipped_impacts, 3);
   const std::int64_t big = (std::int64_t{1} << 62) + 1;  // not a double: needs the int64 path
   set_quantity_int(c, Quantity::rhs_evals, big);
   EXPECT_EQ(quantity_int(c, Quantity::rhs_evals), big);

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "vibromap/core/analysis/point_solver.hpp"
+#include "support/monodromy_testing.hpp"
 #include "vibromap/core/analysis/shooting.hpp"
 
 using namespace vibromap;
@@ -22,32 +23,6 @@ Parameters table2_base(double E1, double E2) {
   return p;
 }
 
-constexpr double kFdStep = 1e-5;  // finite-difference step, in units of the motion's scale
-
-State after_transient(const Model& m, int periods) {
-  auto integ = make_integrator(m, IntegratorOptions{});
-  State u = Model::to_internal(m.parameters().initial_state());
-  integ->reset(u);
-  Observer none;
-  for (int i = 0; i < periods; ++i) integ->advance_period(u, none);
-  return u;
-}
-
-State map_n(const Model& m, const State& y, int n, const IntegratorOptions& o) {
-  auto integ = make_integrator(m, o);
-  State u = y;
-  integ->reset(u);
-  Observer none;
-  for (int i = 0; i < n; ++i) integ->advance_period(u, none);
-  return u;
-}
-
-std::vector<double> moduli(const std::vector<std::complex<double>>& mu) {
-  std::vector<double> out;
-  for (auto m : mu) out.push_back(std::abs(m));
-  std::sort(out.begin(), out.end());
-  return out;
-}
 }  // namespace
 
 TEST(Shooting, FloquetMultipliersMatchFiniteDifferenceMonodromy) {
@@ -57,21 +32,10 @@ TEST(Shooting, FloquetMultipliersMatchFiniteDifferenceMonodromy) {
     IntegratorOptions tight;
     tight.rtol = 1e-12;
     tight.atol = 1e-15;
-    const ShootingResult r = shoot(model, tight, after_transient(model, 30), ShootingOptions{1, 1e-12, 30, 0.5}, c);
+    const ShootingResult r = shoot(model, tight, test::after_transient(model, 30), ShootingOptions{1, 1e-12, 30, 0.5}, c);
     ASSERT_TRUE(r.converged) << r.message;
-    // Central differences of the period map, one column per state component.
-    Eigen::Matrix4d fd;
-    const StateScale scale(model);
-    const Eigen::Vector4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
-    for (int j = 0; j < 4; ++j) {
-      const double h = kFdStep * unit[j];
-      State e = State::Zero();
-      e[j] = h;
-      fd.col(j) = (map_n(model, r.y + e, 1, tight) - map_n(model, r.y - e, 1, tight)) / (2 * h);
-    }
-    const Eigen::EigenSolver<Eigen::Matrix4d> es(fd, false);
-    const std::vector<std::complex<double>> mu_fd(es.eigenvalues().data(), es.eigenvalues().data() + 4);
-    const auto a = moduli(r.multipliers), b = moduli(mu_fd);
+    const Eigen::Matrix4d fd = test::fd_monodromy(model, r.y, 1, tight);
+    const auto a = test::moduli(r.multipliers), b = test::eigenvalue_moduli(fd);
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(a[static_cast<std::size_t>(i)], b[static_cast<std::size_t>(i)], 1e-6);
     EXPECT_LT((r.monodromy - fd).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + fd.cwiseAbs().maxCoeff()));
   }
@@ -82,7 +46,7 @@ TEST(Shooting, UnstableOrbitIsFlaggedAndBruteForceLeavesIt) {
   // its stable ones; Newton for n = 3 from the transient converges to it.
   const Model model(table2_base(1e9, 1e10));
   IntegrationCounters c;
-  const ShootingResult r = shoot(model, IntegratorOptions{}, after_transient(model, 30), ShootingOptions{3, 1e-11, 40, 0.5}, c);
+  const ShootingResult r = shoot(model, IntegratorOptions{}, test::after_transient(model, 30), ShootingOptions{3, 1e-11, 40, 0.5}, c);
   ASSERT_TRUE(r.converged) << r.message;
   EXPECT_FALSE(r.stable());
   EXPECT_GT(std::abs(r.multipliers.front()), 1.05);
@@ -92,7 +56,7 @@ TEST(Shooting, UnstableOrbitIsFlaggedAndBruteForceLeavesIt) {
   u[0] += 1e-8 * scale.length();
   double far = 0.0;
   for (int cycle = 0; cycle < 200; ++cycle) {
-    u = map_n(model, u, 3, IntegratorOptions{});
+    u = test::map_n(model, u, 3, IntegratorOptions{});
     far = std::max(far, scale.distance(u, r.y));
   }
   EXPECT_GT(far, 1e-3);

@@ -127,6 +127,7 @@ void expect_same_grid(const Grid& expected, const Grid& actual) {
     EXPECT_EQ(actual.axes()[d].name, expected.axes()[d].name);
     EXPECT_EQ(actual.axes()[d].values, expected.axes()[d].values);
     EXPECT_EQ(actual.axes()[d].scale, expected.axes()[d].scale);
+    EXPECT_EQ(actual.axes()[d].categories, expected.axes()[d].categories);
   }
 }
 
@@ -380,6 +381,27 @@ TEST_F(MapFile, StoresOnlyTheRequestedQuantities) {
   map.stored.clear();
   expect_round_trip(map, file("none.h5"));
   EXPECT_EQ(Hdf5File(file("none.h5")).read_string_attribute("stored"), "");
+}
+
+TEST_F(MapFile, ACategoricalAxisKeepsItsIndicesAndNamesThem) {
+  Axis law{"contact.law", "law", "1", "contact law", {3.0, 1.0}, AxisScale::lin,
+           {"hertz", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"}};
+  const SweepMap map = sample_map(
+      {law, {"contact.restitution", "restitution", "1", "restitution", {0.1, 0.5, 0.9}, AxisScale::lin}},
+      {Quantity::k_con, Quantity::e_effective, Quantity::energy_dissipated, Quantity::clipped_impacts});
+  write_map(file("law.h5"), map);
+  {
+    const Hdf5File f(file("law.h5"));
+    const Dataset coordinate = f.open_dataset("law");
+    EXPECT_EQ(coordinate.read_double(), (std::vector<double>{3.0, 1.0}));
+    EXPECT_EQ(coordinate.read_string_attribute("flag_meanings"),
+              "hertz hunt-crossley lankarani-nikravesh flores gonthier");
+    EXPECT_FALSE(f.open_dataset("restitution").has_attribute("flag_meanings"));
+  }
+  const SweepMap back = read_map(file("law.h5"));
+  expect_same_grid(map.grid, back.grid);
+  EXPECT_EQ(back.grid.axes()[0].categories.at(3), "flores");
+  EXPECT_TRUE(back.grid.axes()[1].categories.empty());
 }
 
 TEST_F(MapFile, CoordinatesAreDimensionScalesAttachedInAxisOrder) {

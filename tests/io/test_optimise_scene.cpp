@@ -223,7 +223,7 @@ const std::string kM2 = "[optimise]\nm2 = { min = 100, max = 310 }\n";
 const std::vector<BadOptimise>& bad_optimises() {
   static const std::vector<BadOptimise> cases = {
       {"no free parameter", "[optimise]\nseeds = 2\n", {},
-       {"jobs/x.toml:1: [optimise] has no free parameters: give at least one of E1, E2, R1, R2, m2, k2, omega2 as "
+       {"jobs/x.toml:1: [optimise] has no free parameters: give at least one of E1, E2, R1, R2, m2, k2, omega2, restitution as "
         "NAME = { min, max[, scale] }"}},
       {"key typo", concat({kM2, "algoritm = \"bobyqa\"\n"}), {},
        {"jobs/x.toml:3: unknown key 'algoritm' in [optimise] (did you mean 'algorithm'?)", "keys of [optimise]: E1"}},
@@ -318,7 +318,7 @@ TEST(OptimiseScene, KeysListingDocumentsTheOptimiseKeys) {
 TEST(OptimiseScene, HelpSummaryListsTheOptimiseKeys) {
   std::ostringstream os;
   write_scene_key_summary(os);
-  EXPECT_NE(os.str().find("[optimise]  E1 E2 R1 R2 m2 k2|omega2 objective impact regime stability hertz_valid algorithm seeds map "
+  EXPECT_NE(os.str().find("[optimise]  E1 E2 R1 R2 m2 k2|omega2 restitution objective impact regime stability hertz_valid algorithm seeds map "
                           "xtol_rel ftol_rel max_evaluations max_time initial_step fd_step barrier best verify_rtol "
                           "min_soft_fraction soft_check_initial_conditions\n"),
             std::string::npos)

@@ -524,7 +524,8 @@ TEST(SummaryOutput, JsonHasTheKeysAndAbsoluteImpactTimes) {
   write_summary_json(os, example_summary());
   const std::string j = os.str();
   for (const char* key : {"status", "message", "regime", "n", "k", "T", "T_con", "k_con", "F_max", "z_max", "z_ratio",
-                          "hertz_valid", "impacts", "t_in", "t_out", "v_in", "impulse", "periods", "steps", "rejected",
+                          "hertz_valid", "impacts", "t_in", "t_out", "v_in", "impulse", "v_out", "e_effective",
+                          "energy_dissipated", "clipped", "periods", "steps", "rejected",
                           "rhs_evals", "steady_residual", "wall_s"}) {
     EXPECT_NE(j.find(concat({"\"", key, "\":"})), std::string::npos) << key;
   }

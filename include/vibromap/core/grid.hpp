@@ -26,6 +26,9 @@ struct Axis {
   std::string long_name;       // the key's meaning, one line
   std::vector<double> values;  // the axis points, SI units
   AxisScale scale = AxisScale::lin;  // how the points were spaced (plots use it for their axes)
+  // A categorical axis (a choice key such as contact.law): the names of all the key's
+  // choices; values are then indices into them (maps: CF flag_values / flag_meanings).
+  std::vector<std::string> categories = {};
 };
 
 // n points from `from` to `to` inclusive, evenly spaced (lin) or geometrically (log).
@@ -33,7 +36,7 @@ struct Axis {
 std::vector<double> axis_points(double from, double to, int n, AxisScale scale);
 
 // Empty when the axis is usable, else what is wrong (no name, no values, non-finite or
-// non-positive log values, repeated values).
+// non-positive log values, repeated values, a categorical value that indexes no category).
 std::string validate_axis(const Axis& axis);
 
 class Grid {

@@ -34,6 +34,9 @@ enum class Quantity {
   rhs_evals,    // right-hand side evaluations
   max_multiplier,  // largest |Floquet multiplier| of the periodic orbit (NaN where none), 1
   lyapunov,     // largest Lyapunov exponent (NaN where not computed), 1/s
+  e_effective,  // effective restitution |v_out / v_in| of the longest impact, 1
+  energy_dissipated,  // energy the contact dissipates in the longest impact, J
+  clipped_impacts,    // impacts of the steady cycle whose damped force was clipped at 0
 };
 // One table in cell_result.cpp holds, per Quantity, its name, units, description and the
 // CellResult member it lives in; everything below (and the map file) reads that table, so
@@ -43,7 +46,7 @@ std::string to_string(Quantity q);              // the dataset name, e.g. "T_con
 Quantity parse_quantity(std::string_view s);    // throws std::invalid_argument
 std::string_view quantity_units(Quantity q);    // "s", "1", "N", "m", "m/s", "N s", "1/s"
 std::string_view quantity_description(Quantity q);  // one line, the map's long_name
-bool quantity_is_integer(Quantity q);           // hertz_valid, periods, rhs_evals (int64 in maps)
+bool quantity_is_integer(Quantity q);           // hertz_valid, periods, rhs_evals, clipped_impacts (int64 in maps)
 std::int64_t quantity_max(Quantity q);          // largest valid value of an integer quantity (least: 0)
 
 // Codes of the regime dataset (CF flag_values); -1 marks a cell not computed yet.
@@ -72,9 +75,10 @@ struct CellResult {
   std::int8_t hertz_valid = 0;
   std::int8_t stable = -1;  // 1 stable, 0 unstable, -1 unknown (not computed or not periodic)
   std::int32_t n = 0, k = 0;
-  std::int64_t periods = 0, rhs_evals = 0;
+  std::int64_t periods = 0, rhs_evals = 0, clipped_impacts = 0;
   double wall_s = 0.0, steady_residual = 0.0;
   double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_max = 0.0, z_ratio = 0.0, v_in = 0.0, impulse = 0.0;
+  double e_effective = 0.0, energy_dissipated = 0.0;
   double max_multiplier = std::numeric_limits<double>::quiet_NaN();
   double lyapunov = std::numeric_limits<double>::quiet_NaN();
   // The census (sweeps with [census]; empty and NaN otherwise).

@@ -9,7 +9,8 @@ namespace {
 constexpr double CellResult::*kReals[] = {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::T_con,
                                            &CellResult::k_con,  &CellResult::F_max,           &CellResult::z_max,
                                            &CellResult::z_ratio, &CellResult::v_in,           &CellResult::impulse,
-                                           &CellResult::max_multiplier, &CellResult::lyapunov};
+                                           &CellResult::max_multiplier, &CellResult::lyapunov,
+                                           &CellResult::e_effective, &CellResult::energy_dissipated};
 constexpr double CellResult::*kCensusReals[] = {&CellResult::soft_fraction, &CellResult::unresolved_fraction,
                                                  &CellResult::unlisted_fraction};
 constexpr std::int8_t AttractorRecord::*kAttractorCodes[] = {&AttractorRecord::regime, &AttractorRecord::stable,
@@ -30,6 +31,7 @@ void CellCodec::encode(const CellResult& c, ByteWriter& out) const {
   out.put(c.k);
   out.put(c.periods);
   out.put(c.rhs_evals);
+  out.put(c.clipped_impacts);
   for (const auto member : kReals) out.put(c.*member);
   // The census: one byte (0) in a sweep without one.
   out.put(static_cast<std::uint8_t>(census_ ? 1 : 0));
@@ -55,6 +57,7 @@ CellResult CellCodec::decode(ByteReader& in) const {
   c.k = in.get<std::int32_t>();
   c.periods = in.get<std::int64_t>();
   c.rhs_evals = in.get<std::int64_t>();
+  c.clipped_impacts = in.get<std::int64_t>();
   for (const auto member : kReals) c.*member = in.get<double>();
   if (in.get<std::uint8_t>() == 0) return c;
   for (const auto member : kCensusReals) c.*member = in.get<double>();

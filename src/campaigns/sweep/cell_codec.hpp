@@ -14,7 +14,7 @@ class CellCodec : public ResultCodec<CellResult> {
  public:
   // census: the sweep keeps each cell's census.
   explicit CellCodec(bool census = false) : census_(census) {}
-  std::uint32_t version() const override { return census_ ? 3 : 2; }
+  std::uint32_t version() const override { return census_ ? 5 : 4; }
   void encode(const CellResult& c, ByteWriter& out) const override;
   CellResult decode(ByteReader& in) const override;
 

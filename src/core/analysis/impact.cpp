@@ -22,10 +22,22 @@ void ImpactRecorder::on_step(const StepView& step) {
   if (!open_ || step.tau1 <= step.tau0) return;
   const HertzContact& contact = model_.contact();
   const double half = 0.5 * (step.tau1 - step.tau0), mid = 0.5 * (step.tau1 + step.tau0);
-  double impulse = 0.0;
-  for (std::size_t i = 0; i < kGaussNodes.size(); ++i)
-    impulse += kGaussWeights[i] * contact.force(step.eval(mid + half * kGaussNodes[i])[1]);
+  double impulse = 0.0, dissipated = 0.0;
+  for (std::size_t i = 0; i < kGaussNodes.size(); ++i) {
+    const State u = step.eval(mid + half * kGaussNodes[i]);
+    const double f = contact.force(u[1], u[3], law_entry_speed_);
+    impulse += kGaussWeights[i] * f;
+    if (!contact.dissipative()) continue;
+    dissipated += kGaussWeights[i] * (f - contact.force(u[1])) * u[3];
+    open_->F_max = std::max(open_->F_max, f);
+    open_->clipped = open_->clipped || contact.clipped(u[1], u[3], law_entry_speed_);
+  }
   open_->impulse += half * impulse;
+  open_->energy_dissipated += half * dissipated;
+  if (contact.dissipative()) {
+    const State end = step.eval(step.tau1);
+    open_->clipped = open_->clipped || contact.clipped(end[1], end[3], law_entry_speed_);
+  }
   track_peak(step);
 }
 
@@ -49,15 +61,20 @@ void ImpactRecorder::on_event(const ContactEvent& event) {
     open_->period_in = event.period;
     open_->tau_in = event.tau;
     open_->v_in = event.u[3];
+    law_entry_speed_ = model_.entry_speed(event.u);
     return;
   }
   if (!open_) return;  // exit of a contact that began before recording started
   Impact& im = *open_;
   im.period_out = event.period;
   im.tau_out = event.tau;
+  im.v_out = event.u[3];
+  im.e_effective = im.v_in != 0.0 ? std::abs(im.v_out / im.v_in) : 0.0;
   // Durations from per-period times: (whole periods) T + (difference of local times).
   im.T_con = static_cast<double>(im.period_out - im.period_in) * model_.period() + (im.tau_out - im.tau_in);
-  im.F_max = model_.contact().force(im.z_max);
+  // At z_max the approach rate is 0, so a damped force equals the elastic one there; it peaks
+  // earlier, while w > 0, and F_max keeps the largest of that and the quadrature nodes' forces.
+  im.F_max = std::max(im.F_max, model_.contact().force(im.z_max));
   im.z_ratio = im.z_max / model_.contact().effective_radius();
   impacts_.push_back(im);
   open_.reset();

@@ -89,6 +89,7 @@ class TrajectoryRecorder final : public Observer {
     }
   }
   void on_event(const ContactEvent& e) override {
+    if (e.kind == ContactEvent::Kind::entry) v_in_ = model_.entry_speed(e.u);
     add(static_cast<double>(e.period - first_) * model_.period() + e.tau, e.u, e.tau);
   }
 
@@ -96,8 +97,10 @@ class TrajectoryRecorder final : public Observer {
   void add(double t, const State& u, double tau) {
     if (!out_.empty() && t <= out_.back().t) return;
     const Eigen::Vector4d x = Model::to_physical(u);
-    out_.push_back({t, x[0], x[1], x[2], x[3], model_.contact().force(u[1]), model_.forcing(tau)});
+    if (v_in_ <= 0.0) v_in_ = model_.entry_speed(u);  // the window opened inside a contact
+    out_.push_back({t, x[0], x[1], x[2], x[3], model_.contact().force(u[1], u[3], v_in_), model_.forcing(tau)});
   }
+  double v_in_ = 0.0;  // the current contact's entry speed (a dissipative law's force reads it)
   const Model& model_;
   long first_;
   double dt_;

@@ -8,10 +8,7 @@ namespace vibromap::detail {
 DormandPrince::DormandPrince(const Model& model, const IntegratorOptions& options)
     : engine_(model, options, counters_), T_(model.period()) {}
 
-void DormandPrince::restart() {
-  engine_.set_mode(mode_);
-  engine_.restart();
-}
+void DormandPrince::restart(const State& u) { engine_.begin(u, mode_); }
 
 IntegrationStatus DormandPrince::advance_period(State& u, Observer& obs) {
   double tau = 0.0;
@@ -24,10 +21,7 @@ IntegrationStatus DormandPrince::advance_period(State& u, Observer& obs) {
 DormandPrinceVariational::DormandPrinceVariational(const Model& model, const IntegratorOptions& options)
     : engine_(model, options, counters_), T_(model.period()) {}
 
-void DormandPrinceVariational::restart() {
-  engine_.set_mode(mode_);
-  engine_.restart();
-}
+void DormandPrinceVariational::restart(const State& u) { engine_.begin(u, mode_); }
 
 IntegrationStatus DormandPrinceVariational::advance_period(State& u, Observer& obs) {
   Augmented<5> y;

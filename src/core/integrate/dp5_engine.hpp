@@ -13,6 +13,13 @@
 // the state and the step is redone to end exactly there, with z set to 0. The Hertz force
 // vanishes at z = 0, so the vector field is continuous across the switching surface and the
 // saltation matrix at an event is the identity: Phi needs no jump.
+//
+// A dissipative contact law's force depends on v_in, the approach rate at the contact's
+// entry, which the engine remembers from the entry event. v_in is a function of the entry
+// state, so in contact Phi' = J Phi + (df/dv_in) g with the row g = d v_in / d u0, set at the
+// entry: w_e = w(t_e(u0)) with t_e where z = 0, so g = Phi_w - (w'/w) Phi_z at the event
+// (implicit-function theorem; w = z' at the entry). A contact in progress at a restart has
+// no entry: its v_in is Model::entry_speed(u) and g that function's gradient.
 
 #include <algorithm>
 #include <array>
@@ -93,7 +100,8 @@ class Dp5Engine {
   using Y = Augmented<Cols>;
 
   Dp5Engine(const Model& model, const IntegratorOptions& options, IntegrationCounters& counters)
-      : model_(model), opt_(options), counters_(counters), T_(model.period()) {
+      : model_(model), opt_(options), counters_(counters), T_(model.period()),
+        dissipative_(model.contact().dissipative()) {
     const double w = model.parameters().omega;
     atol_ << opt_.atol, opt_.atol, opt_.atol * w, opt_.atol * w;
     h_max_ = opt_.max_step * T_;
@@ -105,6 +113,26 @@ class Dp5Engine {
     err_old_ = 1e-4;
     after_reject_ = false;
   }
+  // Starts from state u (Phi = I) in mode m: a contact in progress gets v_in from the state.
+  void begin(const State& u, ContactMode m) {
+    set_mode(m);
+    restart();
+    v_in_ = model_.entry_speed(u);
+    entry_gradient_ = dissipative_ && m == ContactMode::contact ? model_.entry_speed_gradient(u)
+                                                                : Eigen::RowVector4d::Zero();
+    g_ = entry_gradient_;
+    fresh_ = true;
+  }
+  // Phi restarts at I here: v_in's sensitivity is the state's gradient right after begin(),
+  // else zero (v_in is then a remembered constant, not a function of the new u0).
+  void reset_entry_sensitivity() { g_ = fresh_ ? entry_gradient_ : Eigen::RowVector4d::Zero(); }
+  // A contact entry at (tau, y) found elsewhere (the hybrid integrator's free flight).
+  void enter_contact(double tau, const Y& y) {
+    set_mode(ContactMode::contact);
+    remember_entry(tau, y);
+    hint_contact_start(y.col(0));
+  }
+  double entry_speed() const { return v_in_; }
   ContactMode mode() const { return mode_; }
   void set_rtol(double rtol) { opt_.rtol = rtol; }
   void set_max_steps(long max_steps) { opt_.max_steps = max_steps; }
@@ -120,6 +148,8 @@ class Dp5Engine {
   // failure. tau is updated.
   IntegrationStatus advance(Y& y, double& tau, double tau_end, long period, Observer& obs, bool stop_at_event,
                             bool* event) {
+    fresh_ = false;
+    if (v_in_ <= 0.0) v_in_ = model_.entry_speed(y.col(0));  // never begin(): no entry known
     return run(y, tau, tau_end, period, obs, true, stop_at_event, event);
   }
 
@@ -176,10 +206,29 @@ class Dp5Engine {
   void rhs(double tau, const Y& y, Y& dy) { rhs_forced(model_.forcing(tau), y, dy); }
   void rhs_forced(double F, const Y& y, Y& dy) {
     State f;
-    model_.rhs_forced(F, y.col(0), mode_, f);
+    model_.rhs_forced(F, y.col(0), mode_, v_in_, f);
     dy.col(0) = f;
-    if constexpr (Cols > 1) dy.template rightCols<Cols - 1>() = model_.jacobian(y.col(0), mode_) * y.template rightCols<Cols - 1>();
+    if constexpr (Cols > 1) {
+      dy.template rightCols<Cols - 1>() = model_.jacobian(y.col(0), mode_, v_in_) * y.template rightCols<Cols - 1>();
+      if (dissipative_ && mode_ == ContactMode::contact)
+        dy.template rightCols<Cols - 1>() += model_.entry_speed_column(y.col(0), mode_, v_in_) * g_;
+    }
     ++counters_.rhs_evals;
+  }
+
+  // v_in and its sensitivity g = Phi_w - (w'/w) Phi_z at an entry (see the file comment);
+  // w' is the free vector field's (the contact force is 0 at z = 0).
+  void remember_entry(double tau, const Y& y) {
+    const State u = y.col(0);
+    v_in_ = model_.entry_speed(u);
+    if constexpr (Cols > 1) {
+      g_.setZero();
+      if (!dissipative_ || !(u[3] > model_.min_entry_speed())) return;
+      State f;
+      model_.rhs_forced(model_.forcing(tau), u, ContactMode::free, v_in_, f);
+      const auto phi = y.template rightCols<4>();
+      g_ = phi.row(3) - (f[3] / u[3]) * phi.row(1);
+    }
   }
 
   // One trial step of size h from (tau, y): fills k_[1..6] and y_new, returns the scaled
@@ -248,6 +297,7 @@ class Dp5Engine {
     y(1, 0) = 0.0;
     const bool entering = mode_ == ContactMode::free;
     mode_ = entering ? ContactMode::contact : ContactMode::free;
+    if (entering) remember_entry(tau_event, y);
     ++counters_.events;
     obs.on_event({entering ? ContactEvent::Kind::entry : ContactEvent::Kind::exit, period, tau_event, y.col(0)});
     rhs(tau_event, y, k_[0]);
@@ -270,6 +320,11 @@ class Dp5Engine {
   IntegratorOptions opt_;
   IntegrationCounters& counters_;
   double T_;
+  bool dissipative_;         // the contact law reads v_in
+  double v_in_ = 0.0;        // approach rate at the current contact's entry, m/s
+  Eigen::RowVector4d g_ = Eigen::RowVector4d::Zero();               // d v_in / d u0
+  Eigen::RowVector4d entry_gradient_ = Eigen::RowVector4d::Zero();  // d entry_speed / du at begin()
+  bool fresh_ = false;       // begin() and no step since
   Eigen::Array4d atol_;
   double h_max_, h_min_;
   ContactMode mode_ = ContactMode::free;

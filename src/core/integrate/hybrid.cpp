@@ -24,10 +24,7 @@ Hybrid<Cols>::Hybrid(const Model& model, const IntegratorOptions& options, std::
     : flight_(std::move(flight)), engine_(model, options, counters_), opt_(options), T_(model.period()) {}
 
 template <int Cols>
-void Hybrid<Cols>::restart() {
-  engine_.set_mode(mode_);
-  engine_.restart();
-}
+void Hybrid<Cols>::restart(const State& u) { engine_.begin(u, mode_); }
 
 template <int Cols>
 IntegrationStatus Hybrid<Cols>::advance_period(State& u, Observer& obs) {
@@ -60,8 +57,10 @@ IntegrationStatus Hybrid<Cols>::free_phase(State& u, double& tau, Observer& obs)
     mode_ = ContactMode::contact;
     ++counters_.events;
     obs.on_event({ContactEvent::Kind::entry, period_, tau, u});
-    engine_.set_mode(ContactMode::contact);
-    engine_.hint_contact_start(u);
+    Augmented<Cols> y;
+    y.col(0) = u;
+    if constexpr (Cols > 1) y.template rightCols<4>() = phi_;
+    engine_.enter_contact(tau, y);
   }
   return IntegrationStatus::ok;
 }

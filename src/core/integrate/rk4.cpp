@@ -32,13 +32,14 @@ ClassicalRk4::ClassicalRk4(const Model& model, const IntegratorOptions& options)
     : model_(model), opt_(options), T_(model.period()) {}
 
 void ClassicalRk4::rhs(double tau, const State& u, State& dudt) {
-  model_.rhs(tau, u, ContactMode::contact, dudt);
+  model_.rhs(tau, u, ContactMode::contact, v_in_, dudt);
   ++counters_.rhs_evals;
 }
 
 IntegrationStatus ClassicalRk4::advance_period(State& u, Observer& obs) {
   const long n = opt_.rk4_steps;
   const double h = T_ / static_cast<double>(n);
+  if (v_in_ <= 0.0) v_in_ = model_.entry_speed(u);  // never reset(): no entry known
   if (!f_valid_) {
     rhs(0.0, u, f_);
     f_valid_ = true;
@@ -49,6 +50,9 @@ IntegrationStatus ClassicalRk4::advance_period(State& u, Observer& obs) {
     // tau from the step index, not by accumulation, so rounding does not drift.
     const double tau = T_ * static_cast<double>(i) / static_cast<double>(n);
     const double tau1 = i + 1 == n ? T_ : T_ * static_cast<double>(i + 1) / static_cast<double>(n);
+    // A dissipative law's v_in: the approach rate at the last step start before the contact
+    // (first order in h, like the method's accuracy at contact).
+    if (u[1] <= 0.0 || v_in_ <= 0.0) v_in_ = model_.entry_speed(u);
     rhs(tau + 0.5 * h, u + 0.5 * h * f_, k2);
     rhs(tau + 0.5 * h, u + 0.5 * h * k2, k3);
     rhs(tau1, u + h * k3, k4);

@@ -19,7 +19,7 @@ class DormandPrince final : public Integrator {
   void set_max_steps(long max_steps) override { engine_.set_max_steps(max_steps); }
 
  private:
-  void restart() override;
+  void restart(const State& u) override;
   Dp5Engine<1> engine_;
   double T_;
 };
@@ -32,10 +32,14 @@ class DormandPrinceVariational final : public VariationalIntegrator {
   void set_rtol(double rtol) override { engine_.set_rtol(rtol); }
   void set_max_steps(long max_steps) override { engine_.set_max_steps(max_steps); }
   const Eigen::Matrix4d& jacobian() const override { return phi_; }
-  void reset_jacobian() override { phi_.setIdentity(); engine_.restart(); }
+  void reset_jacobian() override {
+    phi_.setIdentity();
+    engine_.restart();
+    engine_.reset_entry_sensitivity();
+  }
 
  private:
-  void restart() override;
+  void restart(const State& u) override;
   Dp5Engine<5> engine_;
   double T_;
   Eigen::Matrix4d phi_ = Eigen::Matrix4d::Identity();
@@ -54,10 +58,13 @@ class Hybrid final : public VariationalIntegrator {
     engine_.set_max_steps(max_steps);
   }
   const Eigen::Matrix4d& jacobian() const override { return phi_; }
-  void reset_jacobian() override { phi_.setIdentity(); }
+  void reset_jacobian() override {
+    phi_.setIdentity();
+    engine_.reset_entry_sensitivity();
+  }
 
  private:
-  void restart() override;
+  void restart(const State& u) override;
   IntegrationStatus free_phase(State& u, double& tau, Observer& obs);
   IntegrationStatus contact_phase(State& u, double& tau, Observer& obs);
   std::shared_ptr<const FreeFlight> flight_;  // shared by every integrator of the model
@@ -86,7 +93,10 @@ class ClassicalRk4 final : public Integrator {
   void set_max_steps(long max_steps) override { opt_.max_steps = max_steps; }
 
  private:
-  void restart() override { f_valid_ = false; }
+  void restart(const State& u) override {
+    f_valid_ = false;
+    v_in_ = model_.entry_speed(u);
+  }
   void rhs(double tau, const State& u, State& dudt);
   void report_step(double tau0, double tau1, Observer& obs);
 
@@ -94,6 +104,7 @@ class ClassicalRk4 final : public Integrator {
   IntegratorOptions opt_;
   double T_;
   bool f_valid_ = false;
+  double v_in_ = 0.0;  // approach rate at the current contact's entry (dissipative laws), m/s
   State f_;  // f(tau, u) at the current point
   HermiteDense dense_;
 };

@@ -17,10 +17,13 @@ Eigen::Vector4d Parameters::initial_state() const {
 
 double Parameters::period() const { return 2.0 * std::numbers::pi / omega; }
 
+double Parameters::damping_factor() const { return damping ? *damping : contact_law(law).chi(restitution); }
+
 const std::vector<std::string_view>& variable_parameter_names() {
   static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2",
                                                       "m1", "k1", "omega1", "nu1", "nu2", "D", "F0",
-                                                      "omega", "xi1", "xi2", "c1", "c2"};
+                                                      "omega", "xi1", "xi2", "c1", "c2",
+                                                      "restitution", "damping", "law"};
   return names;
 }
 
@@ -37,6 +40,7 @@ double* plain_field(Parameters& p, std::string_view name) {
   if (name == "D") return &p.D;
   if (name == "F0") return &p.F0;
   if (name == "omega") return &p.omega;
+  if (name == "restitution") return &p.restitution;
   return nullptr;
 }
 
@@ -64,6 +68,17 @@ void set_parameter(Parameters& p, std::string_view name, double value) {
     *f = value;
     return;
   }
+  if (name == "damping") {
+    p.damping = value;
+    return;
+  }
+  if (name == "law") {
+    const double i = std::round(value);
+    if (!(i >= 0.0 && i < static_cast<double>(all_contact_laws().size())) || i != value)
+      throw std::invalid_argument("law index " + std::to_string(value) + " names no contact law");
+    p.law = all_contact_laws()[static_cast<std::size_t>(i)];
+    return;
+  }
   const auto pf = pair_field(name);
   if (!pf) throw std::invalid_argument("unknown parameter '" + std::string(name) + "'");
   if (pf->is_spring) {
@@ -77,6 +92,8 @@ void set_parameter(Parameters& p, std::string_view name, double value) {
 
 double get_parameter(const Parameters& p, std::string_view name) {
   if (double* f = plain_field(const_cast<Parameters&>(p), name)) return *f;
+  if (name == "damping") return p.damping_factor();
+  if (name == "law") return static_cast<double>(p.law);
   const auto pf = pair_field(name);
   if (!pf) throw std::invalid_argument("unknown parameter '" + std::string(name) + "'");
   const double m = pf->body == 1 ? p.m1 : p.m2;
@@ -113,6 +130,13 @@ std::vector<std::string> validate(const Parameters& p) {
   positive("R1", p.R1);
   positive("R2", p.R2);
   positive("q", p.q);
+  need(std::isfinite(p.restitution) && p.restitution > 0.0 && p.restitution <= 1.0, "restitution", p.restitution,
+       "in (0, 1]");
+  if (p.damping) {
+    non_negative("damping", *p.damping);
+    if (p.law == ContactLawKind::hertz && *p.damping != 0.0)
+      errors.push_back("damping = " + std::to_string(*p.damping) + ": needs a dissipative contact law, not hertz");
+  }
   non_negative("F0", p.F0);
   positive("omega", p.omega);
   non_negative("lambda", p.lambda);

@@ -1,12 +1,13 @@
 #include "vibromap/core/model/system.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 namespace vibromap {
 
 Model::Model(const Parameters& p)
     : p_(p),
-      contact_(p.E1, p.E2, p.nu1, p.nu2, p.R1, p.R2, p.q),
+      contact_(p.E1, p.E2, p.nu1, p.nu2, p.R1, p.R2, p.q, p.damping_factor()),
       k1_(p.spring1.stiffness(p.m1)),
       k2_(p.spring2.stiffness(p.m2)),
       c1_(p.damper1.coefficient(p.m1, k1_)),
@@ -14,7 +15,8 @@ Model::Model(const Parameters& p)
       T_(p.period()),
       F_amp_(p.lambda * p.F0),
       inv_m1_(1.0 / p.m1),
-      inv_m2_(1.0 / p.m2) {}
+      inv_m2_(1.0 / p.m2),
+      v_floor_(1e-6 * p.omega * std::max({p.D, k1_ > 0.0 ? p.lambda * p.F0 / k1_ : 0.0, 1e-9})) {}
 
 double Model::energy(const State& u) const {
   const Eigen::Vector4d x = to_physical(u);

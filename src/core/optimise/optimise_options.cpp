@@ -95,14 +95,17 @@ const std::vector<StabilityRule>& all_stability_rules() {
 }
 
 const std::vector<std::string_view>& free_parameter_names() {
-  static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2"};
+  static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2", "restitution"};
   return names;
 }
 
 std::string validate(const FreeVariable& v) {
   const auto& names = free_parameter_names();
-  if (std::find(names.begin(), names.end(), v.name) == names.end())
-    return "unknown free parameter '" + v.name + "' (allowed: E1, E2, R1, R2, m2, k2, omega2)";
+  if (std::find(names.begin(), names.end(), v.name) == names.end()) {
+    std::string allowed;
+    for (const std::string_view n : names) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
+    return "unknown free parameter '" + v.name + "' (allowed: " + allowed + ")";
+  }
   if (!std::isfinite(v.min) || !std::isfinite(v.max)) return v.name + ": bounds must be finite";
   if (!(v.min < v.max)) return v.name + ": min must be < max";
   if (v.scale == AxisScale::log && v.min <= 0.0) return v.name + ": a log scale needs min > 0";

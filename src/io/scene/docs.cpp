@@ -90,7 +90,8 @@ std::vector<KeyRow> sweep_rows() {
                   cat("grid axis over any real or integer key above, named section.key (\"forcing.omega\" = ...) or "
                       "by the key alone when only one section has it (E1 = ...): ", kAxisForms,
                       ", scale \"lin\" or \"log\"; at most ", std::to_string(kMaxSweepAxes),
-                      " axes, not both keys of a pair (k2|omega2, ...); integer keys take whole values")});
+                      " axes, not both keys of a pair (k2|omega2, ...); integer keys take whole values; contact.law is a "
+                      "categorical axis, { values = [\"hertz\", \"flores\", ...] }, kept in maps as the law's index")});
   rows.push_back({"sweep.order", cat("(", join(first_axes(), ", "), ", then schema order)"), "-",
                   "every axis once", "axis order, the first axis slowest in the flat cell index; by any name of each axis"});
   rows.push_back({"sweep.store", store_text(SweepOptions{}.store), "-", "quantity names",

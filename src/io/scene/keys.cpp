@@ -104,6 +104,10 @@ constexpr Accessors initial_component() {
 // core's to_string(), so the scene, the summaries and the core spell them one way.
 constexpr std::array kMethodValues = {Method::hybrid, Method::dopri5, Method::rk4};
 constexpr std::array kSteadyValues = {SteadyMethod::shooting, SteadyMethod::integrate};
+// In all_contact_laws() order: a [sweep] axis over contact.law stores this index.
+constexpr std::array kLawValues = {ContactLawKind::hertz, ContactLawKind::hunt_crossley,
+                                   ContactLawKind::lankarani_nikravesh, ContactLawKind::flores,
+                                   ContactLawKind::gonthier};
 
 // The names of Values (static storage: SceneKey::choices holds views of them).
 template <auto Values>
@@ -128,6 +132,17 @@ Accessors enum_field() {
       if (Values[i] == member<Members...>(p, o)) return KeyValue{0.0, 0, static_cast<int>(i)};
     }
     return std::nullopt;
+  };
+  return a;
+}
+
+// The damping factor given directly (Parameters::damping, unset: calibrated from e).
+constexpr Accessors damping_field() {
+  Accessors a{};
+  a.set = [](Parameters& p, PointOptions&, const KeyValue& v) { p.damping = v.real; };
+  a.get = [](const Parameters& p, const PointOptions&) -> std::optional<KeyValue> {
+    if (!p.damping) return std::nullopt;
+    return KeyValue{*p.damping, 0, 0};
   };
   return a;
 }
@@ -203,6 +218,15 @@ void add_contact_keys(std::vector<Binding>& rows) {
                       field<&P::R2>()));
   rows.push_back(real(s, "q", gt(0), "-", "Hertz shape coefficient (0.319: circular contact)",
                       field<&P::q>()));
+  rows.push_back(choice(s, "law",
+                        "contact law: hertz (elastic), or K z^1.5 (1 + chi w/v_in) with chi calibrated from restitution",
+                        enum_field<kLawValues, &P::law>(), enum_names<kLawValues>()));
+  rows.push_back(real(s, "restitution", interval(0.0, 1.0, true, false), "-",
+                      "restitution e the damping chi is calibrated for (1: elastic)",
+                      field<&P::restitution>()));
+  rows.push_back(real(s, "damping", ge(0), "-",
+                      "damping factor chi of a damped law given directly (replaces the calibration from restitution)",
+                      damping_field(), {}, "chi(restitution)"));
 }
 
 void add_forcing_keys(std::vector<Binding>& rows) {
@@ -352,6 +376,10 @@ std::string pair_advice(const SceneKey& a, const SceneKey& b) {
 
 bool is_numeric(const SceneKey& k) { return k.type == SceneKeyType::real || k.type == SceneKeyType::integer; }
 
+bool is_categorical_axis(const SceneKey& k) {
+  return k.type == SceneKeyType::choice && (k.section == "system" || k.section == "contact" || k.section == "forcing");
+}
+
 KeyValue numeric_value(const SceneKey& k, double v) {
   KeyValue kv;
   kv.real = v;
@@ -376,6 +404,13 @@ PointSetter point_setter(std::string_view key) {
   const auto dot = key.find('.');
   const Binding* b = dot == std::string_view::npos ? nullptr : detail::find_key(key);
   if (b == nullptr) throw std::invalid_argument(cat("point_setter: '", clip(key), "' is not a scene key (section.key)"));
+  if (detail::is_categorical_axis(b->info)) {
+    return [b](Parameters& p, PointOptions& o, double v) {
+      detail::KeyValue kv;
+      kv.choice = static_cast<int>(v);
+      b->access.set(p, o, kv);
+    };
+  }
   if (!detail::is_numeric(b->info))
     throw std::invalid_argument(cat("point_setter: ", key, " is not a real or integer key"));
   return [b](Parameters& p, PointOptions& o, double v) { b->access.set(p, o, detail::numeric_value(b->info, v)); };

@@ -62,6 +62,9 @@ std::string full_key(const SceneKey& k);  // "forcing.omega"
 // How to give one key of a pair: "(k2 in N/m, or omega2 in rad/s)", "(xi1 dimensionless, or c1 in N s/m)".
 std::string pair_advice(const SceneKey& a, const SceneKey& b);
 bool is_numeric(const SceneKey& k);       // a real or integer key
+// A choice key of [system], [contact] or [forcing] (contact.law): a [sweep] axis whose
+// values are names, kept as indices into the key's choices.
+bool is_categorical_axis(const SceneKey& k);
 // A value of the key as a double: integer keys read it as a whole number.
 KeyValue numeric_value(const SceneKey& k, double v);
 

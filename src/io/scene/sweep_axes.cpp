@@ -59,11 +59,11 @@ const std::vector<std::string>& sweep_names() {
            join(sweep_option_keys(), ", ")));
 }
 
-// The numeric key an axis name stands for.
+// The key an axis name stands for: numeric, or a categorical parameter key (contact.law).
 const Binding& axis_binding(std::string_view name, const std::string& loc) {
   const Binding* b = find_key(name);
   if (b == nullptr) fail_unknown_axis(loc, name);
-  if (!is_numeric(b->info)) {
+  if (!is_numeric(b->info) && !is_categorical_axis(b->info)) {
     fail(cat(loc, ": [sweep] ", full_key(b->info), " cannot be an axis: it is ", b->info.allowed(),
              ", not a number; run one sweep per value"));
   }

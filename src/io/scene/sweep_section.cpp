@@ -143,11 +143,32 @@ void check_axis_range(const Axis& axis, std::string_view name, const Binding& b,
   }
 }
 
+// A categorical axis (contact.law = { values = ["hertz", "flores"] }): the names as indices
+// into the key's choices, which the axis keeps whole so that a map names every index.
+Axis read_categorical_axis(const Binding& b, std::string_view name, const toml::table& t, const std::string& loc) {
+  const SceneKey& k = b.info;
+  const toml::node* values = t.get("values");
+  const toml::array* a = values != nullptr ? values->as_array() : nullptr;
+  if (a == nullptr || a->empty() || t.size() != 1)
+    fail(cat(loc, ": axis ", name, " is categorical: give it as { values = [\"name\", ...] } with names ",
+             k.allowed()));
+  Axis axis{full_key(k), std::string(k.key), "1", std::string(k.meaning), {}, AxisScale::lin, {}};
+  for (const std::string_view c : k.choices) axis.categories.emplace_back(c);
+  for (const toml::node& e : *a) {
+    const double index = read_choice(k, e, loc);
+    if (std::find(axis.values.begin(), axis.values.end(), index) != axis.values.end())
+      fail(cat(loc, ": values repeat ", clipped_text(e), ": give each point once"));
+    axis.values.push_back(index);
+  }
+  return axis;
+}
+
 // One axis over key `b`, named `given` in the scene.
 Axis read_axis(const Binding& b, std::string_view given, const toml::node& node, const std::string& loc) {
   const std::string name = clip(given);
   const toml::table& t = axis_table(name, node, loc);
   const SceneKey& k = b.info;
+  if (is_categorical_axis(k)) return read_categorical_axis(b, name, t, loc);
   Axis axis{full_key(k), std::string(k.key), k.unit == "-" ? "1" : std::string(k.unit), std::string(k.meaning),
             {}, axis_scale(t, loc)};
   const toml::node* values = t.get("values");

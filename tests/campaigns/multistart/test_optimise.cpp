@@ -426,7 +426,7 @@ TEST(Multistart, AMapAxisThatCannotBeFreeIsRefused) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
               "map axis omega is not a free parameter of [optimise], nor can it be one (free parameters: E1, E2, R1, "
-              "R2, m2, k2, omega2): seed from a map without it");
+              "R2, m2, k2, omega2, restitution): seed from a map without it");
   }
 }
 

@@ -4,7 +4,9 @@
 //
 // Peak penetration is found where w = z' changes sign inside a contact step (a root of w on
 // the dense output), the impulse by 4-point Gauss-Legendre quadrature of Fc(z(t)) on each
-// contact step's dense output.
+// contact step's dense output. With a dissipative contact law the same quadrature gives the
+// energy the contact dissipates, the integral of the damping force (Fc minus its elastic
+// part K z^(3/2)) times the approach rate w; the effective restitution is |w_out / w_in|.
 
 #include <deque>
 #include <optional>
@@ -20,11 +22,15 @@ struct Impact {
   long period_out = 0;   // forcing period of contact exit
   double tau_out = 0.0;  // exit time since the start of that period, s
   double T_con = 0.0;    // contact duration, s
-  double F_max = 0.0;    // peak contact force, N
+  double F_max = 0.0;    // peak contact force (a damped law: the largest sampled on the steps' quadrature nodes), N
   double z_max = 0.0;    // peak penetration (approach), m
   double z_ratio = 0.0;  // z_max / R*: Hertz validity needs it small, -
   double v_in = 0.0;     // relative approach velocity at entry, m/s
   double impulse = 0.0;  // integral of the contact force over the impact, N s
+  double v_out = 0.0;    // relative approach velocity at exit (< 0 when the bodies separate), m/s
+  double e_effective = 0.0;        // effective restitution |v_out / v_in|, -
+  double energy_dissipated = 0.0;  // integral of (Fc - K z^(3/2)) w over the impact, J
+  bool clipped = false;  // the damped force was clipped at 0 (it would have pulled) somewhere
 
   // Entry and exit as times since t = 0 (for output only: durations use the per-period times).
   double t_in(double T) const { return static_cast<double>(period_in) * T + tau_in; }
@@ -52,6 +58,7 @@ class ImpactRecorder final : public Observer {
 
  private:
   void track_peak(const StepView& step);
+  double law_entry_speed_ = 0.0;  // the open impact's v_in as the contact law uses it
   const Model& model_;
   long keep_periods_;
   std::deque<Impact> impacts_;

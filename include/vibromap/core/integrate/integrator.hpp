@@ -80,7 +80,9 @@ class Integrator {
   // and events to obs. On a status other than ok, u is the last good state.
   virtual IntegrationStatus advance_period(State& u, Observer& obs) = 0;
   // Sets the state's contact mode from u: used at the start and after an external reset.
-  void reset(const State& u) { mode_ = u[1] > 0.0 ? ContactMode::contact : ContactMode::free; restart(); }
+  // A contact in progress at u has no remembered entry: a dissipative law's v_in is then
+  // Model::entry_speed(u).
+  void reset(const State& u) { mode_ = u[1] > 0.0 ? ContactMode::contact : ContactMode::free; restart(u); }
 
   // Changes the relative tolerance from the next step on (adaptive methods; rk4 ignores it).
   virtual void set_rtol(double /*rtol*/) {}
@@ -92,7 +94,7 @@ class Integrator {
   const IntegrationCounters& counters() const { return counters_; }
 
  protected:
-  virtual void restart() {}
+  virtual void restart(const State& /*u*/) {}
   ContactMode mode_ = ContactMode::free;
   long period_ = 0;
   IntegrationCounters counters_;
@@ -102,7 +104,8 @@ class Integrator {
 // derivative of the current state with respect to the state at the last reset_jacobian()
 // (over whole periods: the monodromy matrix of the stroboscopic map). Free flights contribute
 // e^{A dt} exactly; contact phases integrate Phi' = J(u) Phi with the state; contact events
-// need no saltation jump because the Hertz force vanishes at z = 0.
+// need no saltation jump because the Hertz force vanishes at z = 0. With a dissipative law
+// the contact's v_in depends on the entry state, and Phi carries that too (dp5_engine.hpp).
 class VariationalIntegrator : public Integrator {
  public:
   virtual const Eigen::Matrix4d& jacobian() const = 0;

@@ -18,6 +18,8 @@
 
 #include <Eigen/Core>
 
+#include "vibromap/core/model/contact_law.hpp"
+
 namespace vibromap {
 
 // A spring given by stiffness (N/m) or by partial natural frequency sqrt(k/m) (rad/s).
@@ -53,6 +55,9 @@ struct Parameters {
   double R1 = 2.0;                                  // radius of curvature of body 1, m
   double R2 = 2.0;                                  // radius of curvature of body 2, m
   double q = 0.319;                                 // Hertz shape coefficient (circular contact), -
+  ContactLawKind law = ContactLawKind::hertz;       // contact law (contact_law.hpp), elastic Hertz by default
+  double restitution = 1.0;                         // restitution e the law's damping is calibrated for, (0, 1]
+  std::optional<double> damping;                    // damping factor chi given directly (replaces the calibration), -
   // [forcing]
   double F0 = 500.0;                                // force amplitude, N
   double omega = 7.23;                              // forcing frequency, rad/s
@@ -63,12 +68,14 @@ struct Parameters {
 
   Eigen::Vector4d initial_state() const;
   double period() const;                            // forcing period T = 2 pi / omega, s
+  double damping_factor() const;                    // chi: `damping` when given, else law's chi(restitution)
 };
 
 // Names of the parameters a sweep or an optimiser may vary.
 const std::vector<std::string_view>& variable_parameter_names();
 // Sets one variable parameter by name (E1, E2, R1, R2, m2, k2, omega2, ...); k2 and omega2
-// replace spring2 in their own form. Throws std::invalid_argument for an unknown name.
+// replace spring2 in their own form. "law" takes the law's index in all_contact_laws() (a
+// categorical axis stored as an integer). Throws std::invalid_argument for an unknown name.
 void set_parameter(Parameters& p, std::string_view name, double value);
 // Reads one variable parameter by name (k2 and omega2 are derived when given the other way).
 double get_parameter(const Parameters& p, std::string_view name);

@@ -49,24 +49,34 @@ class Model {
 
   double forcing(double tau) const { return F_amp_ * std::cos(p_.omega * tau + p_.phi0); }
 
-  // du/dt at time tau (since the start of the forcing period) in the given mode.
-  void rhs(double tau, const State& u, ContactMode mode, State& dudt) const { rhs_forced(forcing(tau), u, mode, dudt); }
+  // du/dt at time tau (since the start of the forcing period) in the given mode; v_in is the
+  // approach rate at the current contact's entry (only a dissipative law reads it).
+  void rhs(double tau, const State& u, ContactMode mode, double v_in, State& dudt) const {
+    rhs_forced(forcing(tau), u, mode, v_in, dudt);
+  }
+  // The same for a state without a remembered entry: v_in = entry_speed(u), exact for
+  // elastic Hertz (which ignores it).
+  void rhs(double tau, const State& u, ContactMode mode, State& dudt) const {
+    rhs_forced(forcing(tau), u, mode, entry_speed(u), dudt);
+  }
   // The same with the external force F = forcing(tau) given (integrators evaluate several
   // stages at one time and spare the cosine).
-  void rhs_forced(double F, const State& u, ContactMode mode, State& dudt) const {
-    const double fc = mode == ContactMode::contact ? contact_.force(u[1]) : 0.0;
+  void rhs_forced(double F, const State& u, ContactMode mode, double v_in, State& dudt) const {
+    const double fc = mode == ContactMode::contact ? contact_.force(u[1], u[3], v_in) : 0.0;
     const double spring = k2_ * (u[1] + p_.D) + c2_ * u[3];
     const double a1 = (-c1_ * u[2] - k1_ * u[0] - spring + F - fc) * inv_m1_;
     const double a2 = (spring + fc) * inv_m2_;
     dudt << u[2], u[3], a1, a1 - a2;
   }
 
-  // Jacobian d(du/dt)/du in the given mode (the forcing does not depend on u). The Hertz
-  // term dFc/dz = (3/2) K sqrt(z) is continuous and vanishes at z = 0.
-  Eigen::Matrix4d jacobian(const State& u, ContactMode mode) const {
-    const double dfc = mode == ContactMode::contact ? contact_.force_derivative(u[1]) : 0.0;
-    const double da1_dz = -(k2_ + dfc) * inv_m1_, da2_dz = (k2_ + dfc) * inv_m2_;
-    const double da1_dw = -c2_ * inv_m1_, da2_dw = c2_ * inv_m2_;
+  // Jacobian d(du/dt)/du in the given mode (the forcing does not depend on u), v_in held
+  // fixed. The Hertz term dFc/dz = (3/2) K sqrt(z) (1 + chi w / v_in) is continuous and
+  // vanishes at z = 0; a damped law adds dFc/dw = K z^(3/2) chi / v_in.
+  Eigen::Matrix4d jacobian(const State& u, ContactMode mode, double v_in) const {
+    const HertzContact::Partials d =
+        mode == ContactMode::contact ? contact_.partials(u[1], u[3], v_in) : HertzContact::Partials{};
+    const double da1_dz = -(k2_ + d.dz) * inv_m1_, da2_dz = (k2_ + d.dz) * inv_m2_;
+    const double da1_dw = -(c2_ + d.dw) * inv_m1_, da2_dw = (c2_ + d.dw) * inv_m2_;
     const double da1_dx1 = -k1_ * inv_m1_, da1_dv1 = -c1_ * inv_m1_;
     Eigen::Matrix4d J;
     J << 0, 0, 1, 0,                                      //
@@ -75,6 +85,34 @@ class Model {
         da1_dx1, da1_dz - da2_dz, da1_dv1, da1_dw - da2_dw;
     return J;
   }
+  // d(du/dt)/d(v_in) in contact (zero for elastic Hertz): the variational equations carry
+  // it times d(v_in)/d(u0), since v_in is a property of the entry state.
+  State entry_speed_column(const State& u, ContactMode mode, double v_in) const {
+    const double d = mode == ContactMode::contact ? contact_.partials(u[1], u[3], v_in).dv_in : 0.0;
+    const double da1 = -d * inv_m1_, da2 = d * inv_m2_;
+    return {0.0, 0.0, da1, da1 - da2};
+  }
+
+  // The entry speed assigned to a state that carries no memory of its contact's entry (an
+  // initial state, a shooting iterate, a Poincare point inside a contact): the approach rate
+  // an elastic impact of the free bodies needs to reach (z, w), sqrt(w^2 + 2 U(z) / mu), U the
+  // Hertz energy; for z <= 0 it is w. Never below min_entry_speed().
+  double entry_speed(const State& u) const {
+    const double v2 = u[3] * u[3] + 2.0 * contact_.energy(u[1]) / reduced_mass();
+    const double v = u[1] > 0.0 ? std::sqrt(v2) : u[3];
+    return v > v_floor_ ? v : v_floor_;
+  }
+  // Its gradient d(entry_speed)/du (a row), zero where the floor holds.
+  Eigen::RowVector4d entry_speed_gradient(const State& u) const {
+    const double v = entry_speed(u);
+    if (v <= v_floor_) return Eigen::RowVector4d::Zero();
+    if (u[1] <= 0.0) return {0.0, 0.0, 0.0, 1.0};
+    return {0.0, contact_.force(u[1]) / (reduced_mass() * v), 0.0, u[3] / v};
+  }
+  // The least entry speed a damped law uses, m/s: 1e-6 omega L, L = max(D, lambda F0 / k1, 1 nm).
+  // A grazing entry (v_in -> 0) would make the damping chi w / v_in unbounded; below this
+  // floor the damping is that of an entry at the floor speed.
+  double min_entry_speed() const { return v_floor_; }
 
   // Total mechanical energy (kinetic + springs + Hertz), J: conserved when c1 = c2 = 0
   // and F0 = 0.
@@ -87,7 +125,7 @@ class Model {
  private:
   Parameters p_;
   HertzContact contact_;
-  double k1_, k2_, c1_, c2_, T_, F_amp_, inv_m1_, inv_m2_;
+  double k1_, k2_, c1_, c2_, T_, F_amp_, inv_m1_, inv_m2_, v_floor_;
 };
 
 }  // namespace vibromap

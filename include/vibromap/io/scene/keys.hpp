@@ -62,8 +62,9 @@ std::string parameter_override(std::string_view name, double value);
 // given xi2 a ratio), integer keys take the value as an integer (it must be whole), and an
 // [initial] component fills the components not yet set from the rest state (0, D, 0, 0).
 using PointSetter = std::function<void(Parameters&, PointOptions&, double)>;
-// The setter of a real or integer key named in full ("forcing.omega", "solver.rtol"). Throws
-// std::invalid_argument for an unknown key, a short name, or a choice or boolean key.
+// The setter of a real or integer key named in full ("forcing.omega", "solver.rtol"), or of a
+// categorical parameter key ("contact.law": the value is the index of the choice). Throws
+// std::invalid_argument for an unknown key, a short name, another choice key or a boolean key.
 PointSetter point_setter(std::string_view key);
 
 }  // namespace vibromap

@@ -1,0 +1,96 @@
+// `vibromap restitution`: the effective restitution each contact law gives for a target e, from
+// one tightly integrated free two-body impact per (law, e) (core/analysis/restitution.hpp).
+// The impact is scale-free, so the answer needs no scene.
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "vibromap/core/analysis/restitution.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/scene/scene.hpp"
+
+namespace vibromap::cli {
+
+namespace {
+
+std::vector<ContactLawKind> laws_of(const RestitutionArgs& args) {
+  std::vector<ContactLawKind> laws;
+  for (const std::string& name : args.laws) {
+    try {
+      laws.push_back(parse_contact_law(name));
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(cat("--law: ", e.what()));
+    }
+  }
+  if (laws.empty())
+    for (const ContactLawKind k : all_contact_laws())
+      if (k != ContactLawKind::hertz) laws.push_back(k);
+  return laws;
+}
+
+std::vector<double> targets_of(const RestitutionArgs& args) {
+  std::vector<double> e = args.e;
+  if (e.empty())
+    for (int i = 1; i <= 10; ++i) e.push_back(0.1 * i);
+  for (const double x : e)
+    if (!(x > 0.0 && x <= 1.0)) throw SceneError(cat("--e ", short_number(x), ": a restitution must be in (0, 1]"));
+  return e;
+}
+
+std::string fixed(double x, const char* format) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, format, x);
+  return buf;
+}
+
+void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) {
+  out << "law                  e      chi        e_effective  e_effective - e  clipped\n";
+  for (const RestitutionResult& r : rows) {
+    const double miss = std::abs(r.e_effective - r.e) < 5e-7 ? 0.0 : r.e_effective - r.e;  // no "-0.000000"
+    std::string law = to_string(r.law);
+    law.resize(20, ' ');
+    out << law << " " << fixed(r.e, "%-6.3g") << " " << fixed(r.chi, "%-10.5g") << " " << fixed(r.e_effective, "%-12.6f")
+        << " " << fixed(miss, "%+-16.6f") << " " << (r.clipped ? "yes" : "no") << "\n";
+  }
+  out << "(two free bodies, one impact integrated at rtol 1e-12; the result depends on the law and e only)\n";
+}
+
+void write_json(const std::vector<RestitutionResult>& rows, std::ostream& out) {
+  JsonWriter w(out);
+  w.begin_array();
+  for (const RestitutionResult& r : rows)
+    w.begin_object()
+        .field("law", to_string(r.law))
+        .field("e", r.e)
+        .field("chi", r.chi)
+        .field("e_effective", r.e_effective)
+        .end_object();
+  w.end_array();
+  out << "\n";
+}
+
+}  // namespace
+
+int restitution_command(const RestitutionArgs& args, std::ostream& out) {
+  const std::vector<ContactLawKind> laws = laws_of(args);
+  const std::vector<double> targets = targets_of(args);
+  std::vector<RestitutionResult> rows;
+  for (const ContactLawKind law : laws)
+    for (const double e : targets) {
+      rows.push_back(free_impact_restitution(law, e));
+      if (rows.back().status != IntegrationStatus::ok)
+        throw std::runtime_error(cat("the free impact of ", to_string(law), " at e = ", short_number(e),
+                                     " failed: ", to_string(rows.back().status)));
+    }
+  if (args.format == "json")
+    write_json(rows, out);
+  else
+    write_table(rows, out);
+  return code(ExitCode::ok);
+}
+
+}  // namespace vibromap::cli
