@@ -103,6 +103,20 @@ void write_soft_check_json(JsonWriter& w, const VerifiedPoint& v, const Optimise
   w.end_array().end_object();
 }
 
+// The --set overrides that reproduce a best point: its free variables, and its law when the law
+// was free.
+std::vector<std::string> best_overrides(const VerifiedPoint& v, const OptimiseOptions& o) {
+  std::vector<std::string> out;
+  for (const FreeVariable& f : o.variables) out.push_back(parameter_override(f.name, get_parameter(v.params, f.name)));
+  if (!o.laws.empty()) out.push_back("contact.law=" + to_string(v.params.law));
+  return out;
+}
+
+// A start's algorithm, and its law when the law is free.
+std::string start_label(const StartSpec& s) {
+  return s.law ? to_string(s.algorithm) + " " + to_string(*s.law) : to_string(s.algorithm);
+}
+
 void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint& v, const OptimiseOptions& o) {
   const PointSummary& s = v.integrate;
   w.begin_object().key("params").begin_object();
@@ -113,8 +127,9 @@ void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint
   w.field("z_ratio", s.z_ratio).field("hertz_valid", s.hertz_valid);
   w.field("objective_found", objective_sense(o.objective) * v.value).field("start", v.start);
   w.field("algorithm", to_string(r.starts.at(static_cast<std::size_t>(v.start)).spec.algorithm));
+  w.field("law", to_string(v.params.law)).field("restitution", v.params.restitution);
   w.key("set").begin_array();
-  for (const FreeVariable& f : o.variables) w.value(parameter_override(f.name, get_parameter(v.params, f.name)));
+  for (const std::string& arg : best_overrides(v, o)) w.value(arg);
   w.end_array().key("integrate");
   write_solve_json(w, v.integrate);
   w.key("shooting");
@@ -129,6 +144,7 @@ void write_starts_json(JsonWriter& w, const OptimiseReport& r, const OptimiseOpt
   for (const StartRecord& s : r.starts) {
     const LocalResult& lr = s.result;
     w.begin_object().field("start", s.spec.index).field("seed", s.spec.seed).field("algorithm", to_string(s.spec.algorithm));
+    if (s.spec.law) w.field("law", to_string(*s.spec.law));
     w.field("evaluations", lr.evaluations.size()).field("cache_hits", lr.cache_hits).field("calls", lr.calls);
     w.key("best_objective");
     if (lr.best) {
@@ -184,14 +200,34 @@ std::string number(double v, int digits = 6) {
 
 void print_starts_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o) {
   const std::string q = objective_quantity(o.objective);
-  out << cell("start", 6) << cell("seed", 5) << cell("algorithm", 20) << cell("evals", 6) << cell("hits", 6)
+  const int label = o.laws.empty() ? 20 : 40;
+  out << cell("start", 6) << cell("seed", 5) << cell(o.laws.empty() ? "algorithm" : "algorithm law", label)
+      << cell("evals", 6) << cell("hits", 6)
       << cell("best " + q, 12) << cell("stop", 18) << "wall s\n";
   for (const StartRecord& s : r.starts) {
     const LocalResult& lr = s.result;
     const std::string best = lr.best ? number(objective_sense(o.objective) * lr.evaluations[*lr.best].result.value) : "-";
     out << cell(std::to_string(s.spec.index), 6) << cell(std::to_string(s.spec.seed), 5)
-        << cell(to_string(s.spec.algorithm), 20) << cell(std::to_string(lr.evaluations.size()), 6)
+        << cell(start_label(s.spec), label) << cell(std::to_string(lr.evaluations.size()), 6)
         << cell(std::to_string(lr.cache_hits), 6) << cell(best, 12) << cell(lr.stop, 18) << number(lr.wall_s, 3) << "\n";
+  }
+}
+
+// With the law free: the best objective each law reached, from the same seeds and algorithms.
+void print_laws_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o) {
+  if (o.laws.empty()) return;
+  out << "\nper contact law, from the same seeds and algorithms:\n"
+      << cell("law", 22) << cell("starts", 7) << "best " << objective_quantity(o.objective) << "\n";
+  for (const ContactLawKind law : o.laws) {
+    int starts = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const StartRecord& s : r.starts) {
+      if (s.spec.law != law) continue;
+      ++starts;
+      if (s.result.best) best = std::min(best, s.result.evaluations[*s.result.best].result.value);
+    }
+    out << cell(to_string(law), 22) << cell(std::to_string(starts), 7)
+        << (std::isfinite(best) ? number(objective_sense(o.objective) * best) : std::string("- (none feasible)")) << "\n";
   }
 }
 
@@ -255,8 +291,10 @@ void print_best_table(std::ostream& out, const OptimiseReport& r, const Optimise
     print_soft_check(out, v, o);
     for (const std::string_view name : {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"})
       out << name << " " << number(get_parameter(v.params, name)) << "  ";
+    out << "law " << to_string(v.params.law);
+    if (v.params.law != ContactLawKind::hertz) out << " (restitution " << number(v.params.restitution) << ")";
     out << "\n    --set:";
-    for (const FreeVariable& f : o.variables) out << " " << parameter_override(f.name, get_parameter(v.params, f.name));
+    for (const std::string& arg : best_overrides(v, o)) out << " " << arg;
     out << "\n";
   }
   if (r.best.empty()) {
@@ -286,6 +324,7 @@ void print_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptio
   out << "\n";
   print_starts_table(out, r, o);
   print_algorithms_table(out, r, o);
+  print_laws_table(out, r, o);
   print_best_table(out, r, o);
 }
 

@@ -82,6 +82,7 @@ void write_start_attributes(Group& g, const StartRecord& s, double sense) {
   g.set_attribute("index", s.spec.index);
   g.set_attribute("seed", s.spec.seed);
   g.set_attribute("algorithm", to_string(s.spec.algorithm));
+  if (s.spec.law) g.set_attribute("law", to_string(*s.spec.law));
   g.set_attribute("stop", r.stop);
   g.set_attribute("nlopt_code", r.nlopt_code);
   g.set_attribute("rank", s.rank);

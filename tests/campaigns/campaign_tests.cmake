@@ -7,6 +7,10 @@ vibromap_cli_test(optimise_help RC 0 ARGS optimise --help
                   OUT "--set.*--output.*--overwrite.*--format.*\\[optimise\\].*gradient_projection.*FILE_map\\.h5.*Exit codes")
 vibromap_cli_test(optimise_without_section RC 2 ARGS optimise jobs/paper/table1.toml
                   ERR "jobs/paper/table1\\.toml: no \\[optimise\\] section: nothing to optimise")
+# optimise.law: the contact law as a categorical variable, named like the algorithms.
+vibromap_cli_test(optimise_unknown_law RC 2
+                  ARGS optimise jobs/paper/optimise_box.toml --set optimise.law=flors
+                  ERR "--set optimise\\.law=flors: unknown contact law 'flors' \\(did you mean 'flores'\\?\\); allowed: hertz, hunt-crossley, lankarani-nikravesh, flores, gonthier, or \"all\"")
 vibromap_cli_test(optimise_bad_algorithm RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.algorithm=bobyq
                   ERR "--set optimise\\.algorithm=bobyq: unknown algorithm 'bobyq' \\(did you mean 'bobyqa'\\?\\)")

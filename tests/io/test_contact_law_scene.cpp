@@ -119,3 +119,27 @@ TEST(ContactLawScene, SummaryTableShowsDissipationOnlyWhereAnImpactLostEnergy) {
 }
 
 }  // namespace vibromap
+
+namespace vibromap {
+
+// [optimise] law: the contact law as a categorical free variable, a name, a list or "all";
+// [] (the default) leaves the scene's law; a wrong name is one line with the allowed ones.
+TEST(ContactLawScene, OptimiseLawIsACategoricalFreeVariable) {
+  const std::string box = "[optimise]\nrestitution = { min = 0.2, max = 1.0 }\n";
+  const Scene listed = test::parse(box + "law = [\"gonthier\", \"flores\"]\n");
+  ASSERT_TRUE(listed.optimise.has_value());
+  EXPECT_EQ(listed.optimise->laws, (std::vector<ContactLawKind>{ContactLawKind::gonthier, ContactLawKind::flores}));
+  EXPECT_EQ(test::parse(box + "law = \"all\"\n").optimise->laws, all_contact_laws());
+  EXPECT_EQ(test::parse(box + "law = \"flores\"\n").optimise->laws, (std::vector<ContactLawKind>{ContactLawKind::flores}));
+  EXPECT_TRUE(test::parse(box).optimise->laws.empty());
+  EXPECT_TRUE(test::parse(box + "law = []\n").optimise->laws.empty());
+  const std::string err = test::error_of(box + "law = [\"flores\", \"hunt-crosley\"]\n");
+  EXPECT_NE(err.find("unknown contact law 'hunt-crosley' (did you mean 'hunt-crossley'?); allowed: hertz, hunt-crossley, "
+                     "lankarani-nikravesh, flores, gonthier, or \"all\""),
+            std::string::npos)
+      << err;
+  EXPECT_NE(test::error_of(box + "law = [\"flores\", \"flores\"]\n").find("contact law flores is listed twice"),
+            std::string::npos);
+}
+
+}  // namespace vibromap

@@ -318,7 +318,7 @@ TEST(OptimiseScene, KeysListingDocumentsTheOptimiseKeys) {
 TEST(OptimiseScene, HelpSummaryListsTheOptimiseKeys) {
   std::ostringstream os;
   write_scene_key_summary(os);
-  EXPECT_NE(os.str().find("[optimise]  E1 E2 R1 R2 m2 k2|omega2 restitution objective impact regime stability hertz_valid algorithm seeds map "
+  EXPECT_NE(os.str().find("[optimise]  E1 E2 R1 R2 m2 k2|omega2 restitution objective impact regime stability hertz_valid algorithm law seeds map "
                           "xtol_rel ftol_rel max_evaluations max_time initial_step fd_step barrier best verify_rtol "
                           "min_soft_fraction soft_check_initial_conditions\n"),
             std::string::npos)

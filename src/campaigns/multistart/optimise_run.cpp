@@ -161,6 +161,7 @@ std::string point_scene_text(const Scene& scene, const VerifiedPoint& v) {
   std::string text = scene.text;
   text += "\n# best point of vibromap optimise; vibromap run SCENE with:";
   for (const FreeVariable& f : scene.optimise->variables) text += " --set " + parameter_override(f.name, get_parameter(v.params, f.name));
+  if (!scene.optimise->laws.empty()) text += " --set contact.law=" + to_string(v.params.law);
   return text + "\n";
 }
 
@@ -192,7 +193,8 @@ void verify_best(const Scene& scene, const OptimiseRunConfig& config, OptimiseRe
 StartRecord run_one(const Scene& scene, const std::vector<Seed>& seeds, const StartSpec& spec, int rank) {
   StartRecord rec{spec, {}, rank};
   try {
-    rec.result = run_start(scene.params, scene.options, *scene.optimise, seeds.at(static_cast<std::size_t>(spec.seed)),
+    rec.result = run_start(start_parameters(scene.params, spec), scene.options, *scene.optimise,
+                           seeds.at(static_cast<std::size_t>(spec.seed)),
                            spec.algorithm, census_options(scene));
   } catch (const std::exception& e) {  // a start's trouble is its result, never the run's
     rec.result.stop = std::string("FAILURE (") + e.what() + ")";
@@ -214,7 +216,7 @@ FarmOptions farm_options(const OptimiseRunConfig& config) {
 // Step 2: the starts on the farm. Rank 0 gets every start's record in report.starts.
 void run_starts(const MpiSession& mpi, const Scene& scene, const OptimiseRunConfig& config,
                 const std::vector<Seed>& seeds, OptimiseRun& run) {
-  const std::vector<StartSpec> plan = plan_starts(seeds.size(), scene.optimise->algorithms);
+  const std::vector<StartSpec> plan = plan_starts(seeds.size(), scene.optimise->algorithms, scene.optimise->laws);
   const detail::StartCodec codec(plan);
   std::unique_ptr<detail::StartSink> sink;
   mpi.agree([&] {
@@ -225,7 +227,9 @@ void run_starts(const MpiSession& mpi, const Scene& scene, const OptimiseRunConf
     run.starts_resumed = static_cast<std::size_t>(sink->items_done());
     if (config.progress)
       std::cerr << "optimise: " << plan.size() << " starts (" << seeds.size() << " seeds x "
-                << scene.optimise->algorithms.size() << " algorithms) on " << mpi.size() << " rank"
+                << scene.optimise->algorithms.size() << " algorithms"
+                << (scene.optimise->laws.empty() ? std::string() : cat(" x ", std::to_string(scene.optimise->laws.size()), " contact laws"))
+                << ") on " << mpi.size() << " rank"
                 << (mpi.size() > 1 ? "s" : "") << ", seeds from " << run.report.seeds_from
                 << (run.starts_resumed ? cat(", ", std::to_string(run.starts_resumed), " done by an earlier run") : "")
                 << "\n";

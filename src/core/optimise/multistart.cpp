@@ -133,11 +133,21 @@ Seed scene_seed(const Parameters& base, const OptimiseOptions& o) {
   return s;
 }
 
-std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms) {
+std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms,
+                                   const std::vector<ContactLawKind>& laws) {
+  std::vector<std::optional<ContactLawKind>> each_law(laws.begin(), laws.end());
+  if (each_law.empty()) each_law.emplace_back();  // the scene's
   std::vector<StartSpec> plan;
   for (std::size_t s = 0; s < seeds; ++s)
-    for (const Algorithm a : algorithms) plan.push_back({static_cast<int>(plan.size()), static_cast<int>(s), a});
+    for (const auto& law : each_law)
+      for (const Algorithm a : algorithms) plan.push_back({static_cast<int>(plan.size()), static_cast<int>(s), a, law});
   return plan;
+}
+
+Parameters start_parameters(const Parameters& base, const StartSpec& spec) {
+  Parameters p = base;
+  if (spec.law) p.law = *spec.law;
+  return p;
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<StartRecord>& starts, const Box& box,
@@ -154,12 +164,15 @@ std::vector<std::pair<std::size_t, std::size_t>> best_points(const std::vector<S
   for (const auto& p : found) {
     if (static_cast<int>(kept.size()) >= count) break;
     const std::vector<double> u = box.to_scaled(starts[p.first].result.evaluations[p.second].x);
-    const auto close = [&](const std::vector<double>& w) {
+    const auto close = [&](std::size_t k) {  // the same point: the same law, and every variable within merge
+      if (starts[kept[k].first].spec.law != starts[p.first].spec.law) return false;
       for (std::size_t i = 0; i < u.size(); ++i)
-        if (std::abs(u[i] - w[i]) > merge) return false;
+        if (std::abs(u[i] - kept_u[k][i]) > merge) return false;
       return true;
     };
-    if (std::any_of(kept_u.begin(), kept_u.end(), close)) continue;
+    bool seen = false;
+    for (std::size_t k = 0; k < kept.size() && !seen; ++k) seen = close(k);
+    if (seen) continue;
     kept.push_back(p);
     kept_u.push_back(u);
   }
@@ -174,7 +187,7 @@ VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, 
   v.start = start.spec.index;
   v.evaluation = evaluation;
   v.x = rec.x;
-  v.params = PointObjective(base, options, o).parameters_at(rec.x);
+  v.params = PointObjective(start_parameters(base, start.spec), options, o).parameters_at(rec.x);
   v.value = rec.result.value;
   v.integrate = resolve_point(v.params, options, SteadyMethod::integrate, o.verify_rtol, trajectory_periods);
   v.shooting = resolve_point(v.params, options, SteadyMethod::shooting, o.verify_rtol);

@@ -136,6 +136,9 @@ std::string validate(const OptimiseOptions& o) {
   if (is_free("k2") && is_free("omega2")) return "k2 and omega2 are both free: free only one";
   if (o.impact < 0) return "impact must be >= 0";
   if (o.algorithms.empty()) return "no algorithm";
+  for (std::size_t i = 0; i < o.laws.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (o.laws[i] == o.laws[j]) return "law " + to_string(o.laws[i]) + " is listed twice";
   if (o.seeds < 1) return "seeds must be >= 1";
   if (o.best < 1) return "best must be >= 1";
   if (!(o.verify_rtol > 0.0 && o.verify_rtol < 0.1)) return "verify_rtol must be in (0, 0.1)";

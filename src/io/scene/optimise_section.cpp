@@ -70,6 +70,45 @@ void read_algorithms(OptimiseOptions& o, const SceneKey&, const toml::node& node
   }
 }
 
+std::string law_names_text() {
+  std::vector<std::string> names;
+  for (const ContactLawKind k : all_contact_laws()) names.push_back(to_string(k));
+  return join(views(names), ", ");
+}
+
+// [optimise] law: a law, a list of them, or "all" (the contact law as a categorical variable).
+void read_laws(OptimiseOptions& o, const SceneKey&, const toml::node& node, const std::string& loc) {
+  std::vector<std::string> names;
+  if (const auto* s = node.as_string()) {
+    names.push_back(s->get());
+  } else {
+    names = string_list(node, loc, cat("contact laws: ", law_names_text(), ", or \"all\""));
+  }
+  if (names.size() == 1 && names.front() == "all") {
+    o.laws = all_contact_laws();
+    return;
+  }
+  o.laws.clear();  // an empty list: the scene's law
+  for (const std::string& name : names) {
+    std::vector<std::string> known;
+    for (const ContactLawKind k : all_contact_laws()) known.push_back(to_string(k));
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string msg = cat(loc, ": unknown contact law '", clip(name), "'");
+      if (const auto hint = closest(name, views(known))) msg += cat(" (did you mean '", *hint, "'?)");
+      fail(cat(msg, "; allowed: ", law_names_text(), ", or \"all\""));
+    }
+    const ContactLawKind k = parse_contact_law(name);
+    if (std::find(o.laws.begin(), o.laws.end(), k) != o.laws.end()) fail(cat(loc, ": contact law ", name, " is listed twice"));
+    o.laws.push_back(k);
+  }
+}
+
+std::string laws_text(const OptimiseOptions& o, const SceneKey&) {
+  std::vector<std::string> names;
+  for (const ContactLawKind k : o.laws) names.push_back(toml_string(to_string(k)));
+  return cat("[", join(views(names), ", "), "]");
+}
+
 void read_map_path(OptimiseOptions& o, const SceneKey&, const toml::node& node, const std::string& loc) {
   const auto* s = node.as_string();
   if (s == nullptr || s->get().empty()) fail(cat(loc, ": must be the path of a map file (HDF5), a non-empty string"));
@@ -135,6 +174,13 @@ void add_optimise_goal_rows(std::vector<OptimiseRow>& rows, const OptimiseOption
                               "gradient_projection (the source paper's method)",
                               toml_string(to_string(d.algorithms.front())), {read_algorithms, algorithms_text}));
   rows.back().allowed_text = "a name or a list of names";
+  rows.push_back(optimise_row("law", SceneKeyType::choice, any_finite(), "-",
+                              "the contact law as a categorical free variable: every seed and algorithm is started "
+                              "once with each law listed (hertz, hunt-crossley, lankarani-nikravesh, flores, "
+                              "gonthier, or \"all\"), and the best point over them all is the answer; [] (the "
+                              "default): the scene's [contact] law",
+                              "[]", {read_laws, laws_text}));
+  rows.back().allowed_text = "a law, a list of laws, [] or \"all\"";
   rows.push_back(optimise_row("seeds", SceneKeyType::integer, interval(1, 1e6, false, false), "-",
                               "starts per algorithm: the best cells of the seeding map that keep the regime inside "
                               "the box", std::to_string(d.seeds), integer_field<O, &O::seeds>()));

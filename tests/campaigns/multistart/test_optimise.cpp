@@ -438,6 +438,21 @@ TEST(Multistart, PlansEverySeedWithEveryAlgorithm) {
   EXPECT_EQ(plan[3].algorithm, Algorithm::gradient_projection);
 }
 
+TEST(Multistart, PlansEverySeedWithEveryLawAndAlgorithm) {
+  const std::vector<StartSpec> plan = plan_starts(2, {Algorithm::bobyqa, Algorithm::cobyla},
+                                                  {ContactLawKind::flores, ContactLawKind::gonthier, ContactLawKind::hertz});
+  ASSERT_EQ(plan.size(), 12u);
+  EXPECT_EQ(plan[7].seed, 1);  // 7 = 1 * 6 + 0 * 2 + 1
+  EXPECT_EQ(plan[7].law, ContactLawKind::flores);
+  EXPECT_EQ(plan[7].algorithm, Algorithm::cobyla);
+  EXPECT_EQ(plan[10].law, ContactLawKind::hertz);
+  EXPECT_FALSE(plan_starts(1, {Algorithm::bobyqa}).front().law.has_value());  // no laws: the scene's
+  Parameters base;
+  base.law = ContactLawKind::hunt_crossley;
+  EXPECT_EQ(start_parameters(base, plan[7]).law, ContactLawKind::flores);
+  EXPECT_EQ(start_parameters(base, StartSpec{}).law, ContactLawKind::hunt_crossley);
+}
+
 TEST(Multistart, BestPointsAreSortedAndMerged) {
   const Box box({{"m2", 100.0, 310.0, AxisScale::lin}});
   auto start = [](double x, double value, bool feasible) {
@@ -456,6 +471,46 @@ TEST(Multistart, BestPointsAreSortedAndMerged) {
   ASSERT_EQ(best.size(), 2u);  // the near-duplicate merged, the infeasible start has no best
   EXPECT_EQ(best[0].first, 1u);
   EXPECT_EQ(best[1].first, 0u);
+  // The same point under two contact laws is two points.
+  std::vector<StartRecord> by_law = {start(150.0, 2.0, true), start(150.0, 2.0 + 1e-9, true)};
+  by_law[0].spec.law = ContactLawKind::flores;
+  by_law[1].spec.law = ContactLawKind::gonthier;
+  EXPECT_EQ(best_points(by_law, box, 3, 1e-4).size(), 2u);
+}
+
+// The contact law as a categorical variable: Table 2's point with restitution free in [0.3, 1]
+// under flores and gonthier. Each law's start ends where a plain solve with that law and its
+// restitution gives the same k_con, and the verified point carries its start's law.
+TEST(PointObjective, EachLawsStartIsSolvedWithItsLaw) {
+  OptimiseOptions o;
+  o.variables = {{"restitution", 0.3, 1.0, AxisScale::lin}};
+  o.laws = {ContactLawKind::flores, ContactLawKind::gonthier};
+  o.local.max_evaluations = 15;
+  Parameters base;
+  base.m2 = 310.0;
+  set_parameter(base, "omega2", 3.606);
+  base.E1 = 1.4e10;
+  base.E2 = 1.0e6;
+  const PointOptions options;
+  const std::vector<StartSpec> plan = plan_starts(1, o.algorithms, o.laws);
+  ASSERT_EQ(plan.size(), 2u);
+  std::vector<double> best_value;
+  for (const StartSpec& spec : plan) {
+    const Parameters p = start_parameters(base, spec);
+    const LocalResult r = run_start(p, options, o, scene_seed(p, o), spec.algorithm);
+    ASSERT_TRUE(r.best.has_value()) << to_string(*spec.law);
+    const EvaluationRecord& e = r.evaluations[*r.best];
+    Parameters check = base;
+    check.law = *spec.law;
+    check.restitution = e.x[0];
+    EXPECT_NEAR(solve_point(check, options).k_con, e.result.value, 1e-9 * e.result.value) << to_string(*spec.law);
+    const VerifiedPoint v = verify_point(base, options, o, StartRecord{spec, r, 0}, *r.best, 0);
+    EXPECT_EQ(v.params.law, *spec.law);
+    EXPECT_NEAR(v.integrate.k_con / e.result.value, 1.0, 1e-6);
+    best_value.push_back(e.result.value);
+  }
+  // The laws differ: the same restitution box gives different softest impacts.
+  EXPECT_GT(std::abs(best_value[0] - best_value[1]), 1e-3);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -478,7 +533,7 @@ TEST(PointObjective, AShortStartImprovesOnTheProbedCorner) {
   EXPECT_TRUE(r.evaluations.front().result.feasible);
   const EvaluationRecord& best = best_of(r);
   EXPECT_LT(best.result.value, 2.37461 - 0.05);
-  StartRecord rec{{0, 0, Algorithm::bobyqa}, r, 0};
+  StartRecord rec{{0, 0, Algorithm::bobyqa, {}}, r, 0};
   const VerifiedPoint v = verify_point(base, options, o, rec, *r.best, 0);
   EXPECT_EQ(v.integrate.regime, (Regime{RegimeKind::periodic, 1, 1}));
   EXPECT_EQ(v.shooting.regime, (Regime{RegimeKind::periodic, 1, 1}));
@@ -592,7 +647,7 @@ TEST(PointObjective, MinSoftFractionZeroChangesNothing) {
   }
   EXPECT_NEAR(values, 91.47635385527244, 1e-12);
   EXPECT_NEAR(violations, -1.2209749502922627, 1e-12);
-  StartRecord rec{{0, 0, Algorithm::bobyqa}, r, 0};
+  StartRecord rec{{0, 0, Algorithm::bobyqa, {}}, r, 0};
   const VerifiedPoint v = verify_point(base, PointOptions{}, o, rec, 38, 0, census);
   EXPECT_FALSE(v.soft_check.has_value());
   EXPECT_TRUE(std::isnan(v.soft_fraction));

@@ -70,15 +70,21 @@ class SeedSelector {
 // The scene's own point as the one seed (clamped into the box).
 Seed scene_seed(const Parameters& base, const OptimiseOptions& o);
 
-// One start: seed `seed` (index into the seeds) run with `algorithm`.
+// One start: seed `seed` (index into the seeds) run with `algorithm`, with contact law `law`.
 struct StartSpec {
   int index = 0;  // start number, 0-based
   int seed = 0;   // index into the seeds
   Algorithm algorithm = Algorithm::bobyqa;
+  std::optional<ContactLawKind> law;  // OptimiseOptions::laws: this start's law; none: the scene's
 };
 
-// Every seed with every algorithm, seed-major: start i is seed i / A with algorithm i % A.
-std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms);
+// Every seed with every law (OptimiseOptions::laws; none: the scene's) and every algorithm,
+// seed-major, then law: start i is seed i / (L A), law (i / A) % L, algorithm i % A.
+std::vector<StartSpec> plan_starts(std::size_t seeds, const std::vector<Algorithm>& algorithms,
+                                   const std::vector<ContactLawKind>& laws = {});
+
+// The base parameters of a start: `base` with the start's law when it has one.
+Parameters start_parameters(const Parameters& base, const StartSpec& spec);
 
 
 // A start and its result, as gathered on rank 0.

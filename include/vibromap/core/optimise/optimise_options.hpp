@@ -15,6 +15,7 @@
 
 #include "vibromap/core/analysis/regime.hpp"
 #include "vibromap/core/grid.hpp"
+#include "vibromap/core/model/contact_law.hpp"
 
 namespace vibromap {
 
@@ -91,6 +92,9 @@ struct OptimiseOptions {
   bool hertz_valid = false;                            // also keep Hertz theory valid: z_max/R* <= [analysis] hertz_limit
   std::vector<FreeVariable> variables;                 // the free parameters (at least one)
   std::vector<Algorithm> algorithms = {Algorithm::bobyqa};  // each seed is started with each algorithm
+  // The contact law as a categorical free variable: every seed and algorithm is started once with
+  // each law listed, and the answer is the best over them all; empty: the scene's law.
+  std::vector<ContactLawKind> laws;
   int seeds = 4;                                       // starts per algorithm: the best cells of the seeding map, -
   std::string map;                                     // seeding map (HDF5); empty: the scene's [sweep], else its point
   LocalOptions local;                                  // the local algorithm's stopping rules
