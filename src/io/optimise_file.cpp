@@ -46,6 +46,11 @@ void write_root(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o, 
   f.set_attribute("min_soft_fraction", o.min_soft_fraction);
   f.set_attribute("soft_check_initial_conditions", o.soft_check_initial_conditions);
   f.set_attribute("variables", joined(r.variables));
+  if (!o.laws.empty()) {
+    std::vector<std::string> laws;
+    for (const ContactLawKind k : o.laws) laws.push_back(to_string(k));
+    f.set_attribute("laws", joined(laws));  // the contact law free: each start group says its own
+  }
   std::vector<std::string> scales;
   for (const FreeVariable& v : o.variables) scales.push_back(to_string(v.scale));
   f.set_attribute("scales", joined(scales));
@@ -203,6 +208,7 @@ void write_best(Group& g, const VerifiedPoint& v, const OptimiseOptions& o) {
   g.set_attribute("objective", sense * v.value);
   g.set_attribute("soft_fraction", v.soft_fraction);
   for (const std::string_view name : free_parameter_names()) g.set_attribute(name, get_parameter(v.params, name));
+  g.set_attribute("law", to_string(v.params.law));
   g.write_dataset("x", v.x);
   write_solve(g.create_group("integrate"), v.integrate);
   write_solve(g.create_group("shooting"), v.shooting);
