@@ -103,15 +103,6 @@ void write_soft_check_json(JsonWriter& w, const VerifiedPoint& v, const Optimise
   w.end_array().end_object();
 }
 
-// The --set overrides that reproduce a best point: its free variables, and its law when the law
-// was free.
-std::vector<std::string> best_overrides(const VerifiedPoint& v, const OptimiseOptions& o) {
-  std::vector<std::string> out;
-  for (const FreeVariable& f : o.variables) out.push_back(parameter_override(f.name, get_parameter(v.params, f.name)));
-  if (!o.laws.empty()) out.push_back("contact.law=" + to_string(v.params.law));
-  return out;
-}
-
 // A start's algorithm, and its law when the law is free.
 std::string start_label(const StartSpec& s) {
   return s.law ? to_string(s.algorithm) + " " + to_string(*s.law) : to_string(s.algorithm);
@@ -129,7 +120,7 @@ void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint
   w.field("algorithm", to_string(r.starts.at(static_cast<std::size_t>(v.start)).spec.algorithm));
   w.field("law", to_string(v.params.law)).field("restitution", v.params.restitution);
   w.key("set").begin_array();
-  for (const std::string& arg : best_overrides(v, o)) w.value(arg);
+  for (const std::string& arg : optimised_overrides(v.params, o)) w.value(arg);
   w.end_array().key("integrate");
   write_solve_json(w, v.integrate);
   w.key("shooting");
@@ -294,7 +285,7 @@ void print_best_table(std::ostream& out, const OptimiseReport& r, const Optimise
     out << "law " << to_string(v.params.law);
     if (v.params.law != ContactLawKind::hertz) out << " (restitution " << number(v.params.restitution) << ")";
     out << "\n    --set:";
-    for (const std::string& arg : best_overrides(v, o)) out << " " << arg;
+    for (const std::string& arg : optimised_overrides(v.params, o)) out << " " << arg;
     out << "\n";
   }
   if (r.best.empty()) {

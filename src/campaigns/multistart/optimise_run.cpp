@@ -160,8 +160,7 @@ CensusOptions census_options(const Scene& scene) { return scene.census.value_or(
 std::string point_scene_text(const Scene& scene, const VerifiedPoint& v) {
   std::string text = scene.text;
   text += "\n# best point of vibromap optimise; vibromap run SCENE with:";
-  for (const FreeVariable& f : scene.optimise->variables) text += " --set " + parameter_override(f.name, get_parameter(v.params, f.name));
-  if (!scene.optimise->laws.empty()) text += " --set contact.law=" + to_string(v.params.law);
+  for (const std::string& arg : optimised_overrides(v.params, *scene.optimise)) text += " --set " + arg;
   return text + "\n";
 }
 

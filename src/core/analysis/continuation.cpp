@@ -155,7 +155,6 @@ class Problem {
   double length_scale() const { return unit_[0]; }
   double from() const { return from_; }
   double span() const { return span_; }
-  int n() const { return o_.n; }
   // A physical state difference in the scaled units.
   Eigen::Vector4d scaled_difference(const Eigen::Vector4d& d) const { return (d.array() / unit_).matrix(); }
 

@@ -400,6 +400,13 @@ std::string parameter_override(std::string_view name, double value) {
   return cat(*home, ".", name, "=", detail::toml_float(value));
 }
 
+std::vector<std::string> optimised_overrides(const Parameters& p, const OptimiseOptions& o) {
+  std::vector<std::string> out;
+  for (const FreeVariable& f : o.variables) out.push_back(parameter_override(f.name, get_parameter(p, f.name)));
+  if (!o.laws.empty()) out.push_back("contact.law=" + to_string(p.law));
+  return out;
+}
+
 PointSetter point_setter(std::string_view key) {
   const auto dot = key.find('.');
   const Binding* b = dot == std::string_view::npos ? nullptr : detail::find_key(key);

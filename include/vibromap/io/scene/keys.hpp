@@ -13,6 +13,7 @@
 
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
+#include "vibromap/core/optimise/optimise_options.hpp"
 
 namespace vibromap {
 
@@ -56,6 +57,10 @@ std::vector<std::string_view> scene_sections();
 // "contact.E1=20000" or "system.omega2=4.5529". Throws std::invalid_argument when `name`
 // is not a key of [system], [contact] or [forcing].
 std::string parameter_override(std::string_view name, double value);
+
+// The `--set` overrides that reproduce an optimised point p: each free variable of o, and the
+// contact law ("contact.law=flores") when o frees it.
+std::vector<std::string> optimised_overrides(const Parameters& p, const OptimiseOptions& o);
 
 // Sets one numeric key of a parameter point exactly as the scene reader would: k2 and omega2
 // (k1, omega1) replace the spring in their own form, xi and c the damper (a swept m2 keeps a
