@@ -36,9 +36,8 @@ try:
         BASINS_UNLISTED,
         BASINS_UNRESOLVED,
         Basins,
-        VibromapFileError,
         read_basins,
-        save_figure,
+        write_plot,
     )
 except ImportError as exc:
     missing_module(PROG, exc)
@@ -120,14 +119,7 @@ def plot(b: Basins):
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    try:
-        fig = plot(read_basins(args.file))
-        save_figure(fig, args.output, args.dpi)
-    except VibromapFileError as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{PROG}: wrote {args.output}")
-    return 0
+    return write_plot(PROG, lambda: plot(read_basins(args.file)), args.output, args.dpi)
 
 
 if __name__ == "__main__":

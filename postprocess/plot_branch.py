@@ -31,7 +31,7 @@ try:
     import numpy as np
 
     import plot_orbit_diagram
-    from vibromap_h5 import VibromapFileError, _text, open_h5, read_dataset, save_figure
+    from vibromap_h5 import VibromapFileError, _text, open_h5, read_dataset, write_plot
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -183,13 +183,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.dpi <= 0:
         parser.error("--dpi must be positive")
     output = args.output or os.path.splitext(args.branch)[0] + ".png"
-    try:
-        save_figure(plot(read_branch(args.branch), args.diagram), output, args.dpi)
-    except VibromapFileError as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{PROG}: wrote {output}")
-    return 0
+    return write_plot(PROG, lambda: plot(read_branch(args.branch), args.diagram), output, args.dpi)
 
 
 if __name__ == "__main__":

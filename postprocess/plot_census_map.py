@@ -41,7 +41,7 @@ try:
         VibromapFileError,
         parse_fix,
         read_map,
-        save_figure,
+        write_plot,
     )
 
     import plot_regime_map as maps
@@ -196,20 +196,15 @@ def cell_text(sweep: SweepMap, index: tuple) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    try:
+
+    def figure():
         sweep = read_map(args.map)
         require_census(sweep)
         if args.show == "cell":
-            fig = plot_cell(sweep, cell_index(sweep, args.at_values))
-        else:
-            sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-            fig = plot_map(sweep, sl, args.show)
-        save_figure(fig, args.output, args.dpi)
-    except (VibromapFileError, MapSliceError) as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{PROG}: wrote {args.output}")
-    return 0
+            return plot_cell(sweep, cell_index(sweep, args.at_values))
+        return plot_map(sweep, maps.choose_slice(sweep, args.x, args.y, args.fixed), args.show)
+
+    return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError))
 
 
 if __name__ == "__main__":

@@ -27,7 +27,7 @@ try:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from vibromap_h5 import VibromapFileError, open_h5, read_dataset, save_figure, _text
+    from vibromap_h5 import VibromapFileError, open_h5, read_dataset, write_plot, _text
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -79,13 +79,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.dpi <= 0:
         parser.error("--dpi must be positive")
     output = args.output or os.path.splitext(args.file)[0] + ".png"
-    try:
-        save_figure(plot(args.file, args.var), output, args.dpi)
-    except VibromapFileError as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{PROG}: wrote {output}")
-    return 0
+    return write_plot(PROG, lambda: plot(args.file, args.var), output, args.dpi)
 
 
 if __name__ == "__main__":

@@ -27,7 +27,7 @@ try:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from vibromap_h5 import Trajectory, VibromapFileError, read_trajectory, save_figure
+    from vibromap_h5 import Trajectory, VibromapFileError, read_trajectory, write_plot
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -107,18 +107,16 @@ def plot(traj: Trajectory, mask: np.ndarray):
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    try:
+
+    def figure():
         traj = read_trajectory(args.trajectory)
         if traj.t.size == 0:
             raise VibromapFileError(f"{args.trajectory}: the trajectory has no samples")
         if not traj.T > 0:
             raise VibromapFileError(f"{args.trajectory}: attribute 'T' is not a positive period")
-        save_figure(plot(traj, select_periods(traj, args.periods)), args.output, args.dpi)
-    except VibromapFileError as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{PROG}: wrote {args.output}")
-    return 0
+        return plot(traj, select_periods(traj, args.periods))
+
+    return write_plot(PROG, figure, args.output, args.dpi)
 
 
 if __name__ == "__main__":

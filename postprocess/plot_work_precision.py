@@ -38,7 +38,7 @@ try:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from vibromap_h5 import VibromapFileError, save_figure
+    from vibromap_h5 import VibromapFileError, write_plot
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -240,14 +240,8 @@ def plot(study: Study, quantity: str):
 
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    try:
-        study = read_study(args.csv)
-        save_figure(plot(study, args.quantity), args.output, args.dpi)
-    except (StudyFileError, VibromapFileError) as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    print(f"{PROG}: wrote {args.output}")
-    return 0
+    return write_plot(PROG, lambda: plot(read_study(args.csv), args.quantity), args.output, args.dpi,
+                      (StudyFileError, VibromapFileError))
 
 
 if __name__ == "__main__":

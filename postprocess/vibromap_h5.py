@@ -51,6 +51,20 @@ class VibromapFileError(Exception):
     """A vibromap file cannot be read: missing, not HDF5, or not of the expected layout."""
 
 
+def write_plot(prog: str, make_figure, output: str, dpi: int, errors: tuple = (VibromapFileError,)) -> int:
+    """A plotting script's end: draws make_figure() into output and says so (exit status 0), or
+    prints the one-line error of an unreadable input or unwritable output (2)."""
+    import sys
+
+    try:
+        save_figure(make_figure(), output, dpi)
+    except errors as exc:
+        print(f"{prog}: error: {exc}", file=sys.stderr)
+        return 2
+    print(f"{prog}: wrote {output}")
+    return 0
+
+
 @dataclasses.dataclass
 class Trajectory:
     """A kept trajectory of one parameter point (physical coordinates, SI units)."""
