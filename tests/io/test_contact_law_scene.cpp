@@ -143,3 +143,22 @@ TEST(ContactLawScene, OptimiseLawIsACategoricalFreeVariable) {
 }
 
 }  // namespace vibromap
+
+namespace vibromap {
+
+// jobs/demo/optimise_law.toml: Table 2's point, restitution free in [0.3, 1], every law tried.
+TEST(ContactLawScene, OptimiseLawJobIsTable2WithEveryLawAndRestitutionFree) {
+  const Scene s = load_scene(test::source_path("jobs/demo/optimise_law.toml"));
+  ASSERT_TRUE(s.optimise.has_value());
+  EXPECT_EQ(s.optimise->laws, all_contact_laws());
+  ASSERT_EQ(s.optimise->variables.size(), 1u);
+  EXPECT_EQ(s.optimise->variables[0].name, "restitution");
+  EXPECT_EQ(s.optimise->variables[0].min, 0.3);
+  EXPECT_EQ(s.optimise->variables[0].max, 1.0);
+  EXPECT_EQ(s.params.m2, 310.0);
+  EXPECT_EQ(s.params.E1, 1.4e10);
+  EXPECT_EQ(s.params.E2, 1.0e6);
+  EXPECT_FALSE(s.sweep.has_value());
+}
+
+}  // namespace vibromap
