@@ -141,9 +141,13 @@ double AttractorSet::verified_level(const Orbit& o, const Model& section, Integr
     const Eigen::Vector4d v(uniform(), uniform(), uniform(), uniform());
     if (v.norm() > 1e-3) w.push_back(v.normalized());
   }
+  // A direction that fails at one level most likely fails at the next one down too: it moves
+  // to the front, so that a failing level costs one sample's J cycles, not several. (Whether
+  // all samples pass does not depend on their order: the level found is the same.)
   for (double c = c0; c >= kSmallestLevel * c0; c /= 2.0) {
     bool all = true;
-    for (std::size_t k = 0; k < w.size() && all; ++k) {
+    std::size_t k = 0;
+    for (; k < w.size() && all; ++k) {
       const Eigen::Vector4d d = std::sqrt(c) * (to_offset * w[k]);
       State u = o.y + (d.array() * unit_).matrix();
       const auto integ = make_integrator(section, follow_);
@@ -155,6 +159,7 @@ double AttractorSet::verified_level(const Orbit& o, const Model& section, Integr
       all = all && quadratic(o.S, image) <= fall * quadratic(o.S, d);
     }
     if (all) return c;
+    std::rotate(w.begin(), w.begin() + static_cast<std::ptrdiff_t>(k - 1), w.begin() + static_cast<std::ptrdiff_t>(k));
   }
   return 0.0;
 }
@@ -181,15 +186,19 @@ Cell AttractorSet::cell(const State& u) const {
   return c;
 }
 
+// The set holds every visited cell's 80 neighbours too (Recurrent::near), so that the test a
+// following state makes every period is one lookup; the neighbourhood is added once per
+// sample, when a set is made or extended.
 bool AttractorSet::visits(std::size_t i, const Cell& c) const {
-  if (!recurrent_[i]) return false;
-  const auto& cells = recurrent_[i]->cells;
+  return recurrent_[i] && recurrent_[i]->near.count(cell_hash(c)) > 0;
+}
+
+void Recurrent::add(const Cell& c) {
   for (int k = 0; k < 81; ++k) {
     Cell n = c;
     for (int d = 0, r = k; d < 4; ++d, r /= 3) n[static_cast<std::size_t>(d)] += r % 3 - 1;
-    if (cells.count(cell_hash(n)) > 0) return true;
+    near.insert(cell_hash(n));
   }
-  return false;
 }
 
 bool AttractorSet::same_orbit(const Orbit& o, const std::vector<State>& points) const {
@@ -314,16 +323,12 @@ std::optional<std::size_t> AttractorSet::add_recurrent(const std::vector<State>&
                                                        const std::deque<Impact>& impacts, long first_period,
                                                        long last_period) {
   std::vector<Cell> cells;
-  std::vector<std::uint64_t> hashes;
-  for (const State& u : samples) {
-    cells.push_back(cell(u));
-    hashes.push_back(cell_hash(cells.back()));
-  }
+  for (const State& u : samples) cells.push_back(cell(u));
   for (std::size_t i = 0; i < recurrent_.size(); ++i) {
     if (!recurrent_[i]) continue;
     const auto hits = std::count_if(cells.begin(), cells.end(), [&](const Cell& c) { return visits(i, c); });
     if (static_cast<double>(hits) >= kSameRecurrent * static_cast<double>(cells.size())) {
-      recurrent_[i]->cells.insert(hashes.begin(), hashes.end());
+      for (const Cell& c : cells) recurrent_[i]->add(c);
       return i;
     }
   }
@@ -348,7 +353,10 @@ std::optional<std::size_t> AttractorSet::add_recurrent(const std::vector<State>&
   a.regime = {chatter ? RegimeKind::chatter : RegimeKind::non_periodic, 0, 0};
   records_.push_back(a);
   orbits_.emplace_back();
-  recurrent_.emplace_back(Recurrent{{hashes.begin(), hashes.end()}, 1, false});
+  Recurrent r;
+  r.stayed = 1;  // the state that found it
+  for (const Cell& c : cells) r.add(c);
+  recurrent_.push_back(std::move(r));
   return records_.size() - 1;
 }
 

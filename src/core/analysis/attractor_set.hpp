@@ -56,14 +56,16 @@ class SplitMix64 {
 // A cell of the recurrence grid: the stroboscopic state over (census.cell motion scales), floored.
 using Cell = std::array<std::int64_t, 4>;
 
-// A non-periodic attractor: the (hashed) cells of the recurrence grid its stroboscopic points visit.
+// A non-periodic attractor: the (hashed) cells of the recurrence grid its stroboscopic points
+// visit, with their 80 neighbours (a chaotic set is covered sparsely by the samples seen).
 // Whether recurrence decides states on it (census.cpp says why): after kRecurrenceProbation
 // states have stayed on it `recurrences` periods in a row and then to the budget's end, and never
 // when a state that stayed that long left it afterwards (a chaotic saddle: a long transient).
 struct Recurrent {
-  std::unordered_set<std::uint64_t> cells;
+  std::unordered_set<std::uint64_t> near;  // visited cells and their neighbours
   int stayed = 0;          // states that stayed on it to the budget's end (the one that found it included)
   bool transient = false;  // a state stayed `recurrences` periods in a row on it, then left
+  void add(const Cell& visited);  // a visited cell and its neighbours
 };
 constexpr int kRecurrenceProbation = 8;
 
@@ -87,7 +89,7 @@ class AttractorSet {
   // V(d) of attractor i relative to its capture level (captured when <= 1 on two cycles).
   double level_ratio(std::size_t i, const Eigen::Vector4d& d) const;
   // The recurrence-grid cell of a stroboscopic state, and whether attractor i visits it or
-  // one of its 80 neighbours (a chaotic set is covered sparsely by the samples seen).
+  // one of its 80 neighbours.
   Cell cell(const State& u) const;
   bool visits(std::size_t i, const Cell& cell) const;
   // Whether a run of recurrences on non-periodic attractor i decides a state (Recurrent).
