@@ -115,6 +115,11 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
   State u = Model::to_internal(x0);
   integ->reset(u);
   ImpactRecorder impacts(model, 2L * o.analysis.n_max + 2);
+  // Deciding a state needs its impacts' times only (the Newton section); the peaks, forces and
+  // impulses describe a non-periodic attractor from the budget's last n_max periods, so they
+  // are measured from the period before those on (an impact begun earlier is not used).
+  const long measure_from = o.analysis.max_periods - o.analysis.n_max - 1;
+  impacts.set_measuring(measure_from <= 0);
   SteadyStateDetector steady(model, o.analysis.n_max, steady_tolerance(follow_options));
   PhaseSampler sampler;
   ObserverList observers{&impacts, &steady, &sampler};
@@ -144,6 +149,7 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
       in_row.resize(known, 0);
       longest.resize(known, 0);
     }
+    if (j == measure_from) impacts.set_measuring(true);
     if (integ->advance_period(u, observers) != IntegrationStatus::ok) {
       f.periods = j;
       work += integ->counters();

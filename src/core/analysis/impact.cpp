@@ -19,7 +19,7 @@ ImpactRecorder::ImpactRecorder(const Model& model, long keep_periods)
     : model_(model), keep_periods_(keep_periods) {}
 
 void ImpactRecorder::on_step(const StepView& step) {
-  if (!open_ || step.tau1 <= step.tau0) return;
+  if (!open_ || !measuring_ || step.tau1 <= step.tau0) return;
   const HertzContact& contact = model_.contact();
   const double half = 0.5 * (step.tau1 - step.tau0), mid = 0.5 * (step.tau1 + step.tau0);
   double impulse = 0.0, dissipated = 0.0;

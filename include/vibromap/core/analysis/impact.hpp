@@ -52,6 +52,9 @@ class ImpactRecorder final : public Observer {
     impacts_.clear();
     open_.reset();
   }
+  // With measuring off, impacts keep their times and speeds only (no peak, impulse, force or
+  // dissipation: the per-step quadrature is skipped), for a follower that needs no more.
+  void set_measuring(bool on) { measuring_ = on; }
   const std::deque<Impact>& impacts() const { return impacts_; }
   const std::optional<Impact>& open_impact() const { return open_; }
   long total_impacts() const { return total_; }
@@ -64,6 +67,7 @@ class ImpactRecorder final : public Observer {
   std::deque<Impact> impacts_;
   std::optional<Impact> open_;
   long total_ = 0;
+  bool measuring_ = true;
 };
 
 }  // namespace vibromap
