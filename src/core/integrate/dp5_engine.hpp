@@ -110,7 +110,7 @@ class Dp5Engine {
 
   void restart() {
     fsal_valid_ = false;
-    err_old_ = 1e-4;
+    log_err_old_ = kLogErrFloor;
     after_reject_ = false;
   }
   // Starts from state u (Phi = I) in mode m: a contact in progress gets v_in from the state.
@@ -236,17 +236,19 @@ class Dp5Engine {
   double trial(double tau, const Y& y, double h, Y& y_new) {
     using namespace dp5;
     Y* k = k_.data();
+    std::array<double, 5> F;  // the forcing at the stages (6 and 7 are both at tau + h)
+    model_.forcing_at(tau, h, std::array<double, 5>{c2, c3, c4, c5, 1.0}, F);
     Y s;
     s = y + h * (a21 * k[0]);
-    rhs(tau + c2 * h, s, k[1]);
+    rhs_forced(F[0], s, k[1]);
     s = y + h * (a31 * k[0] + a32 * k[1]);
-    rhs(tau + c3 * h, s, k[2]);
+    rhs_forced(F[1], s, k[2]);
     s = y + h * (a41 * k[0] + a42 * k[1] + a43 * k[2]);
-    rhs(tau + c4 * h, s, k[3]);
+    rhs_forced(F[2], s, k[3]);
     s = y + h * (a51 * k[0] + a52 * k[1] + a53 * k[2] + a54 * k[3]);
-    rhs(tau + c5 * h, s, k[4]);
+    rhs_forced(F[3], s, k[4]);
     s = y + h * (a61 * k[0] + a62 * k[1] + a63 * k[2] + a64 * k[3] + a65 * k[4]);
-    const double F_end = model_.forcing(tau + h);  // stages 6 and 7 are both at tau + h
+    const double F_end = F[4];
     rhs_forced(F_end, s, k[5]);
     y_new = y + h * (a71 * k[0] + a73 * k[2] + a74 * k[3] + a75 * k[4] + a76 * k[5]);
     rhs_forced(F_end, y_new, k[6]);
@@ -274,11 +276,13 @@ class Dp5Engine {
 
   void control(double err, double h, bool last) {
     using namespace dp5;
-    const double fac11 = std::pow(err, kExpo1);
-    double fac = std::clamp(fac11 / std::pow(err_old_, kBeta) / kSafety, 1.0 / kFacMax, 1.0 / kFacMin);
+    // err^kExpo1 / err_old^kBeta as one exponential of logarithms (the step's cost is small
+    // enough that two pow() calls were a tenth of a period's time).
+    const double log_err = std::log(err);
+    double fac = std::clamp(std::exp(kExpo1 * log_err - kBeta * log_err_old_) / kSafety, 1.0 / kFacMax, 1.0 / kFacMin);
     if (after_reject_) fac = std::max(fac, 1.0);  // no growth right after a rejection (Hairer's DOPRI5)
     after_reject_ = false;
-    err_old_ = std::max(err, 1e-4);
+    log_err_old_ = std::max(log_err, kLogErrFloor);
     // Keep the controller's proposal when the step was cut to land on the interval's end.
     h_ = last ? std::max(h_, h / fac) : h / fac;
   }
@@ -329,7 +333,8 @@ class Dp5Engine {
   double h_max_, h_min_;
   ContactMode mode_ = ContactMode::free;
   double h_ = 0.0;           // proposed next step, s
-  double err_old_ = 1e-4;    // previous accepted error (PI control)
+  static constexpr double kLogErrFloor = -9.210340371976184;  // log(1e-4): the error's floor in the PI control
+  double log_err_old_ = kLogErrFloor;  // log of the previous accepted error (PI control)
   bool after_reject_ = false;  // the last trial was rejected
   bool fsal_valid_ = false;  // k_[0] holds f(tau, y) for the current point and mode
   std::array<Y, 7> k_;
