@@ -62,6 +62,8 @@ void write_census_json(std::ostream& os, const CensusSummary& s) {
   w.field("unlisted", s.unlisted);
   w.field("decided_early", s.decided_early);
   w.field("periods", s.periods);
+  w.field("budget_states", s.budget_states);
+  w.field("budget_periods", s.budget_periods);
   w.field("wall_s", s.wall_s);
   w.field("initial_states_per_s", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0);
   w.key("attractors").begin_array();
@@ -88,7 +90,11 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   if (s.unlisted > 0) os << "unlisted       " << s.unlisted << " initial states (attractors beyond max_attractors)\n";
   os << "work           " << s.periods << " forcing periods, " << s.decided_early << " states decided early, "
      << fmt("%.3f", s.wall_s) << " s (" << fmt("%.0f", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0)
-     << " initial states/s)\n\n";
+     << " initial states/s)\n";
+  if (s.budget_states > 0)
+    os << "budget         " << s.budget_states << " states undecided to the budget's end took " << s.budget_periods
+       << " of the periods (brute force follows them as far)\n";
+  os << "\n";
   os << "  #  regime          fraction  +-stderr   k_con       T_con (s)   F_max (N)   z/R*      max|mu|   rest  soft\n";
   int i = 0;
   for (const Attractor& a : s.attractors) {

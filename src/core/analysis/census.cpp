@@ -203,6 +203,7 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
     }
   }
   const long last = o.analysis.max_periods - 1;
+  f.budget = true;
   if (steady.still_converging()) {
     f.periods = last + 1;
     work += integ->counters();
@@ -247,6 +248,8 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
     labels.push_back(f.label);
     s.periods += f.periods;
     s.decided_early += f.early ? 1 : 0;
+    s.budget_states += f.budget ? 1 : 0;
+    s.budget_periods += f.budget ? f.periods : 0;
   }
   s.counters = follower.counters();
 

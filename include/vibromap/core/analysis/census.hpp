@@ -15,7 +15,7 @@
 //  - out of budget (analysis.max_periods): non-periodic when it does not settle, else
 //    unresolved.
 // Periodic attractors are also looked for by shooting from each undecided initial condition
-// after 10, 30 and 90 periods (Newton on the stroboscopic map, as solve_point does); a stable
+// after 30, 90 and 270 periods (Newton on the stroboscopic map, as solve_point does); a stable
 // orbit found that way joins the list, and the initial condition goes on until it is captured.
 // Two periodic orbits are the same attractor when they have the same period and the same
 // stroboscopic points (up to a cyclic shift) within a tolerance far below their distance
@@ -98,6 +98,8 @@ struct CensusSummary {
   std::vector<Eigen::Vector4d> initial_conditions;  // with CensusOptions::labels
   std::vector<int> labels;                          // with CensusOptions::labels: index into attractors
   long periods = 0;                    // forcing periods integrated for all initial states
+  int budget_states = 0;               // initial states followed to the end of the budget (undecided)
+  long budget_periods = 0;             // the periods those took: what early decisions cannot save
   IntegrationCounters counters;
   double wall_s = 0.0;
 };
@@ -119,6 +121,7 @@ class CensusFollower {
     int label = kUnresolvedLabel;  // index into attractor(), kUnresolvedLabel or kUnlistedLabel
     bool early = false;            // decided by capture or recurrence
     long periods = 0;              // forcing periods integrated
+    bool budget = false;           // followed to the end of analysis.max_periods without a decision
   };
   // x0: physical state (x1, x2, v1, v2). Unlisted here means no room for another attractor
   // (4 max_attractors kept); count, fraction, from_rest of the attractors are not filled in.
