@@ -1,3 +1,6 @@
+#include <array>
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "problems/free_spheres.hpp"
@@ -56,4 +59,24 @@ TEST(Model, NewtonThirdLawCouplingIsMassRatioM2OverM1) {
   m.rhs(0.3, u, ContactMode::contact, du);
   const double a1 = du[2], a2 = du[2] - du[3];
   EXPECT_NEAR(p.m1 * a1 + p.m2 * a2, m.forcing(0.3) - m.k1() * u[0], 1e-9);
+}
+
+// forcing_at (a dopri5 step's stages) against the closed form F0 lambda cos(omega t + phi0):
+// a short step turns one sine and cosine by Taylor series, a long one takes a cosine per stage.
+TEST(Model, StageForcingEqualsTheClosedForm) {
+  vibromap::Parameters p;
+  p.omega = 7.23;
+  p.phi0 = 0.4;
+  const vibromap::Model m(p);
+  const std::array<double, 5> c{0.2, 0.3, 0.8, 8.0 / 9.0, 1.0};
+  for (double h : {1e-6, 1e-3, 0.05 / 7.23, 0.3}) {  // the last is beyond the Taylor range
+    for (double tau : {0.0, 0.31, 0.8}) {
+      std::array<double, 5> F{};
+      m.forcing_at(tau, h, c, F);
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        const double exact = p.lambda * p.F0 * std::cos(p.omega * (tau + c[i] * h) + p.phi0);
+        EXPECT_NEAR(F[i], exact, 4e-16 * p.lambda * p.F0) << "h " << h << " tau " << tau << " stage " << i;
+      }
+    }
+  }
 }
