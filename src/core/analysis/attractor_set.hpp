@@ -113,10 +113,20 @@ class AttractorSet {
   std::optional<State> shoot_from(const State& u, int n, const std::deque<Impact>& impacts,
                                   const std::optional<Impact>& open, long last_period, IntegrationCounters& counters);
 
+  // A search for a new orbit of period n from u (a period start): Newton at the follow
+  // tolerance; when it lands on a known orbit, that orbit's index, else the orbit refined at
+  // the scene's tolerance and added (add_periodic). nullopt when Newton fails or finds an
+  // unstable orbit, or when there is no room.
+  std::optional<std::size_t> discover(const State& u, int n, const std::deque<Impact>& impacts,
+                                      const std::optional<Impact>& open, long last_period,
+                                      IntegrationCounters& counters);
+
   const Model& model() const { return model_; }
   double newton_tol() const;
 
  private:
+  std::optional<State> newton(const State& u, int n, double s, const IntegratorOptions& io, double tol,
+                              IntegrationCounters& counters) const;
   bool same_orbit(const Orbit& o, const std::vector<State>& points) const;
   void prepare_capture(Orbit& o, const std::deque<Impact>& cycle_impacts, IntegrationCounters& counters) const;
   double verified_level(const Orbit& o, const Model& section, IntegrationCounters& counters) const;

@@ -196,10 +196,8 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
       for (std::size_t i = 0; i < known && !approaching; ++i)
         approaching = !offsets[i].empty() && set.level_ratio(i, offsets[i].back()) < kApproaching;
       if (!approaching)
-      for (int n : steady.candidate_periods(kCandidates)) {
-          const std::optional<State> y = set.shoot_from(u, n, impacts.impacts(), impacts.open_impact(), j, work);
-        if (y && set.add_periodic(*y, n, work)) break;
-      }
+        for (int n : steady.candidate_periods(kCandidates))
+          if (set.discover(u, n, impacts.impacts(), impacts.open_impact(), j, work)) break;
     }
   }
   const long last = o.analysis.max_periods - 1;
