@@ -10,6 +10,17 @@ namespace {
 constexpr double kMaxCondition = 1e8;  // of the eigenvector matrix V
 constexpr int kNewtonIterations = 4;   // refinement of a bracketed entry
 using cd = std::complex<double>;
+
+// e^z for the exponents met here (finite, real part <= 0 or small): std::exp(complex) without
+// the special-case handling of infinities and overflow, which cost as much as the sine and
+// cosine themselves in find_entry (perf: __cexp 4 % of a census beside sincos 15 %).
+inline cd exp_of(cd z) {
+  const double r = std::exp(z.real());
+  if (z.imag() == 0.0) return {r, 0.0};
+  return {r * std::cos(z.imag()), r * std::sin(z.imag())};
+}
+// e^{i theta}.
+inline cd cis(double theta) { return {std::cos(theta), std::sin(theta)}; }
 }  // namespace
 
 FreeFlight::System::System(const Model& m) : omega(m.parameters().omega), phi0(m.parameters().phi0) {
@@ -62,13 +73,13 @@ FreeFlight::FreeFlight(const Model& m) : sys_(m) {
 }
 
 State FreeFlight::particular(double tau) const {
-  const cd e = std::exp(cd(0, sys_.omega * tau + sys_.phi0));
+  const cd e = cis(sys_.omega * tau + sys_.phi0);
   return (amp_ * e).real() + constant_;
 }
 
 FreeFlight::Vec4c FreeFlight::modal_exp(double dt) const {
   Vec4c e;
-  for (int j = 0; j < 4; ++j) e[j] = conjugate_of_[j] >= 0 ? std::conj(e[conjugate_of_[j]]) : std::exp(lambda_[j] * dt);
+  for (int j = 0; j < 4; ++j) e[j] = conjugate_of_[j] >= 0 ? std::conj(e[conjugate_of_[j]]) : exp_of(lambda_[j] * dt);
   return e;
 }
 
@@ -96,7 +107,7 @@ std::optional<double> FreeFlight::find_entry(double tau0, const State& u0, doubl
   auto zw = [&](double s, double& z, double& w) {
     const Vec4c e = modal_exp(s);
     const cd zs = (cz.array() * e.array()).sum(), ws = (cw.array() * e.array()).sum();
-    const cd ef = amp_z * std::exp(cd(0, sys_.omega * (tau0 + s) + sys_.phi0));
+    const cd ef = amp_z * cis(sys_.omega * (tau0 + s) + sys_.phi0);
     z = zs.real() + ef.real() + constant_[1];
     w = ws.real() + (cd(0, sys_.omega) * ef).real();
   };
@@ -105,9 +116,12 @@ std::optional<double> FreeFlight::find_entry(double tau0, const State& u0, doubl
   zw(s, z, w);
   for (;;) {
     if (z >= -sys_.z_tol && w > 0.0) {
-      // At or within tolerance below a crossing: Newton on the closed form.
+      // At or within tolerance below a crossing: Newton on the closed form. Once a step does
+      // not move s forward (z >= 0 already), the following ones would repeat it.
       for (int i = 0; i < kNewtonIterations && w > 0.0; ++i) {
-        s = std::max(s, s - z / w);
+        const double next = std::max(s, s - z / w);
+        if (next == s) break;
+        s = next;
         zw(s, z, w);
       }
       return s <= s_end ? std::optional<double>(tau0 + s) : std::nullopt;
