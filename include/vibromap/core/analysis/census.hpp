@@ -15,8 +15,9 @@
 //  - out of budget (analysis.max_periods): non-periodic when it does not settle, else
 //    unresolved.
 // Periodic attractors are also looked for by shooting from each undecided initial condition
-// after 30, 90 and 270 periods (Newton on the stroboscopic map, as solve_point does); a stable
-// orbit found that way joins the list, and the initial condition goes on until it is captured.
+// after 30, 90 and 270 periods (Newton on the stroboscopic map, as solve_point does, first at
+// `rtol` and, when it lands on no known orbit, again at the scene's); a stable orbit found that
+// way joins the list, and the initial condition goes on until it is captured.
 // Two periodic orbits are the same attractor when they have the same period and the same
 // stroboscopic points (up to a cyclic shift) within a tolerance far below their distance
 // from any other orbit; an attractor's identity is its orbit, never its (n,k) label.
