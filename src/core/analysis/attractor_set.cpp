@@ -36,8 +36,8 @@ constexpr int kLevelSamples = 16;           // sample points on a level set
 constexpr double kContraction = 0.5;        // the capture test works on M^J with |M^J| <= this
 constexpr int kMaxCyclePeriods = 200;       // periods J n at most (|mu| > 0.9965 per period: no capture)
 constexpr double kSameRecurrent = 0.5;      // share of samples in known cells for the same attractor
-constexpr std::size_t kRoomFactor = 4;
-constexpr double kKnownCandidate = 1e-2;    // scaled distance of a loose Newton solution from a known orbit (discover)      // attractors kept: this many times max_attractors
+constexpr std::size_t kRoomFactor = 4;      // attractors kept: this many times max_attractors
+constexpr double kKnownCandidate = 1e-2;    // scaled distance of a loose Newton solution from a known orbit (discover)
 
 // The solution S of the discrete Lyapunov equation M^T S M - S = -I (M stable), by the
 // Kronecker form (M^T (x) M^T - I) vec(S) = -vec(I).
@@ -71,6 +71,9 @@ AttractorSet::AttractorSet(const Parameters& p, const PointOptions& options, con
     : p_(p), options_(options), census_(census), model_(p), scale_(model_),
       unit_(scale_.length(), scale_.length(), scale_.speed(), scale_.speed()), follow_(options.integrator) {
   if (census.early_stop) follow_.rtol = std::max(census.rtol, options.integrator.rtol);
+  PointOptions loose = options;
+  loose.integrator = follow_;
+  follow_newton_tol_ = newton_tolerance(loose);
 }
 
 double same_orbit_tolerance(const PointOptions& options) {
@@ -251,9 +254,7 @@ std::optional<std::size_t> AttractorSet::discover(const State& u, int n, const s
                                                   const std::optional<Impact>& open, long last_period,
                                                   IntegrationCounters& counters) {
   const double s = section_phase(impacts, open, 0, last_period, model_.period());
-  PointOptions loose = options_;
-  loose.integrator = follow_;
-  const std::optional<State> y = newton(u, n, s, follow_, newton_tolerance(loose), counters);
+  const std::optional<State> y = newton(u, n, s, follow_, follow_newton_tol_, counters);
   if (!y) return std::nullopt;
   for (std::size_t i = 0; i < orbits_.size(); ++i)
     if (orbits_[i])

@@ -138,6 +138,7 @@ class AttractorSet {
   StateScale scale_;
   Eigen::Array4d unit_;
   IntegratorOptions follow_;  // the tolerance initial states are followed at (and levels verified at)
+  double follow_newton_tol_ = 0.0;  // Newton's residual tolerance at follow_ (discover's first pass)
   std::vector<Attractor> records_;
   std::vector<std::optional<Orbit>> orbits_;         // by attractor index
   std::vector<std::optional<Recurrent>> recurrent_;  // by attractor index
