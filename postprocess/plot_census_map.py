@@ -94,7 +94,11 @@ def require_census(sweep: SweepMap) -> None:
 
 
 def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
-    """e.g. "(1,1) k_con 8.87 soft" or "non_periodic"."""
+    """e.g. "(1,1) k_con 8.87 soft" or "non-periodic k_con 40.6 transient".
+
+    "transient": states were seen to leave the non-periodic set (transient chaos); maps
+    written before vibromap kept that flag have no attractor_transient and never say it.
+    """
     c = sweep.census
     regime = int(c["regime"][index + (a,)])
     if regime == REGIME_PERIODIC:
@@ -109,6 +113,8 @@ def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
         text += " unstable"
     if int(c["soft"][index + (a,)]) == 1:
         text += " soft"
+    if "transient" in c and int(c["transient"][index + (a,)]) == 1:
+        text += " transient"
     if int(c["from_rest"][index + (a,)]) == 1:
         text += " (from rest)"
     return text

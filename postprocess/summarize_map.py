@@ -2,8 +2,9 @@
 """Summarise a vibromap regime map: cells done, status and regime counts, stability, the
 slowest cells, and a check that every float quantity of every computed cell is finite
 (NaN is allowed only where the map says "not computed": max_multiplier and lyapunov, and
-steady_residual in a census map). A census map adds how many cells hold 1, 2, ... attractors
-and the soft fraction.
+steady_residual in a census map). A census map adds how many cells hold 1, 2, ... attractors,
+the soft fraction, and the non-periodic attractors with the cells where states were seen to
+leave them (transient chaos: their fractions depend on analysis.max_periods).
 
 Usage: postprocess/vmpy summarize_map MAP.h5 [--slowest N]
 Exit status: 0 printed, 2 unreadable file, 1 a computed cell holds a non-finite value.
@@ -61,6 +62,9 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
     return lines, bad
 
 
+NON_PERIODIC = ("non_periodic", "chatter", "quasi_periodic", "chaotic")
+
+
 def census_lines(sweep, done) -> list[str]:
     """Attractors per cell and the soft fraction of a census map."""
     count = sweep.data["attractors"][done]
@@ -72,6 +76,16 @@ def census_lines(sweep, done) -> list[str]:
         lines.append(f"soft fraction: median {np.median(soft):.3g}, cells with some soft basin "
                      f"{int((soft > 0).sum())}, with soft fraction >= 0.9: {int((soft >= 0.9).sum())}")
         lines.append(f"unresolved initial states: {np.mean(unresolved):.3g} of all, at most {np.max(unresolved):.3g} in a cell")
+    # The census's attractors told by recurrence, not by a period (census.hpp).
+    recurrent = [code for code, name in sweep.regime_meanings.items() if name in NON_PERIODIC]
+    non_periodic = np.isin(sweep.census["regime"][done], recurrent)  # (cells, A)
+    if non_periodic.any():
+        line = (f"non-periodic attractors: {int(non_periodic.sum())} in {int(non_periodic.any(axis=1).sum())} cells, "
+                f"basin fraction {np.nansum(np.where(non_periodic, sweep.census['fraction'][done], 0.0)) / len(non_periodic):.3g} of all")
+        if "transient" in sweep.census:  # maps from before the flag have none
+            left = non_periodic & (sweep.census["transient"][done] == 1)
+            line += f"; states seen to leave them (transient chaos) in {int(left.any(axis=1).sum())} cells"
+        lines.append(line)
     return lines
 
 

@@ -26,7 +26,8 @@ Map file (include/vibromap/io/map_file.hpp, one file per sweep; N axes, first ax
   census map (a sweep whose scene had [census]): /attractors (N-D int32), /soft_fraction,
             /unresolved_fraction, /unlisted_fraction (N-D float64), and per (cell, attractor)
             /attractor_<q> of shape + (A,) over the coordinate /attractor: regime, stable,
-            hertz_valid, from_rest, soft (int8, -1 beyond the cell's attractors), n, k,
+            hertz_valid, from_rest, soft, transient (int8, -1 beyond the cell's attractors;
+            transient absent from maps written before it was kept), n, k,
             T_con, k_con, F_max, z_ratio, max_floquet, fraction, fraction_stderr, x1, x2, v1, v2
             (NaN beyond the cell's attractors); the ordinary datasets describe the attractor the
             rest state reaches, and steady_residual is NaN there

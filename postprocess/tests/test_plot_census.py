@@ -36,7 +36,7 @@ def census_map(path):
     count = np.where(done, 1 + (np.indices(shape).sum(axis=0) % 3), 0).astype(np.int32)
     per = {name: np.full(shape + (A,), fill, dtype=dtype) for name, fill, dtype in (
         ("regime", -1, np.int8), ("stable", -1, np.int8), ("soft", -1, np.int8), ("from_rest", -1, np.int8),
-        ("hertz_valid", -1, np.int8), ("n", 0, np.int32), ("k", 0, np.int32), ("k_con", np.nan, float),
+        ("hertz_valid", -1, np.int8), ("transient", -1, np.int8), ("n", 0, np.int32), ("k", 0, np.int32), ("k_con", np.nan, float),
         ("fraction", np.nan, float), ("fraction_stderr", np.nan, float))}
     soft = np.where(done, 0.0, np.nan)
     for i, j in np.ndindex(shape):
@@ -48,6 +48,7 @@ def census_map(path):
             per["soft"][i, j, a] = 1 if first else 0
             per["from_rest"][i, j, a] = 1 if first else 0
             per["hertz_valid"][i, j, a] = 1
+            per["transient"][i, j, a] = 1 if a == 2 and (i, j) == (2, 0) else 0  # one set seen to leak
             per["n"][i, j, a] = per["k"][i, j, a] = (1, 3, 0)[a]
             per["k_con"][i, j, a] = (8.0, 20.0, 30.0)[a]
             per["fraction"][i, j, a] = 1.0 if c == 1 else (0.5 if first else 0.5 / (c - 1))
@@ -76,6 +77,9 @@ def test_census_datasets_are_read_with_their_attractor_dimension(tmp_path):
     assert bad == 0  # steady_residual may be NaN in a census map
     assert "cells with 1, 2, ... attractors: 1: 1, 2: 2, 3: 2" in text
     assert "with soft fraction >= 0.9: 1" in text  # the cell with one attractor
+    # Cells with 3 attractors list a non-periodic third: (1, 1) and (2, 0), each at 0.25 of the cell.
+    assert ("non-periodic attractors: 2 in 2 cells, basin fraction 0.1 of all; "
+            "states seen to leave them (transient chaos) in 1 cells") in text
 
 
 def test_maps_and_cell_pictures(tmp_path):
@@ -94,6 +98,9 @@ def test_maps_and_cell_pictures(tmp_path):
     fig = plot_census_map.plot_cell(sweep, plot_census_map.cell_index(sweep, {"E1": 1e7, "R1": 1.0}))
     labels = [t.get_text() for t in fig.axes[0].get_yticklabels()]
     assert labels == ["(1,1) k_con 8 soft (from rest)", "(3,3) k_con 20", "non-periodic k_con 30"]  # top down
+    fig = plot_census_map.plot_cell(sweep, plot_census_map.cell_index(sweep, {"E1": 1e9, "R1": 0.1}))
+    labels = [t.get_text() for t in fig.axes[0].get_yticklabels()]
+    assert labels[-1] == "non-periodic k_con 30 transient"
     out = tmp_path / "cell.png"
     proc = run([SCRIPT, str(path), "--show", "cell", "--at", "E1=1e7", "R1=1", "-o", str(out)])
     assert proc.returncode == 0, proc.stderr

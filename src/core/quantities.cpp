@@ -195,6 +195,7 @@ CellResult summarize(const CensusSummary& s) {
     r.hertz_valid = a.hertz_valid ? 1 : 0;
     r.from_rest = a.from_rest ? 1 : 0;
     r.soft = a.soft ? 1 : 0;
+    r.transient = a.transient ? 1 : 0;
     r.n = a.regime.n;
     r.k = a.regime.k;
     r.T_con = a.T_con;

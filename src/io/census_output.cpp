@@ -36,6 +36,7 @@ void write_attractor(JsonWriter& w, const Attractor& a) {
   w.field("fraction", a.fraction);
   w.field("fraction_stderr", a.fraction_stderr);
   w.field("from_rest", a.from_rest);
+  w.field("transient", a.transient);
   w.key("strobe").begin_array();
   for (const Eigen::Vector4d& x : a.strobe) write_state(w, x);
   w.end_array();
@@ -103,6 +104,16 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
                   a.regime.label().c_str(), a.fraction, a.fraction_stderr, a.k_con, a.T_con, a.F_max, a.z_ratio,
                   a.max_floquet, a.from_rest ? "yes" : "", a.soft ? "yes" : "");
     os << line;
+  }
+  const int recurrences = scene.census ? scene.census->recurrences : CensusOptions{}.recurrences;
+  i = 0;
+  for (const Attractor& a : s.attractors) {
+    if (a.transient)
+      os << "\n  #" << i << " is transient chaos: a state stayed " << recurrences
+         << " periods in a row on it, then left for another attractor.\n"
+         << "     Its fraction is the share still on it after analysis.max_periods = "
+         << scene.options.analysis.max_periods << " and falls as that grows.\n";
+    ++i;
   }
 }
 

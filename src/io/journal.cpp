@@ -16,7 +16,7 @@ namespace vibromap {
 namespace {
 
 constexpr char kMagic[4] = {'V', 'M', 'J', '1'};
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;  // 2: census attractor records carry the transient flag
 
 std::array<std::uint32_t, 256> crc_table() {
   std::array<std::uint32_t, 256> t{};

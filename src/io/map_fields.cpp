@@ -138,6 +138,11 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   fields.push_back(attractor_field<&A::from_rest>(flag("attractor_from_rest", "1 for the attractor rest reaches"), slots));
   fields.push_back(attractor_field<&A::soft>(
       flag("attractor_soft", "1 where the attractor is soft (stable, Hertz-valid, k_con <= census.soft_kcon)"), slots));
+  fields.push_back(attractor_field<&A::transient>(
+      flag("attractor_transient",
+           "1 where states were seen to leave the non-periodic attractor (transient chaos: its fraction falls as "
+           "analysis.max_periods grows)"),
+      slots));
   fields.push_back(attractor_field<&A::n>(
       count_field<&CellResult::n>("attractor_n", "period of the attractor in forcing periods (0 where not periodic)"),
       slots));

@@ -232,6 +232,58 @@ TEST(Census, AChaoticSaddleIsNotTakenForANonPeriodicAttractor) {
   const double stderr_ref = std::sqrt(p_ref * (1.0 - p_ref) / o.initial_conditions);
   EXPECT_NEAR(periodic11(census), p_ref, 3.0 * std::max(stderr_ref, 1.0 / o.initial_conditions));
   std::printf("(1,1) fraction: census %.4f, brute force %.4f +- %.4f\n", periodic11(census), p_ref, stderr_ref);
+  // Brute force settles most states on (1,1): whatever non-periodic set the census lists here,
+  // states were seen to leave it.
+  for (const Attractor& a : census.attractors) {
+    if (a.periodic) continue;
+    EXPECT_TRUE(a.transient) << a.regime.label() << " fraction " << a.fraction;
+  }
+}
+
+// A long-lived chaotic saddle of the demo map (cell E1 index 19, E2 index 11 of
+// jobs/demo/e1_e2.toml): about half the states are still on a non-periodic set after
+// analysis.max_periods = 2000, some seen to leave it after 100 periods on it. The census flags
+// it transient, and the reference for that flag is the same census with 4x the budget: the
+// set then holds a smaller fraction (measured with K = 128: 0.47 at 2000 periods, 0.25 at
+// 8000), while the periodic attractors' fractions do not fall.
+TEST(Census, ASetStatesLeaveIsFlaggedTransientAndHoldsLessWithALongerBudget) {
+  Parameters p = table2();
+  const auto demo_axis = [](int i, int last) {
+    return std::pow(10.0, std::log10(2e4) + i * (std::log10(2.1e11) - std::log10(2e4)) / last);
+  };
+  p.E1 = demo_axis(19, 22);
+  p.E2 = demo_axis(11, 21);
+  PointOptions options;
+  CensusOptions o;
+  o.initial_conditions = 128;
+  const auto non_periodic = [](const CensusSummary& s) {
+    double f = 0.0;
+    bool transient = false;
+    for (const Attractor& a : s.attractors)
+      if (!a.periodic) {
+        f += a.fraction;
+        transient = transient || a.transient;
+      }
+    return std::make_pair(f, transient);
+  };
+  const CensusSummary at2000 = census_point(p, options, o);
+  options.analysis.max_periods = 8000;
+  const CensusSummary at8000 = census_point(p, options, o);
+  const auto [f2000, flagged] = non_periodic(at2000);
+  const auto [f8000, flagged8000] = non_periodic(at8000);
+  std::printf("non-periodic fraction: %.4f after 2000 periods (transient %d), %.4f after 8000\n", f2000, flagged,
+              f8000);
+  EXPECT_TRUE(flagged);
+  EXPECT_GT(f2000, 0.25);
+  EXPECT_LT(f8000, f2000 - 8.0 / o.initial_conditions);  // at least eight states fewer
+  for (const Attractor& a : at2000.attractors) {
+    if (!a.periodic) continue;
+    EXPECT_FALSE(a.transient);
+    for (const Attractor& b : at8000.attractors) {
+      if (!same_attractor(p, options, a, b)) continue;
+      EXPECT_GE(b.count, a.count) << a.regime.label();
+    }
+  }
 }
 
 }  // namespace

@@ -247,6 +247,7 @@ SweepMap sample_census_map() {
       r.hertz_valid = static_cast<std::int8_t>(a % 2);
       r.from_rest = a == 0 ? 1 : 0;
       r.soft = static_cast<std::int8_t>((i + a) % 2);
+      r.transient = static_cast<std::int8_t>((i + a) % 3 == 0);
       r.n = static_cast<std::int32_t>(1 + a);
       r.k = static_cast<std::int32_t>(1 + i % 3);
       r.T_con = 1e-3 * (n + x + 1.0);
@@ -279,8 +280,8 @@ TEST_F(MapFile, RoundTripsACensusMapWithItsAttractorDimension) {
     for (std::size_t k = 0; k < e.census.size(); ++k) {
       const AttractorRecord& x = e.census[k];
       const AttractorRecord& y = a.census[k];
-      EXPECT_EQ(std::vector<int>({y.regime, y.stable, y.hertz_valid, y.from_rest, y.soft, y.n, y.k}),
-                std::vector<int>({x.regime, x.stable, x.hertz_valid, x.from_rest, x.soft, x.n, x.k}));
+      EXPECT_EQ(std::vector<int>({y.regime, y.stable, y.hertz_valid, y.from_rest, y.soft, y.transient, y.n, y.k}),
+                std::vector<int>({x.regime, x.stable, x.hertz_valid, x.from_rest, x.soft, x.transient, x.n, x.k}));
       for (const auto member : {&AttractorRecord::T_con, &AttractorRecord::k_con, &AttractorRecord::F_max,
                                 &AttractorRecord::z_ratio, &AttractorRecord::max_floquet, &AttractorRecord::fraction,
                                 &AttractorRecord::fraction_stderr})

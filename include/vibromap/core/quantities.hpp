@@ -62,6 +62,7 @@ struct AttractorRecord {
   std::int8_t hertz_valid = 0;
   std::int8_t from_rest = 0;          // 1: the rest state reaches it
   std::int8_t soft = 0;               // 1: stable, Hertz-valid, k_con <= census.soft_kcon
+  std::int8_t transient = 0;          // 1: non-periodic, and states were seen to leave it (census.hpp)
   std::int32_t n = 0, k = 0;
   double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_ratio = 0.0;
   double max_floquet = std::numeric_limits<double>::quiet_NaN();

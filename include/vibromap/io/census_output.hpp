@@ -4,9 +4,10 @@
 //
 // JSON: one object with the keys
 //   status, message, K, T, soft_fraction, unresolved, unlisted, decided_early, periods,
-//   wall_s, initial_states_per_s,
+//   budget_states, budget_periods, wall_s, initial_states_per_s,
 //   attractors: [{regime, n, k, periodic, T_con, k_con, F_max, z_ratio, hertz_valid,
 //                 max_floquet, stable, soft, count, fraction, fraction_stderr, from_rest,
+//                 transient (a non-periodic set states were seen to leave: census.hpp),
 //                 strobe: [[x1, x2, v1, v2], ...] (the n stroboscopic states; [] when not periodic)}],
 //   and, when the census kept them (--labels), initial_conditions: [[x1, x2, v1, v2], ...] and
 //   labels: [index into attractors, -1 unresolved, -2 unlisted, ...].

@@ -28,7 +28,7 @@
 //   /attractors      N-D int32: attractors the census lists in the cell (0..A)
 //   /soft_fraction, /unresolved_fraction, /unlisted_fraction   N-D float64, units 1
 //   /attractor_<q>   (N+1)-D, shape + (A,): per (cell, attractor): regime, stable, hertz_valid,
-//                    from_rest, soft (int8 flags, -1 where the cell lists fewer attractors),
+//                    from_rest, soft, transient (int8 flags, -1 where the cell lists fewer attractors),
 //                    n, k (int32), T_con, k_con, F_max, z_ratio, max_floquet, fraction,
 //                    fraction_stderr, and x1, x2, v1, v2 (the first stroboscopic state; the
 //                    other n - 1 follow by the period map), float64 NaN where not listed.

@@ -15,7 +15,7 @@ constexpr double CellResult::*kCensusReals[] = {&CellResult::soft_fraction, &Cel
                                                  &CellResult::unlisted_fraction};
 constexpr std::int8_t AttractorRecord::*kAttractorCodes[] = {&AttractorRecord::regime, &AttractorRecord::stable,
                                                              &AttractorRecord::hertz_valid, &AttractorRecord::from_rest,
-                                                             &AttractorRecord::soft};
+                                                             &AttractorRecord::soft, &AttractorRecord::transient};
 constexpr double AttractorRecord::*kAttractorReals[] = {
     &AttractorRecord::T_con,       &AttractorRecord::k_con,    &AttractorRecord::F_max,
     &AttractorRecord::z_ratio,     &AttractorRecord::max_floquet, &AttractorRecord::fraction,

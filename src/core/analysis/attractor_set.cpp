@@ -170,7 +170,7 @@ double AttractorSet::verified_level(const Orbit& o, const Model& section, Integr
 
 bool AttractorSet::recurrence_decides(std::size_t i) const {
   const auto& r = recurrent_[i];
-  return r && !r->transient && r->stayed >= kRecurrenceProbation;
+  return r && !records_[i].transient && r->stayed >= kRecurrenceProbation;
 }
 
 void AttractorSet::observe_stay(std::size_t i, std::optional<std::size_t> outcome) {
@@ -179,7 +179,7 @@ void AttractorSet::observe_stay(std::size_t i, std::optional<std::size_t> outcom
   if (outcome && *outcome == i) {
     ++r->stayed;
   } else if (outcome) {
-    r->transient = true;
+    records_[i].transient = true;
   }
 }
 

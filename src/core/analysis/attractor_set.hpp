@@ -64,7 +64,7 @@ using Cell = std::array<std::int64_t, 4>;
 struct Recurrent {
   std::unordered_set<std::uint64_t> near;  // visited cells and their neighbours
   int stayed = 0;          // states that stayed on it to the budget's end (the one that found it included)
-  bool transient = false;  // a state stayed `recurrences` periods in a row on it, then left
+                           // (Attractor::transient: a state stayed `recurrences` periods in a row, then left)
   void add(const Cell& visited);  // a visited cell and its neighbours
 };
 constexpr int kRecurrenceProbation = 8;

@@ -79,6 +79,10 @@ struct Attractor {
   bool from_rest = false;       // the rest state reaches it
   std::vector<Eigen::Vector4d> strobe;  // periodic: the n stroboscopic states (x1, x2, v1, v2) at period starts
   bool soft = false;            // stable, Hertz-valid and k_con <= soft_kcon
+  bool transient = false;       // non-periodic: a state seen `recurrences` periods in a row on it left it
+                                // later for another attractor. A chaotic saddle (transient chaos): its
+                                // fraction is the share still on it at the budget's end, and falls as
+                                // analysis.max_periods grows
 };
 
 // Labels of initial states that reach no listed attractor.
