@@ -28,19 +28,17 @@ std::string number(double x) {
   return text;
 }
 
-constexpr int kNoRecurrenceCapture = 100'000;  // CensusOptions::recurrences' largest value
-
-// The census options the followers use: the scene's [census], without recurrence capture. A
-// state recurring on a non-periodic set a follower found earlier is decided "non-periodic" at
-// once; on the Table 2 point that set is a chaotic saddle, whose long transients mostly end on
-// (3,3), and which pixels it captures depends on what the rank followed before (measured on a
-// 48x48 plane: 112 pixels non-periodic with capture, 9 without; two 2-rank runs of 200x200
-// differed by 920 pixels). Without it a pixel is non-periodic only when it has not settled
-// after analysis.max_periods, as brute force decides, whatever its rank followed before;
-// captures by periodic orbits stay (they are provable: census.cpp). Cost: 16 % more time.
+// The census options the followers use: the scene's [census], never deciding by recurrence
+// (even when the scene asks). A state recurring on a non-periodic set a follower found earlier
+// would be decided "non-periodic" at once; on the Table 2 point that set is a chaotic saddle,
+// whose long transients mostly end on (3,3), and which pixels it captures would depend on what
+// the rank followed before (measured on a 48x48 plane: 112 pixels non-periodic with capture, 9
+// without; two 2-rank runs of 200x200 differed by 920 pixels). Without it a pixel is
+// non-periodic only when it has not settled after analysis.max_periods, as brute force
+// decides, whatever its rank followed before; captures by periodic orbits stay (census.cpp).
 CensusOptions follower_census(const Scene& scene) {
   CensusOptions c = scene.census.value_or(CensusOptions{});
-  c.recurrences = kNoRecurrenceCapture;
+  c.decide_by_recurrence = false;
   return c;
 }
 

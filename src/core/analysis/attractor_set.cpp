@@ -169,18 +169,11 @@ double AttractorSet::verified_level(const Orbit& o, const Model& section, Integr
 }
 
 bool AttractorSet::recurrence_decides(std::size_t i) const {
-  const auto& r = recurrent_[i];
-  return r && !records_[i].transient && r->stayed >= kRecurrenceProbation;
+  return census_.decide_by_recurrence && recurrent_[i] && !records_[i].transient;
 }
 
 void AttractorSet::observe_stay(std::size_t i, std::optional<std::size_t> outcome) {
-  auto& r = recurrent_[i];
-  if (!r) return;
-  if (outcome && *outcome == i) {
-    ++r->stayed;
-  } else if (outcome) {
-    records_[i].transient = true;
-  }
+  if (recurrent_[i] && outcome && *outcome != i) records_[i].transient = true;
 }
 
 Cell AttractorSet::cell(const State& u) const {
@@ -391,7 +384,6 @@ std::optional<std::size_t> AttractorSet::add_recurrent(const std::vector<State>&
   records_.push_back(a);
   orbits_.emplace_back();
   Recurrent r;
-  r.stayed = 1;  // the state that found it
   for (const Cell& c : cells) r.add(c);
   recurrent_.push_back(std::move(r));
   return records_.size() - 1;

@@ -58,16 +58,10 @@ using Cell = std::array<std::int64_t, 4>;
 
 // A non-periodic attractor: the (hashed) cells of the recurrence grid its stroboscopic points
 // visit, with their 80 neighbours (a chaotic set is covered sparsely by the samples seen).
-// Whether recurrence decides states on it (census.cpp says why): after kRecurrenceProbation
-// states have stayed on it `recurrences` periods in a row and then to the budget's end, and never
-// when a state that stayed that long left it afterwards (a chaotic saddle: a long transient).
 struct Recurrent {
   std::unordered_set<std::uint64_t> near;  // visited cells and their neighbours
-  int stayed = 0;          // states that stayed on it to the budget's end (the one that found it included)
-                           // (Attractor::transient: a state stayed `recurrences` periods in a row, then left)
   void add(const Cell& visited);  // a visited cell and its neighbours
 };
-constexpr int kRecurrenceProbation = 8;
 
 // The orbit's offset history of one initial state, one scaled offset per period.
 using Offsets = std::deque<Eigen::Vector4d>;
@@ -92,10 +86,11 @@ class AttractorSet {
   // one of its 80 neighbours.
   Cell cell(const State& u) const;
   bool visits(std::size_t i, const Cell& cell) const;
-  // Whether a run of recurrences on non-periodic attractor i decides a state (Recurrent).
+  // Whether a stay on non-periodic attractor i decides a state: with census.decide_by_recurrence,
+  // while no state was seen to leave it.
   bool recurrence_decides(std::size_t i) const;
-  // A state that was `recurrences` periods in a row on non-periodic attractor i ended on
-  // attractor `outcome` (nullopt: unlisted or unresolved): probation bookkeeping.
+  // A state that stayed `recurrences` periods in a row on non-periodic attractor i ended on
+  // attractor `outcome` (nullopt: unlisted or unresolved); another attractor: i is transient.
   void observe_stay(std::size_t i, std::optional<std::size_t> outcome);
 
   // The attractor of the periodic orbit through the period-start point y0 (internal) of

@@ -67,8 +67,15 @@ std::vector<CensusRow> make_rows() {
                             "an attractor is soft when stable, periodic with impacts, Hertz-valid and k_con <= this",
                             toml_float(d.soft_kcon), real_field<C, &C::soft_kcon>()));
   rows.push_back(census_row("recurrences", SceneKeyType::integer, interval(2, 1e5, false, false), "-",
-                            "stroboscopic points in a row on a known non-periodic attractor's cells that decide a state",
+                            "stroboscopic points in a row on a known non-periodic attractor's cells: a stay on it (a "
+                            "state that stays, then leaves, flags the attractor transient)",
                             std::to_string(d.recurrences), integer_field<C, &C::recurrences>()));
+  rows.push_back(census_row("decide_by_recurrence", SceneKeyType::boolean, any_finite(), "-",
+                            "a stay labels the state with that attractor unless states were seen to leave it "
+                            "(Attractors.jl's rule; faster, but on transient chaos it keeps states brute force sees "
+                            "leave before analysis.max_periods); false: non-periodic only at the budget's end, as "
+                            "brute force",
+                            d.decide_by_recurrence ? "true" : "false", bool_field<C, &C::decide_by_recurrence>()));
   rows.push_back(census_row("cell", SceneKeyType::real, gt(0), "-",
                             "cell of the non-periodic recurrence grid, in motion scales (L, omega L)",
                             toml_float(d.cell), real_field<C, &C::cell>()));
@@ -77,7 +84,7 @@ std::vector<CensusRow> make_rows() {
                             "scene's when looser",
                             toml_float(d.rtol), real_field<C, &C::rtol>()));
   rows.push_back(census_row("early_stop", SceneKeyType::boolean, any_finite(), "-",
-                            "decide states early (capture, recurrence, Newton searches); false: brute force, every "
+                            "decide states early (capture, Newton searches, recurrence when asked); false: brute force, every "
                             "state integrated to its steady state at [solver] rtol (for checks)",
                             d.early_stop ? "true" : "false", bool_field<C, &C::early_stop>()));
   return rows;

@@ -8,9 +8,10 @@
 // the scene's tolerance, forcing period by forcing period, until it is decided:
 //  - captured by a periodic attractor already found (the rule is in census.cpp, where it is
 //    applied: the offset from the orbit follows the orbit's linearisation, which contracts);
-//  - recurring on a non-periodic attractor already found (Attractors.jl's rule: its
-//    stroboscopic points stay `recurrences` periods in a row in the cells that attractor
-//    visits);
+//  - with decide_by_recurrence only: recurring on a non-periodic attractor already found
+//    (Attractors.jl's rule: its stroboscopic points stay `recurrences` periods in a row in the
+//    cells that attractor visits), unless states were seen to leave it (census.cpp says why
+//    this is off by default);
 //  - settled: its stroboscopic samples repeat (steady state); the orbit is refined by shooting;
 //  - out of budget (analysis.max_periods): non-periodic when it does not settle, else
 //    unresolved.
@@ -44,7 +45,9 @@ struct CensusOptions {
   std::uint64_t seed = 1;       // seed of the draws, -
   int max_attractors = 8;       // attractors listed; initial states reaching others are counted as unlisted, -
   double soft_kcon = 10.0;      // an attractor is soft when stable, Hertz-valid and k_con <= soft_kcon, -
-  int recurrences = 100;        // stroboscopic points in a row on a non-periodic attractor's cells that decide it, -
+  int recurrences = 100;        // stroboscopic points in a row on a non-periodic attractor's cells: a stay on it, -
+  bool decide_by_recurrence = false;  // true: a stay on a known non-periodic attractor decides the state (Attractors.jl's
+                                      // rule), unless states were seen to leave that set (census.cpp: why it is off)
   double cell = 0.25;           // cell size of the non-periodic recurrence grid, in motion scales, -
   double rtol = 1e-6;           // tolerance at which initial states are followed (orbits are refined at the
                                 // scene's); the scene's when looser. Ignored without early_stop, -
