@@ -69,11 +69,8 @@ std::uint64_t cell_hash(const Cell& c) {
 
 AttractorSet::AttractorSet(const Parameters& p, const PointOptions& options, const CensusOptions& census)
     : p_(p), options_(options), census_(census), model_(p), scale_(model_),
-      unit_(scale_.length(), scale_.length(), scale_.speed(), scale_.speed()), follow_(options.integrator) {
-  if (census.early_stop) follow_.rtol = std::max(census.rtol, options.integrator.rtol);
-  PointOptions loose = options;
-  loose.integrator = follow_;
-  follow_newton_tol_ = newton_tolerance(loose);
+      unit_(scale_.length(), scale_.length(), scale_.speed(), scale_.speed()), follow_(options) {
+  if (census.early_stop) follow_.integrator.rtol = std::max(census.rtol, options.integrator.rtol);
 }
 
 double same_orbit_tolerance(const PointOptions& options) {
@@ -154,7 +151,7 @@ double AttractorSet::verified_level(const Orbit& o, const Model& section, Integr
     for (; k < w.size() && all; ++k) {
       const Eigen::Vector4d d = std::sqrt(c) * (to_offset * w[k]);
       State u = o.y + (d.array() * unit_).matrix();
-      const auto integ = make_integrator(section, follow_);
+      const auto integ = make_integrator(section, follow_.integrator);
       integ->reset(u);
       Observer none;
       for (int i = 0; i < o.n * o.cycles && all; ++i) all = integ->advance_period(u, none) == IntegrationStatus::ok;
@@ -247,7 +244,7 @@ std::optional<std::size_t> AttractorSet::discover(const State& u, int n, const s
                                                   const std::optional<Impact>& open, long last_period,
                                                   IntegrationCounters& counters) {
   const double s = section_phase(impacts, open, 0, last_period, model_.period());
-  const std::optional<State> y = newton(u, n, s, follow_, follow_newton_tol_, counters);
+  const std::optional<State> y = newton(u, n, s, follow_.integrator, newton_tolerance(follow_), counters);
   if (!y) return std::nullopt;
   for (std::size_t i = 0; i < orbits_.size(); ++i)
     if (orbits_[i])

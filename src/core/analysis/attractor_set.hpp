@@ -117,6 +117,8 @@ class AttractorSet {
                                       IntegrationCounters& counters);
 
   const Model& model() const { return model_; }
+  // The options initial states are followed with: the scene's, at census.rtol with early_stop.
+  const PointOptions& follow_options() const { return follow_; }
   double newton_tol() const;
 
  private:
@@ -132,8 +134,7 @@ class AttractorSet {
   Model model_;
   StateScale scale_;
   Eigen::Array4d unit_;
-  IntegratorOptions follow_;  // the tolerance initial states are followed at (and levels verified at)
-  double follow_newton_tol_ = 0.0;  // Newton's residual tolerance at follow_ (discover's first pass)
+  PointOptions follow_;  // options_ at the tolerance initial states are followed at (and levels verified at)
   std::vector<Attractor> records_;
   std::vector<std::optional<Orbit>> orbits_;         // by attractor index
   std::vector<std::optional<Recurrent>> recurrent_;  // by attractor index

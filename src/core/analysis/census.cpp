@@ -109,8 +109,7 @@ using Followed = CensusFollower::Outcome;
 Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
                 IntegrationCounters& work) {
   const Model& model = set.model();
-  PointOptions follow_options = o;
-  if (c.early_stop) follow_options.integrator.rtol = std::max(c.rtol, o.integrator.rtol);
+  const PointOptions& follow_options = set.follow_options();
   const auto integ = make_integrator(model, follow_options.integrator);
   State u = Model::to_internal(x0);
   integ->reset(u);
