@@ -18,6 +18,7 @@
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/exit_code.hpp"
+#include "vibromap/parallel/mpi_session.hpp"
 #include "vibromap/parallel/signals.hpp"
 
 namespace {
@@ -61,6 +62,11 @@ std::string run_footer() {
         "postprocess/). Without --trajectory no\ntrajectory is computed. An existing FILE.h5 is replaced "
         "only with --overwrite, and\nnever when it is not a regular file; a trajectory too big for the "
         "memory or the disk is\nrefused before the solve, with its size.\n\n"
+        "--census follows [census] initial_conditions (K) states to their attractors. Under\n"
+        "mpirun -n N (or srun) the K states are shared out over the N ranks, one follower each\n"
+        "(captures by periodic orbits only: census.decide_by_recurrence is not used there), and\n"
+        "rank 0 prints the census, the same for any N; SIGUSR1 to mpirun stops it (exit 3, no\n"
+        "census printed). Without --census, rank 0 alone solves and prints the point.\n\n"
      << main_footer();
   return os.str();
 }
@@ -438,9 +444,13 @@ int dispatch(int argc, char** argv) {
 
 // The campaign commands honour SIGINT, SIGTERM and SIGUSR1 from the first instant (a final
 // checkpoint, then exit 3): their handlers go in before anything else runs.
+// `run --census` is one under an MPI launcher (its initial states go to the farm).
 bool is_campaign(int argc, char** argv) {
   if (argc < 2) return false;
   const std::string_view command = argv[1];
+  if (command == "run" && launched_by_mpi())
+    for (int i = 2; i < argc; ++i)
+      if (std::string_view(argv[i]) == "--census") return true;
   return command == "sweep" || command == "optimise" || command == "basins" || command == "orbit-diagram";
 }
 
@@ -450,7 +460,7 @@ bool is_campaign(int argc, char** argv) {
 // plugin tries displays :0-:9). A value already set in the environment wins. (Under a launcher
 // the launcher's environment decides: jobs/demo/run.sh and jobs/cluster/sweep.slurm set it.)
 void single_node_mpi_defaults() {
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr) return;
+  if (launched_by_mpi()) return;
   ::setenv("OMPI_MCA_pml", "ob1", 0);
   ::setenv("OMPI_MCA_btl", "self,vader", 0);
   ::setenv("HWLOC_COMPONENTS", "-gl,-opencl", 0);

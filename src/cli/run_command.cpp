@@ -5,18 +5,23 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "vibromap/campaigns/basins/point_census_run.hpp"
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/text.hpp"
 #include "vibromap/io/census_output.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/io/scene/docs.hpp"
 #include "vibromap/io/summary_output.hpp"
 #include "vibromap/io/trajectory_file.hpp"
+#include "vibromap/parallel/mpi_session.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
 namespace {
@@ -105,28 +110,52 @@ void save_trajectory(const std::string& path, const PointSummary& summary, const
   write_trajectory(path, summary, scene.text);
 }
 
-// `run --census`: every attractor of the point ([census], or its defaults).
+void print_labels(std::ostream& out, const CensusSummary& summary) {
+  out << "\n  #  x1 (m)        x2 (m)        v1 (m/s)      v2 (m/s)      attractor\n";
+  for (std::size_t i = 0; i < summary.labels.size(); ++i) {
+    const Eigen::Vector4d& x = summary.initial_conditions[i];
+    char line[160];
+    std::snprintf(line, sizeof line, "%3zu  %12.5e  %12.5e  %12.5e  %12.5e  %d\n", i, x[0], x[1], x[2], x[3],
+                  summary.labels[i]);
+    out << line;
+  }
+}
+
+// `run --census`: every attractor of the point ([census], or its defaults). Under an MPI
+// launcher with several ranks the initial states are shared out over them (the point census
+// campaign) and rank 0 prints; else one process follows them all (census_point).
 int census_command(const RunArgs& args, std::ostream& out) {
   if (!args.trajectory.empty()) throw SceneError(args.scene + ": --trajectory cannot be combined with --census");
-  const Scene scene = load_scene(args.scene, args.sets);
+  std::optional<MpiSession> mpi;
+  if (launched_by_mpi()) mpi.emplace();
+  const Scene scene = mpi ? load_scene_everywhere(*mpi, args.scene, args.sets) : load_scene(args.scene, args.sets);
   CensusOptions census = scene.census.value_or(CensusOptions{});
   census.labels = args.labels;
-  const CensusSummary summary = census_point(scene.params, scene.options, census);
-  if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
+  CensusSummary summary;
+  if (mpi && mpi->size() > 1) {
+    if (mpi->rank() == 0 && census.decide_by_recurrence)
+      std::cerr << "vibromap: note: census.decide_by_recurrence is not used on several ranks (a label would depend on "
+                   "what its rank followed before); run on one rank for it\n";
+    const PointCensusReport r = run_point_census(*mpi, scene, census, true);
+    // Every rank ends with rank 0's code (only rank 0's report knows of a stop).
+    const int stop_signal = mpi->broadcast(r.farm.stop_signal);
+    if (mpi->rank() != 0) return code(stop_signal ? ExitCode::stopped : ExitCode::ok);
+    if (!r.farm.complete()) {
+      std::cerr << "vibromap: " << scene.path << ": run --census stopped by " << signal_name(r.farm.stop_signal)
+                << " after " << r.farm.items_computed << " of " << r.farm.items << " initial states; no census printed\n";
+      return code(ExitCode::stopped);
+    }
+    summary = r.summary;
+    summary.ranks = r.farm.ranks;
+  } else {
+    summary = census_point(scene.params, scene.options, census);
+    if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
+  }
   if (args.format == "json") {
     write_census_json(out, summary);
   } else {
     write_census_table(out, summary, scene);
-    if (args.labels) {
-      out << "\n  #  x1 (m)        x2 (m)        v1 (m/s)      v2 (m/s)      attractor\n";
-      for (std::size_t i = 0; i < summary.labels.size(); ++i) {
-        const Eigen::Vector4d& x = summary.initial_conditions[i];
-        char line[160];
-        std::snprintf(line, sizeof line, "%3zu  %12.5e  %12.5e  %12.5e  %12.5e  %d\n", i, x[0], x[1], x[2], x[3],
-                      summary.labels[i]);
-        out << line;
-      }
-    }
+    if (args.labels) print_labels(out, summary);
   }
   out.flush();
   return code(ExitCode::ok);
@@ -137,6 +166,8 @@ int census_command(const RunArgs& args, std::ostream& out) {
 int run_command(const RunArgs& args, std::ostream& out) {
   if (args.labels && !args.census) throw SceneError(args.scene + ": --labels needs --census");
   if (args.census) return census_command(args, out);
+  // One point: under an MPI launcher only the first rank solves and prints it.
+  if (launcher_rank() != 0) return code(ExitCode::ok);
   const Scene scene = load_run_scene(args);
   if (!args.trajectory.empty()) check_trajectory(args.trajectory, args.overwrite, scene);
   const PointSummary summary = solve_point(scene.params, scene.options);

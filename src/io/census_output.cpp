@@ -4,6 +4,7 @@
 #include <ostream>
 #include <string>
 
+#include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
 
 namespace vibromap {
@@ -67,6 +68,7 @@ void write_census_json(std::ostream& os, const CensusSummary& s) {
   w.field("budget_periods", s.budget_periods);
   w.field("wall_s", s.wall_s);
   w.field("initial_states_per_s", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0);
+  w.field("ranks", s.ranks);
   w.key("attractors").begin_array();
   for (const Attractor& a : s.attractors) write_attractor(w, a);
   w.end_array();
@@ -91,7 +93,7 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   if (s.unlisted > 0) os << "unlisted       " << s.unlisted << " initial states (attractors beyond max_attractors)\n";
   os << "work           " << s.periods << " forcing periods, " << s.decided_early << " states decided early, "
      << fmt("%.3f", s.wall_s) << " s (" << fmt("%.0f", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0)
-     << " initial states/s)\n";
+     << " initial states/s" << (s.ranks > 1 ? cat(", ", std::to_string(s.ranks), " MPI ranks") : std::string()) << ")\n";
   if (s.budget_states > 0)
     os << "budget         " << s.budget_states << " states undecided to the budget's end took " << s.budget_periods
        << " of the periods (brute force follows them as far)\n";

@@ -8,6 +8,14 @@
 #include "vibromap/parallel/exit_code.hpp"
 
 namespace vibromap {
+
+bool launched_by_mpi() { return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr; }
+
+int launcher_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK"})
+    if (const char* v = std::getenv(name)) return std::atoi(v);
+  return 0;
+}
 namespace detail {
 
 void mpi_check(int rc, const char* what) {

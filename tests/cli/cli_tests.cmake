@@ -68,7 +68,7 @@ file(WRITE ${VIBROMAP_CLI_TYPO_SCENE} "[system]\nm1 = 1000.0\nomgea2 = 5.0\n")
 # Help and version: exit 0, text on stdout.
 vibromap_cli_test(help RC 0 ARGS --help OUT "Usage: vibromap.*run.*keys.*Exit codes")
 vibromap_cli_test(run_help RC 0 ARGS run --help
-                  OUT "--set.*--format.*--trajectory.*vibromap keys.*jobs/reference.toml.*\\[system\\] +m1 m2")
+                  OUT "--set.*--format.*--trajectory.*vibromap keys.*jobs/reference.toml.*\\[system\\] +m1 m2.*mpirun -n N.*shared out over the N ranks")
 vibromap_cli_test(version RC 0 ARGS --version OUT "^vibromap [0-9]+\\.[0-9]+\\.[0-9]+")
 vibromap_cli_test(keys RC 0 ARGS keys OUT "system\\.omega2 +5\\.646 +rad/s")
 

@@ -4,7 +4,8 @@
 //
 // JSON: one object with the keys
 //   status, message, K, T, soft_fraction, unresolved, unlisted, decided_early, periods,
-//   budget_states, budget_periods, wall_s, initial_states_per_s,
+//   budget_states, budget_periods, wall_s, initial_states_per_s, ranks (MPI ranks that followed
+//   the states),
 //   attractors: [{regime, n, k, periodic, T_con, k_con, F_max, z_ratio, hertz_valid,
 //                 max_floquet, stable, soft, count, fraction, fraction_stderr, from_rest,
 //                 transient (a non-periodic set states were seen to leave: census.hpp),

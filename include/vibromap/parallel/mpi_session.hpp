@@ -14,6 +14,12 @@ namespace vibromap {
 // Maps the exception that ended a step on rank 0 to the exit code the other ranks end with.
 using ExitClassifier = std::function<int(std::exception_ptr)>;
 
+// Whether an MPI launcher (mpirun, mpiexec, srun with PMIx) started the process: Open MPI's or
+// PMIx's rank variables are set. Needs no MPI call.
+bool launched_by_mpi();
+// The rank the launcher gave the process, from the same variables; 0 without a launcher.
+int launcher_rank();
+
 class MpiSession {
  public:
   MpiSession();

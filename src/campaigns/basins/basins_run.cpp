@@ -28,18 +28,8 @@ std::string number(double x) {
   return text;
 }
 
-// The census options the followers use: the scene's [census], never deciding by recurrence
-// (even when the scene asks). A state recurring on a non-periodic set a follower found earlier
-// would be decided "non-periodic" at once; on the Table 2 point that set is a chaotic saddle,
-// whose long transients mostly end on (3,3), and which pixels it captures would depend on what
-// the rank followed before (measured on a 48x48 plane: 112 pixels non-periodic with capture, 9
-// without; two 2-rank runs of 200x200 differed by 920 pixels). Without it a pixel is
-// non-periodic only when it has not settled after analysis.max_periods, as brute force
-// decides, whatever its rank followed before; captures by periodic orbits stay (census.cpp).
 CensusOptions follower_census(const Scene& scene) {
-  CensusOptions c = scene.census.value_or(CensusOptions{});
-  c.decide_by_recurrence = false;
-  return c;
+  return detail::follower_census(scene.census.value_or(CensusOptions{}));
 }
 
 // What a resume must match: the point's canonical values (its [census] keys included; a
@@ -114,22 +104,11 @@ std::unique_ptr<detail::BasinsSink> prepare_sink(const Scene& scene, const Basin
                                               new_content(scene, plane));
 }
 
-// One pixel, on the rank's follower. An exception is the pixel's label, never the run's.
+// One pixel, on the rank's follower.
 detail::PixelResult solve_pixel(CensusFollower& follower, const BasinsPlane& plane, std::uint64_t pixel) {
+  if (!plane.overlapping(pixel)) return detail::follow_state(follower, plane.state(pixel));
   detail::PixelResult r;
-  if (plane.overlapping(pixel)) {
-    r.label = kOverlapLabel;
-    return r;
-  }
-  try {
-    const CensusFollower::Outcome out = follower.follow(plane.state(pixel));
-    r.label = out.label;
-    r.periods = out.periods;
-    r.early = out.early;
-    if (out.label >= 0) r.attractor = follower.attractor(static_cast<std::size_t>(out.label));
-  } catch (const std::exception&) {
-    r.label = kUnresolvedLabel;
-  }
+  r.label = kOverlapLabel;
   return r;
 }
 

@@ -18,16 +18,14 @@ std::uint64_t BasinsSink::pending(std::uint64_t from, std::uint64_t max, std::ve
 
 // The index of `a` in the global list (discovery order), added when no attractor matches.
 int BasinsSink::global_label(const Attractor& a, std::uint64_t pixel) {
-  auto& list = content_.attractors;
-  for (std::size_t g = 0; g < list.size(); ++g) {
-    if (!same_attractor(scene_.params, scene_.options, list[g], a)) continue;
+  const auto [g, added] = match_attractor(scene_.params, scene_.options, content_.attractors, a);
+  if (added) {
+    content_.attractors[g].count = 0;
+    content_.first_pixel.push_back(static_cast<std::int64_t>(pixel));
+  } else {
     content_.first_pixel[g] = std::min<std::int64_t>(content_.first_pixel[g], static_cast<std::int64_t>(pixel));
-    return static_cast<int>(g);
   }
-  list.push_back(a);
-  list.back().count = 0;
-  content_.first_pixel.push_back(static_cast<std::int64_t>(pixel));
-  return static_cast<int>(list.size() - 1);
+  return static_cast<int>(g);
 }
 
 void BasinsSink::store_results(const ItemRange& range, std::vector<PixelResult>& results) {
@@ -49,20 +47,10 @@ void BasinsSink::store_results(const ItemRange& range, std::vector<PixelResult>&
 // record a rank kept depends on which of its pixels found the orbit first (the orbit's refined
 // digits, the cyclic shift of its stroboscopic states), this one only on the labels.
 void BasinsSink::canonicalise() {
-  for (std::size_t g = 0; g < content_.attractors.size(); ++g) {
-    Attractor& a = content_.attractors[g];
-    try {
-      CensusFollower fresh(scene_.params, scene_.options, census_);
-      const auto out = fresh.follow(content_.plane.state(static_cast<std::uint64_t>(content_.first_pixel[g])));
-      if (out.label < 0) continue;
-      const Attractor& found = fresh.attractor(static_cast<std::size_t>(out.label));
-      if (!same_attractor(scene_.params, scene_.options, a, found)) continue;
-      const int count = a.count;
-      a = found;
-      a.count = count;
-    } catch (const std::exception&) {  // keep the record the ranks sent
-    }
-  }
+  for (std::size_t g = 0; g < content_.attractors.size(); ++g)
+    content_.attractors[g] =
+        canonical_record(scene_.params, scene_.options, census_,
+                         content_.plane.state(static_cast<std::uint64_t>(content_.first_pixel[g])), content_.attractors[g]);
 }
 
 BasinsContent BasinsSink::numbered(bool complete) const {

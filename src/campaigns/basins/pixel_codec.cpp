@@ -14,6 +14,7 @@ void PixelCodec::encode(const PixelResult& r, ByteWriter& out) const {
   out.put(r.label);
   out.put(r.periods);
   out.put(static_cast<std::uint8_t>(r.early));
+  out.put(static_cast<std::uint8_t>(r.budget));
   if (r.label < 0) return;
   const Attractor& a = r.attractor;
   out.put(static_cast<std::uint8_t>(a.periodic));
@@ -24,6 +25,7 @@ void PixelCodec::encode(const PixelResult& r, ByteWriter& out) const {
   out.put(static_cast<std::uint8_t>(a.hertz_valid));
   out.put(static_cast<std::int32_t>(a.stable));
   out.put(static_cast<std::uint8_t>(a.soft));
+  out.put(static_cast<std::uint8_t>(a.transient));
   out.put(static_cast<std::uint64_t>(a.strobe.size()));
   for (const Eigen::Vector4d& x : a.strobe)
     for (int i = 0; i < 4; ++i) out.put(x[i]);
@@ -34,6 +36,7 @@ PixelResult PixelCodec::decode(ByteReader& in) const {
   r.label = in.get<std::int32_t>();
   r.periods = in.get<std::int64_t>();
   r.early = in.get<std::uint8_t>() != 0;
+  r.budget = in.get<std::uint8_t>() != 0;
   if (r.label < 0) return r;
   Attractor& a = r.attractor;
   a.periodic = in.get<std::uint8_t>() != 0;
@@ -44,12 +47,33 @@ PixelResult PixelCodec::decode(ByteReader& in) const {
   a.hertz_valid = in.get<std::uint8_t>() != 0;
   a.stable = in.get<std::int32_t>();
   a.soft = in.get<std::uint8_t>() != 0;
+  a.transient = in.get<std::uint8_t>() != 0;
   const auto points = in.get<std::uint64_t>();
   if (points > kMaxStrobe) throw WireError("a pixel result with too many stroboscopic states");
   a.strobe.resize(static_cast<std::size_t>(points));
   for (Eigen::Vector4d& x : a.strobe)
     for (int i = 0; i < 4; ++i) x[i] = in.get<double>();
   return r;
+}
+
+PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0) {
+  PixelResult r;
+  try {
+    const CensusFollower::Outcome out = follower.follow(x0);
+    r.label = out.label;
+    r.periods = out.periods;
+    r.early = out.early;
+    r.budget = out.budget;
+    if (out.label >= 0) r.attractor = follower.attractor(static_cast<std::size_t>(out.label));
+  } catch (const std::exception&) {
+    r.label = kUnresolvedLabel;
+  }
+  return r;
+}
+
+CensusOptions follower_census(CensusOptions census) {
+  census.decide_by_recurrence = false;
+  return census;
 }
 
 }  // namespace vibromap::detail

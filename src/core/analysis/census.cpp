@@ -252,48 +252,84 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
     s.budget_periods += f.budget ? f.periods : 0;
   }
   s.counters = follower.counters();
-
-  // List the attractors by how many initial states reach them (discovery order on ties), at
-  // most max_attractors; the others' initial states become unlisted.
-  const std::size_t found = follower.size();
-  std::vector<int> counts(found, 0);
-  for (int l : labels)
-    if (l >= 0) ++counts[static_cast<std::size_t>(l)];
-  std::vector<std::size_t> order(found);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
-  if (order.size() > static_cast<std::size_t>(census.max_attractors)) {
-    // The attractor rest reaches stays listed (a map's motion from rest is one of its cell's).
-    const int rest = labels.front();
-    const auto rest_at = std::find(order.begin(), order.end(), static_cast<std::size_t>(rest));
-    if (rest >= 0 && rest_at - order.begin() >= census.max_attractors)
-      std::rotate(order.begin() + census.max_attractors - 1, rest_at, rest_at + 1);
-    order.resize(static_cast<std::size_t>(census.max_attractors));
-  }
-  std::vector<int> listed(found, kUnlistedLabel);
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    listed[order[k]] = static_cast<int>(k);
-    Attractor a = follower.attractor(order[k]);
-    a.count = counts[order[k]];
-    const double f = static_cast<double>(a.count) / s.K;
-    a.fraction = f;
-    a.fraction_stderr = std::sqrt(f * (1.0 - f) / s.K);
-    s.attractors.push_back(a);
-  }
-  for (int& l : labels) {
-    if (l >= 0) l = listed[static_cast<std::size_t>(l)];
-    if (l == kUnresolvedLabel) ++s.unresolved;
-    if (l == kUnlistedLabel) ++s.unlisted;
-  }
-  if (labels.front() >= 0) s.attractors[static_cast<std::size_t>(labels.front())].from_rest = true;
-  for (const Attractor& a : s.attractors)
-    if (a.soft) s.soft_fraction += a.fraction;
+  std::vector<Attractor> found;
+  for (std::size_t i = 0; i < follower.size(); ++i) found.push_back(follower.attractor(i));
+  list_attractors(s, found, labels, census.max_attractors);
   if (census.labels) {
     s.initial_conditions = ics;
     s.labels = labels;
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
+}
+
+void list_attractors(CensusSummary& s, const std::vector<Attractor>& found, std::vector<int>& labels,
+                     int max_attractors) {
+  // By how many initial states reach them (discovery order on ties), at most max_attractors;
+  // the others' initial states become unlisted.
+  std::vector<int> counts(found.size(), 0);
+  for (int l : labels)
+    if (l >= 0) ++counts[static_cast<std::size_t>(l)];
+  std::vector<std::size_t> order(found.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
+  if (order.size() > static_cast<std::size_t>(max_attractors)) {
+    // The attractor rest reaches stays listed (a map's motion from rest is one of its cell's).
+    const int rest = labels.empty() ? kUnresolvedLabel : labels.front();
+    const auto rest_at = std::find(order.begin(), order.end(), static_cast<std::size_t>(rest));
+    if (rest >= 0 && rest_at - order.begin() >= max_attractors)
+      std::rotate(order.begin() + max_attractors - 1, rest_at, rest_at + 1);
+    order.resize(static_cast<std::size_t>(max_attractors));
+  }
+  std::vector<int> listed(found.size(), kUnlistedLabel);
+  s.attractors.clear();
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    listed[order[k]] = static_cast<int>(k);
+    Attractor a = found[order[k]];
+    a.count = counts[order[k]];
+    a.from_rest = false;
+    const double f = static_cast<double>(a.count) / s.K;
+    a.fraction = f;
+    a.fraction_stderr = std::sqrt(f * (1.0 - f) / s.K);
+    s.attractors.push_back(a);
+  }
+  s.unresolved = s.unlisted = 0;
+  for (int& l : labels) {
+    if (l >= 0) l = listed[static_cast<std::size_t>(l)];
+    if (l == kUnresolvedLabel) ++s.unresolved;
+    if (l == kUnlistedLabel) ++s.unlisted;
+  }
+  if (!labels.empty() && labels.front() >= 0) s.attractors[static_cast<std::size_t>(labels.front())].from_rest = true;
+  s.soft_fraction = 0.0;
+  for (const Attractor& a : s.attractors)
+    if (a.soft) s.soft_fraction += a.fraction;
+}
+
+std::pair<std::size_t, bool> match_attractor(const Parameters& p, const PointOptions& options,
+                                             std::vector<Attractor>& list, const Attractor& a) {
+  for (std::size_t g = 0; g < list.size(); ++g)
+    if (same_attractor(p, options, list[g], a)) {
+      list[g].transient = list[g].transient || a.transient;
+      return {g, false};
+    }
+  list.push_back(a);
+  return {list.size() - 1, true};
+}
+
+Attractor canonical_record(const Parameters& p, const PointOptions& options, const CensusOptions& census,
+                           const Eigen::Vector4d& x0, const Attractor& a) {
+  try {
+    CensusFollower fresh(p, options, census);
+    const CensusFollower::Outcome out = fresh.follow(x0);
+    if (out.label < 0) return a;
+    Attractor found = fresh.attractor(static_cast<std::size_t>(out.label));
+    if (!same_attractor(p, options, a, found)) return a;
+    found.count = a.count;
+    found.transient = found.transient || a.transient;
+    return found;
+  } catch (const std::exception&) {  // keep the record the ranks sent
+    return a;
+  }
 }
 
 struct CensusFollower::Impl {

@@ -9,11 +9,19 @@
   finishes it into the same file as an uninterrupted run;
 - an existing file is refused without --resume or --overwrite.
 
+And `run --census` under mpiexec (the point census campaign, the same followers and codec):
+- on 2 and 3 ranks every initial state's label equals the one-process census's (which equals
+  brute force there: tests/core/test_census.cpp), and so do the attractors' counts, from_rest
+  and their records (regime, k_con, T_con, max |mu|, to 1e-6);
+- SIGUSR1 to mpiexec stops it with exit 3, one line on stderr and nothing on stdout;
+- plain `run` (one point, no census) prints its summary once under mpiexec, not once per rank.
+
 Run by ctest (tests/campaigns/campaign_tests.cmake), which sets VIBROMAP_EXE, VIBROMAP_MPIEXEC and
 VIBROMAP_BASINS_BRUTE.
 """
 import json
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -142,3 +150,49 @@ def test_existing_file_is_refused(reference, tmp_path):
     assert again.stderr.count("vibromap: error:") == 1 and "already exists" in again.stderr
     other = basins(1, two, "--resume", "--set", "system.m2=320", check=False)
     assert other.returncode == 2 and "another run" in other.stderr and "system.m2" in other.stderr
+
+
+def census_json(ranks, K=64):
+    cmd = [EXE, "run", SCENE, "--census", "--labels", "--format", "json", "--set", f"census.initial_conditions={K}"]
+    if ranks > 1:
+        cmd = [MPIEXEC, "-n", str(ranks), *cmd]
+    proc = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout)
+
+
+@pytest.mark.parametrize("ranks", [2, 3])
+def test_point_census_on_ranks_equals_one_process(ranks):
+    one, many = census_json(1), census_json(ranks)
+    assert one["ranks"] == 1 and many["ranks"] == ranks
+    assert len(many["labels"]) == 64
+    assert many["labels"] == one["labels"]
+    assert [a["regime"] for a in many["attractors"]] == ["(1,1)", "(3,3)"]
+    assert many["unresolved"] == one["unresolved"] and many["unlisted"] == one["unlisted"]
+    assert many["soft_fraction"] == one["soft_fraction"]
+    for a, b in zip(one["attractors"], many["attractors"], strict=True):
+        assert (a["regime"], a["count"], a["from_rest"], a["soft"]) == (b["regime"], b["count"], b["from_rest"], b["soft"])
+        for key in ("k_con", "T_con", "max_floquet", "fraction"):
+            assert b[key] == pytest.approx(a[key], rel=1e-6), key
+
+
+def test_plain_run_prints_once_under_mpiexec():
+    proc = subprocess.run([MPIEXEC, "-n", "2", EXE, "run", SCENE, "--format", "json"], env=ENV, capture_output=True,
+                          text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    summary = json.loads(proc.stdout)  # one JSON object: a second rank's would make it invalid
+    assert summary["regime"] == "(1,1)"
+
+
+def test_point_census_stopped_by_sigusr1():
+    # A demo cell on a chaotic saddle (E1 index 17, E2 index 9): 5000 states take far longer than 2 s.
+    e1, e2 = (10 ** (np.log10(2e4) + i * (np.log10(2.1e11) - np.log10(2e4)) / n) for i, n in ((17, 22), (9, 21)))
+    cmd = [MPIEXEC, "-n", "2", EXE, "run", "jobs/demo/e1_e2.toml", "--census", "--set", f"contact.E1={e1!r}",
+           "--set", f"contact.E2={e2!r}", "--set", "census.initial_conditions=5000"]
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(2.0)
+    proc.send_signal(signal.SIGUSR1)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 3, err
+    assert out == ""
+    assert "run --census stopped by SIGUSR1 after" in err and "of 5000 initial states; no census printed" in err

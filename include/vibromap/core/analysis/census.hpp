@@ -28,6 +28,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -108,8 +109,9 @@ struct CensusSummary {
   long periods = 0;                    // forcing periods integrated for all initial states
   int budget_states = 0;               // initial states followed to the end of the budget (undecided)
   long budget_periods = 0;             // the periods those took: what early decisions cannot save
-  IntegrationCounters counters;
+  IntegrationCounters counters;       // one process's (census_point); empty from several ranks
   double wall_s = 0.0;
+  int ranks = 1;                       // MPI ranks the initial states were shared out over
 };
 
 CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census);
@@ -148,5 +150,25 @@ class CensusFollower {
 // within the census's orbit tolerance (scaled distance max(1e-6, 1000 Newton tolerances)); two
 // non-periodic ones when they have the same regime kind (their recurrence sets are not compared).
 bool same_attractor(const Parameters& p, const PointOptions& options, const Attractor& a, const Attractor& b);
+
+// Census results gathered from several followers (MPI ranks: `vibromap basins`, `run --census`
+// on several ranks).
+// The index of `a` in `list` when an attractor there is the same one (same_attractor; its
+// transient flag then takes a's too), else `a` appended. second: whether it was appended.
+std::pair<std::size_t, bool> match_attractor(const Parameters& p, const PointOptions& options,
+                                             std::vector<Attractor>& list, const Attractor& a);
+// The record of attractor `a` as a fresh follower finds it from x0 (physical), so that it does
+// not depend on which rank found the orbit first (its refined digits, the cyclic shift of its
+// stroboscopic states); `a` when the follower finds another attractor or fails. Keeps a's count
+// and transient flag.
+Attractor canonical_record(const Parameters& p, const PointOptions& options, const CensusOptions& census,
+                           const Eigen::Vector4d& x0, const Attractor& a);
+// A census's attractor list from the label of each initial state (`labels`: indices into
+// `found`, or kUnresolvedLabel / kUnlistedLabel; labels[0] is the rest state's): attractors by
+// how many states reach them (first found on ties), at most max_attractors, the one rest reaches
+// always among them, with count, fraction, stderr and from_rest; `labels` renumbered to the
+// list. Sets s.attractors, s.unresolved, s.unlisted and s.soft_fraction from s.K.
+void list_attractors(CensusSummary& s, const std::vector<Attractor>& found, std::vector<int>& labels,
+                     int max_attractors);
 
 }  // namespace vibromap

@@ -1,0 +1,131 @@
+// The point census on MPI ranks: see point_census_run.hpp.
+
+#include "vibromap/campaigns/basins/point_census_run.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+
+#include "pixel_codec.hpp"
+#include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/core/text.hpp"
+#include "vibromap/parallel/campaign.hpp"
+
+namespace vibromap {
+namespace {
+
+// Rank 0: every initial state's label (an index into the global list, or a census label) and
+// the totals the summary reports.
+class CensusSink final : public ResultSink<detail::PixelResult> {
+ public:
+  CensusSink(const detail::PixelCodec& codec, const Scene& scene, std::size_t K)
+      : ResultSink<detail::PixelResult>(codec), scene_(scene), labels_(K, kUnresolvedLabel), done_(K, 0) {}
+
+  std::uint64_t items() const override { return labels_.size(); }
+  std::uint64_t items_done() const override { return stored_; }
+  std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) override {
+    return scan_pending(from, max, items(), [&](std::uint64_t i) { return done_[i] != 0; }, out);
+  }
+  void store_results(const ItemRange& range, std::vector<detail::PixelResult>& results) override {
+    for (std::uint64_t i = range.begin; i < range.end; ++i) {
+      const detail::PixelResult& r = results[static_cast<std::size_t>(i - range.begin)];
+      int label = r.label;
+      if (label >= 0) {
+        const auto [g, added] = match_attractor(scene_.params, scene_.options, found_, r.attractor);
+        if (added) first_.push_back(i);
+        first_[g] = std::min(first_[g], i);
+        label = static_cast<int>(g);
+      }
+      labels_[i] = label;
+      if (!done_[i]) ++stored_;
+      done_[i] = 1;
+      periods_ += r.periods;
+      early_ += r.early ? 1 : 0;
+      budget_states_ += r.budget ? 1 : 0;
+      budget_periods_ += r.budget ? r.periods : 0;
+    }
+  }
+  void checkpoint() override {}  // nothing is written: a stopped run prints no census
+  void finish(bool /*complete*/) override {}
+  std::string note() const override {
+    return cat(std::to_string(found_.size()), " attractor", found_.size() == 1 ? "" : "s");
+  }
+
+  // The census, its records made canonical from the first state that reached each.
+  CensusSummary summary(const std::vector<Eigen::Vector4d>& ics, const CensusOptions& census) {
+    CensusSummary s;
+    s.T = scene_.params.period();
+    s.K = static_cast<int>(labels_.size());
+    s.periods = periods_;
+    s.decided_early = early_;
+    s.budget_states = budget_states_;
+    s.budget_periods = budget_periods_;
+    const CensusOptions followers = detail::follower_census(census);
+    for (std::size_t g = 0; g < found_.size(); ++g)
+      found_[g] = canonical_record(scene_.params, scene_.options, followers, ics[first_[g]], found_[g]);
+    std::vector<int> labels = labels_;
+    list_attractors(s, found_, labels, census.max_attractors);
+    if (census.labels) {
+      s.initial_conditions = ics;
+      s.labels = labels;
+    }
+    return s;
+  }
+
+ private:
+  const Scene& scene_;
+  std::vector<int> labels_;
+  std::vector<std::uint8_t> done_;
+  std::vector<Attractor> found_;       // the global list, in the order found
+  std::vector<std::uint64_t> first_;   // per attractor of found_: the first initial state reaching it
+  std::uint64_t stored_ = 0;
+  long periods_ = 0, budget_periods_ = 0;
+  int early_ = 0, budget_states_ = 0;
+};
+
+}  // namespace
+
+PointCensusReport run_point_census(const MpiSession& mpi, const Scene& scene, const CensusOptions& census,
+                                   bool progress) {
+  const CensusOptions followers = detail::follower_census(census);
+  std::vector<Eigen::Vector4d> ics;
+  mpi.agree(
+      [&] {
+        try {
+          CensusFollower check(scene.params, scene.options, followers);
+        } catch (const std::invalid_argument& e) {
+          throw SceneError(cat(scene.path, ": ", e.what()));
+        }
+        if (static_cast<int>(census_initial_conditions(scene.params, census).size()) != census.initial_conditions)
+          throw SceneError(cat(scene.path, ": [census] the census box holds (almost) no state with the bodies apart (x1 - x2 <= 0)"));
+      },
+      exit_status_of);
+  ics = census_initial_conditions(scene.params, census);
+
+  const detail::PixelCodec codec;
+  std::optional<CensusSink> sink;
+  if (mpi.rank() == 0) sink.emplace(codec, scene, ics.size());
+  std::optional<CensusFollower> follower;  // one per rank for the whole run, made at its first state
+  Campaign<detail::PixelResult> campaign;
+  campaign.solve = [&](std::uint64_t i) {
+    if (!follower) follower.emplace(scene.params, scene.options, followers);
+    return detail::follow_state(*follower, ics[static_cast<std::size_t>(i)]);
+  };
+  campaign.codec = &codec;
+  campaign.sink = sink ? &*sink : nullptr;
+  FarmOptions o;
+  o.label = "census";
+  o.noun = "initial states";
+  o.checkpoint_interval = 1e9;  // nothing to make durable
+  o.progress = progress;
+  o.exit_code_of = exit_status_of;
+  PointCensusReport report;
+  report.farm = run_campaign(mpi, o, campaign);
+  if (sink && report.farm.complete()) {
+    report.summary = sink->summary(ics, census);
+    report.summary.wall_s = report.farm.wall_s;
+  }
+  return report;
+}
+
+}  // namespace vibromap
