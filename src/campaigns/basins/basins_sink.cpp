@@ -18,14 +18,8 @@ std::uint64_t BasinsSink::pending(std::uint64_t from, std::uint64_t max, std::ve
 
 // The index of `a` in the global list (discovery order), added when no attractor matches.
 int BasinsSink::global_label(const Attractor& a, std::uint64_t pixel) {
-  const auto [g, added] = match_attractor(scene_.params, scene_.options, content_.attractors, a);
-  if (added) {
-    content_.attractors[g].count = 0;
-    content_.first_pixel.push_back(static_cast<std::int64_t>(pixel));
-  } else {
-    content_.first_pixel[g] = std::min<std::int64_t>(content_.first_pixel[g], static_cast<std::int64_t>(pixel));
-  }
-  return static_cast<int>(g);
+  return static_cast<int>(match_attractor(scene_.params, scene_.options, content_.attractors, content_.first_pixel, a,
+                                          static_cast<std::int64_t>(pixel)));
 }
 
 void BasinsSink::store_results(const ItemRange& range, std::vector<PixelResult>& results) {

@@ -2,9 +2,8 @@
 
 #include "vibromap/campaigns/basins/point_census_run.hpp"
 
-#include <algorithm>
 #include <optional>
-#include <stdexcept>
+#include <string>
 
 #include "pixel_codec.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
@@ -31,10 +30,8 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
       const detail::PixelResult& r = results[static_cast<std::size_t>(i - range.begin)];
       int label = r.label;
       if (label >= 0) {
-        const auto [g, added] = match_attractor(scene_.params, scene_.options, found_, r.attractor);
-        if (added) first_.push_back(i);
-        first_[g] = std::min(first_[g], i);
-        label = static_cast<int>(g);
+        label = static_cast<int>(
+            match_attractor(scene_.params, scene_.options, found_, first_, r.attractor, static_cast<std::int64_t>(i)));
       }
       labels_[i] = label;
       if (!done_[i]) ++stored_;
@@ -62,7 +59,7 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
     s.budget_periods = budget_periods_;
     const CensusOptions followers = detail::follower_census(census);
     for (std::size_t g = 0; g < found_.size(); ++g)
-      found_[g] = canonical_record(scene_.params, scene_.options, followers, ics[first_[g]], found_[g]);
+      found_[g] = canonical_record(scene_.params, scene_.options, followers, ics[static_cast<std::size_t>(first_[g])], found_[g]);
     std::vector<int> labels = labels_;
     list_attractors(s, found_, labels, census.max_attractors);
     if (census.labels) {
@@ -77,7 +74,7 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
   std::vector<int> labels_;
   std::vector<std::uint8_t> done_;
   std::vector<Attractor> found_;       // the global list, in the order found
-  std::vector<std::uint64_t> first_;   // per attractor of found_: the first initial state reaching it
+  std::vector<std::int64_t> first_;    // per attractor of found_: the first initial state reaching it
   std::uint64_t stored_ = 0;
   long periods_ = 0, budget_periods_ = 0;
   int early_ = 0, budget_states_ = 0;
@@ -88,19 +85,15 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
 PointCensusReport run_point_census(const MpiSession& mpi, const Scene& scene, const CensusOptions& census,
                                    bool progress) {
   const CensusOptions followers = detail::follower_census(census);
-  std::vector<Eigen::Vector4d> ics;
+  const std::vector<Eigen::Vector4d> ics = census_initial_conditions(scene.params, census);  // the same on every rank
   mpi.agree(
       [&] {
-        try {
-          CensusFollower check(scene.params, scene.options, followers);
-        } catch (const std::invalid_argument& e) {
-          throw SceneError(cat(scene.path, ": ", e.what()));
-        }
-        if (static_cast<int>(census_initial_conditions(scene.params, census).size()) != census.initial_conditions)
-          throw SceneError(cat(scene.path, ": [census] the census box holds (almost) no state with the bodies apart (x1 - x2 <= 0)"));
+        if (const std::string err = census_input_error(scene.params, scene.options, followers); !err.empty())
+          throw SceneError(cat(scene.path, ": ", err));
+        if (static_cast<int>(ics.size()) != census.initial_conditions)
+          throw SceneError(cat(scene.path, ": [census] ", kCensusBoxOverlaps));
       },
       exit_status_of);
-  ics = census_initial_conditions(scene.params, census);
 
   const detail::PixelCodec codec;
   std::optional<CensusSink> sink;

@@ -213,7 +213,9 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
   return done(set.add_recurrent({recent.begin(), recent.end()}, impacts.impacts(), first, last), false, last + 1);
 }
 
-std::string check_inputs(const Parameters& p, const PointOptions& o, const CensusOptions& c) {
+}  // namespace
+
+std::string census_input_error(const Parameters& p, const PointOptions& o, const CensusOptions& c) {
   std::string msg;
   for (const auto& e : validate(p)) msg += (msg.empty() ? "" : "; ") + e;
   for (const auto& e : {validate(o.integrator), validate(o.analysis), validate(c)})
@@ -222,14 +224,12 @@ std::string check_inputs(const Parameters& p, const PointOptions& o, const Censu
   return msg;
 }
 
-}  // namespace
-
 CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census) {
   const auto start = std::chrono::steady_clock::now();
   CensusSummary s;
   s.T = p.period();
   s.K = census.initial_conditions;
-  if (std::string err = check_inputs(p, options, census); !err.empty()) {
+  if (std::string err = census_input_error(p, options, census); !err.empty()) {
     s.status = SolveStatus::invalid_input;
     s.message = err;
     return s;
@@ -237,7 +237,7 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
   const std::vector<Eigen::Vector4d> ics = census_initial_conditions(p, census);
   if (static_cast<int>(ics.size()) != census.initial_conditions) {
     s.status = SolveStatus::invalid_input;
-    s.message = "the census box holds (almost) no state with the bodies apart (x1 - x2 <= 0)";
+    s.message = kCensusBoxOverlaps;
     return s;
   }
 
@@ -305,15 +305,18 @@ void list_attractors(CensusSummary& s, const std::vector<Attractor>& found, std:
     if (a.soft) s.soft_fraction += a.fraction;
 }
 
-std::pair<std::size_t, bool> match_attractor(const Parameters& p, const PointOptions& options,
-                                             std::vector<Attractor>& list, const Attractor& a) {
+std::size_t match_attractor(const Parameters& p, const PointOptions& options, std::vector<Attractor>& list,
+                            std::vector<std::int64_t>& first, const Attractor& a, std::int64_t item) {
   for (std::size_t g = 0; g < list.size(); ++g)
     if (same_attractor(p, options, list[g], a)) {
       list[g].transient = list[g].transient || a.transient;
-      return {g, false};
+      first[g] = std::min(first[g], item);
+      return g;
     }
   list.push_back(a);
-  return {list.size() - 1, true};
+  list.back().count = 0;
+  first.push_back(item);
+  return list.size() - 1;
 }
 
 Attractor canonical_record(const Parameters& p, const PointOptions& options, const CensusOptions& census,
@@ -341,7 +344,7 @@ struct CensusFollower::Impl {
 };
 
 CensusFollower::CensusFollower(const Parameters& p, const PointOptions& options, const CensusOptions& census) {
-  if (std::string err = check_inputs(p, options, census); !err.empty()) throw std::invalid_argument(err);
+  if (std::string err = census_input_error(p, options, census); !err.empty()) throw std::invalid_argument(err);
   impl_ = std::make_unique<Impl>(p, options, census);
 }
 CensusFollower::~CensusFollower() = default;

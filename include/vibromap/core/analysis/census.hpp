@@ -28,7 +28,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -115,6 +114,12 @@ struct CensusSummary {
 };
 
 CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census);
+// What census_point reports as invalid input: the point, its options or the census options
+// failing validation (or rk4); empty when they pass. The box is checked by drawing the states:
+// census_initial_conditions then gives fewer than K, and kCensusBoxOverlaps says why.
+std::string census_input_error(const Parameters& p, const PointOptions& options, const CensusOptions& census);
+inline constexpr const char* kCensusBoxOverlaps =
+    "the census box holds (almost) no state with the bodies apart (x1 - x2 <= 0)";
 
 // Follows initial states one at a time to their attractors, keeping every attractor it finds so
 // that later states are decided early against them (census_point runs one over its K states;
@@ -153,10 +158,11 @@ bool same_attractor(const Parameters& p, const PointOptions& options, const Attr
 
 // Census results gathered from several followers (MPI ranks: `vibromap basins`, `run --census`
 // on several ranks).
-// The index of `a` in `list` when an attractor there is the same one (same_attractor; its
-// transient flag then takes a's too), else `a` appended. second: whether it was appended.
-std::pair<std::size_t, bool> match_attractor(const Parameters& p, const PointOptions& options,
-                                             std::vector<Attractor>& list, const Attractor& a);
+// The index of `a`, which reached item `item` (a pixel, an initial state), in `list`: an
+// attractor there when it is the same one (same_attractor; its transient flag then takes a's
+// too), else `a` appended with count 0. first[g]: the least item seen reaching list[g].
+std::size_t match_attractor(const Parameters& p, const PointOptions& options, std::vector<Attractor>& list,
+                            std::vector<std::int64_t>& first, const Attractor& a, std::int64_t item);
 // The record of attractor `a` as a fresh follower finds it from x0 (physical), so that it does
 // not depend on which rank found the orbit first (its refined digits, the cyclic shift of its
 // stroboscopic states); `a` when the follower finds another attractor or fails. Keeps a's count
