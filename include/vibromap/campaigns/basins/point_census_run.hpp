@@ -11,7 +11,8 @@
 //          ranks' attractors with match_attractor; nothing is written (the summary is printed)
 // At the end rank 0 re-derives each attractor's record from the first initial state that
 // reached it with a fresh follower (canonical_record), and lists the attractors as the serial
-// census does (list_attractors): the summary does not depend on the number of ranks.
+// census does (list_attractors): attractors, fractions and labels do not depend on the number of
+// ranks; the work figures (periods, states decided early) depend on which rank followed what.
 
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/io/scene/scene.hpp"
