@@ -90,6 +90,39 @@ TEST(FreeFlightClosedForm, EntryIsTheFirstRootAndGrazesAreDecidedByTheirSign) {
   }
 }
 
+TEST(FreeFlightClosedForm, FlyIsFindEntryThenPropagateBitForBit) {
+  // fly() reuses the entry search's last exponentials: its state must be propagate()'s to the
+  // last bit, at entries (the grazing set-up above, several phases) and at the interval's end.
+  const Parameters base = far_apart();
+  const test::LinearOscillator ref0{Model(base)};
+  const State u0 = Model::to_internal(base.initial_state());
+  const ZMax peak = max_of_z(ref0, u0, 0.0, 3.0);
+  int entries = 0, ends = 0;
+  for (double eps : {1e-3, 1e-6, -1e-6}) {
+    Parameters p = base;
+    const double shift = peak.z - eps;
+    p.D = base.D + shift;
+    p.initial = Eigen::Vector4d(0.02, 10.0 + shift, -0.05, 0.1);
+    const Model model(p);
+    const FreeFlight flight(model);
+    const State start = Model::to_internal(p.initial_state());
+    for (double tau0 : {0.0, 0.1, 0.37}) {
+      const State u = flight.propagate(0.0, start, tau0);
+      for (double tau1 : {0.5, 1.7, 3.0}) {
+        const FreeFlight::Flight f = flight.fly(tau0, u, tau1);
+        const auto entry = flight.find_entry(tau0, u, tau1);
+        ASSERT_EQ(f.entry.has_value(), entry.has_value());
+        if (entry) EXPECT_EQ(*f.entry, *entry);
+        const State exact = flight.propagate(tau0, u, entry ? *entry : tau1);
+        for (int i = 0; i < 4; ++i) EXPECT_EQ(f.u[i], exact[i]) << "eps " << eps << " tau0 " << tau0 << " tau1 " << tau1;
+        (entry ? entries : ends) += 1;
+      }
+    }
+  }
+  EXPECT_GT(entries, 0);
+  EXPECT_GT(ends, 0);
+}
+
 TEST(FreeFlightClosedForm, HybridAgreesWithDopri5ToSteadyState) {
   Parameters table2;  // SPEC.md's Table 2
   table2.m2 = 310.0;

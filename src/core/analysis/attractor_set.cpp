@@ -188,6 +188,7 @@ bool AttractorSet::visits(std::size_t i, const Cell& c) const {
 }
 
 void Recurrent::add(const Cell& c) {
+  if (!visited.insert(c).second) return;
   for (int k = 0; k < 81; ++k) {
     Cell n = c;
     for (int d = 0, r = k; d < 4; ++d, r /= 3) n[static_cast<std::size_t>(d)] += r % 3 - 1;

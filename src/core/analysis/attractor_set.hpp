@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <set>
 #include <unordered_set>
 #include <vector>
 
@@ -60,6 +61,7 @@ using Cell = std::array<std::int64_t, 4>;
 // visit, with their 80 neighbours (a chaotic set is covered sparsely by the samples seen).
 struct Recurrent {
   std::unordered_set<std::uint64_t> near;  // visited cells and their neighbours
+  std::set<Cell> visited;                  // the cells added (one that comes again adds nothing new)
   void add(const Cell& visited);  // a visited cell and its neighbours
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace vibromap {
 
@@ -15,26 +16,35 @@ constexpr long kMinTrendPeriods = 20;
 }  // namespace
 
 SteadyStateDetector::SteadyStateDetector(const Model& model, int n_max, double tol)
-    : n_max_(n_max), tol_(tol), scale_(model) {}
+    : n_max_(n_max), tol_(tol), scale_(model) {
+  if (n_max < 1 || n_max > kMaxN) throw std::invalid_argument("SteadyStateDetector: n_max must be in [1, 64]");
+}
 
 double SteadyStateDetector::distance(const State& a, const State& b) const { return scale_.distance(a, b); }
 
 bool SteadyStateDetector::on_period_end(long period, const State& u) {
   samples_.push_back(u);
-  if (samples_.size() > static_cast<std::size_t>(2 * n_max_)) samples_.pop_front();
+  if (samples_.size() > static_cast<std::size_t>(2 * n_max_)) {
+    samples_.pop_front();
+    gaps_.pop_front();
+  }
   const int count = static_cast<int>(samples_.size());
   const int last = count - 1;
+  auto& gap = gaps_.emplace_back();
+  gap.fill(std::numeric_limits<double>::infinity());
+  for (int n = 1; n <= n_max_ && n <= last; ++n) gap[static_cast<std::size_t>(n)] = distance(samples_[last], samples_[last - n]);
 
   double best = std::numeric_limits<double>::infinity();
-  for (int n = 1; n <= n_max_ && n <= last; ++n) best = std::min(best, distance(samples_[last], samples_[last - n]));
+  for (int n = 1; n <= n_max_ && n <= last; ++n) best = std::min(best, gap[static_cast<std::size_t>(n)]);
   if (std::isfinite(best)) best_log10_.push_back(std::log10(std::max(best, 1e-300)));
   residual_ = best;
 
   // worst[n]: largest ||y_i - y_{i-n}|| over the last n samples (infinite when too few).
-  std::vector<double> worst(static_cast<std::size_t>(n_max_) + 1, std::numeric_limits<double>::infinity());
+  std::vector<double>& worst = worst_;
+  worst.assign(static_cast<std::size_t>(n_max_) + 1, std::numeric_limits<double>::infinity());
   for (int n = 1; n <= n_max_ && 2 * n <= count; ++n) {
     double w = 0.0;
-    for (int i = last; i > last - n; --i) w = std::max(w, distance(samples_[i], samples_[i - n]));
+    for (int i = last; i > last - n; --i) w = std::max(w, gaps_[static_cast<std::size_t>(i)][static_cast<std::size_t>(n)]);
     worst[static_cast<std::size_t>(n)] = w;
   }
   for (int n = 1; n <= n_max_; ++n) {
@@ -60,8 +70,7 @@ std::vector<int> SteadyStateDetector::candidate_periods(int count) const {
   // tried first, then the rest by residual.
   const int last = static_cast<int>(samples_.size()) - 1;
   std::vector<std::pair<double, int>> by_distance;
-  for (int n = 1; n <= n_max_ && n <= last; ++n)
-    by_distance.emplace_back(distance(samples_[static_cast<std::size_t>(last)], samples_[static_cast<std::size_t>(last - n)]), n);
+  for (int n = 1; n <= n_max_ && n <= last; ++n) by_distance.emplace_back(gaps_.back()[static_cast<std::size_t>(n)], n);
   if (by_distance.empty()) return {1};
   const double best = std::min_element(by_distance.begin(), by_distance.end())->first;
   std::stable_sort(by_distance.begin(), by_distance.end(), [best](const auto& a, const auto& b) {

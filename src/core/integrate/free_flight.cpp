@@ -72,10 +72,9 @@ FreeFlight::FreeFlight(const Model& m) : sys_(m) {
   valid_ = amp_.allFinite() && constant_.allFinite() && V_inv_.allFinite();
 }
 
-State FreeFlight::particular(double tau) const {
-  const cd e = cis(sys_.omega * tau + sys_.phi0);
-  return (amp_ * e).real() + constant_;
-}
+State FreeFlight::particular(double tau) const { return particular_at(cis(sys_.omega * tau + sys_.phi0)); }
+
+State FreeFlight::particular_at(std::complex<double> forcing) const { return (amp_ * forcing).real() + constant_; }
 
 FreeFlight::Vec4c FreeFlight::modal_exp(double dt) const {
   Vec4c e;
@@ -94,7 +93,25 @@ Eigen::Matrix4d FreeFlight::transition(double dt) const {
 }
 
 std::optional<double> FreeFlight::find_entry(double tau0, const State& u0, double tau1) const {
-  const Vec4c alpha = V_inv_ * (u0 - particular(tau0)).cast<cd>();
+  Search last;
+  return search_entry(tau0, u0, tau1, last);
+}
+
+FreeFlight::Flight FreeFlight::fly(double tau0, const State& u0, double tau1) const {
+  Search last;
+  Flight f;
+  f.entry = search_entry(tau0, u0, tau1, last);
+  const double end = f.entry ? *f.entry : tau1;
+  // propagate(tau0, u0, end), taking what the search computed at the same arguments.
+  const Vec4c modal = (end - tau0 == last.s ? last.modal : modal_exp(end - tau0)).cwiseProduct(last.alpha);
+  const cd forcing = tau0 + last.s == end ? last.forcing : cis(sys_.omega * end + sys_.phi0);
+  f.u = (V_ * modal).real() + particular_at(forcing);
+  return f;
+}
+
+std::optional<double> FreeFlight::search_entry(double tau0, const State& u0, double tau1, Search& last) const {
+  last.alpha = V_inv_ * (u0 - particular(tau0)).cast<cd>();
+  const Vec4c& alpha = last.alpha;
   // z, w = z' and the bound M >= |z''| from the modal amplitudes (|e^{lambda s}| <= 1).
   Vec4c cz, cw;
   double M = sys_.omega * sys_.omega * std::abs(amp_[1]);
@@ -105,9 +122,12 @@ std::optional<double> FreeFlight::find_entry(double tau0, const State& u0, doubl
   }
   const cd amp_z = amp_[1];
   auto zw = [&](double s, double& z, double& w) {
-    const Vec4c e = modal_exp(s);
+    last.s = s;
+    last.modal = modal_exp(s);
+    last.forcing = cis(sys_.omega * (tau0 + s) + sys_.phi0);
+    const Vec4c& e = last.modal;
     const cd zs = (cz.array() * e.array()).sum(), ws = (cw.array() * e.array()).sum();
-    const cd ef = amp_z * cis(sys_.omega * (tau0 + s) + sys_.phi0);
+    const cd ef = amp_z * last.forcing;
     z = zs.real() + ef.real() + constant_[1];
     w = ws.real() + (cd(0, sys_.omega) * ef).real();
   };

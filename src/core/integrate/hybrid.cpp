@@ -42,11 +42,12 @@ IntegrationStatus Hybrid<Cols>::advance_period(State& u, Observer& obs) {
 // From tau to the next contact entry or the period's end, in closed form.
 template <int Cols>
 IntegrationStatus Hybrid<Cols>::free_phase(State& u, double& tau, Observer& obs) {
-  const auto entry = flight_->find_entry(tau, u, T_);
+  const FreeFlight::Flight flight = flight_->fly(tau, u, T_);
+  const std::optional<double>& entry = flight.entry;
   const double tau1 = entry ? *entry : T_;
   const FreeFlightDense dense(*flight_, tau, u);
   obs.on_step({period_, tau, tau1, ContactMode::free, &dense});
-  const State u1 = flight_->propagate(tau, u, tau1);
+  const State& u1 = flight.u;
   if (!u1.allFinite()) return IntegrationStatus::non_finite;
   if constexpr (Cols > 1) phi_ = flight_->transition(tau1 - tau) * phi_;
   u = u1;

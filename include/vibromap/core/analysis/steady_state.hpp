@@ -13,6 +13,7 @@
 // periods and calls the motion converging when the slope is negative beyond three standard
 // errors.
 
+#include <array>
 #include <deque>
 #include <vector>
 
@@ -45,6 +46,12 @@ class SteadyStateDetector final : public Observer {
   double tol_;
   StateScale scale_;
   std::deque<State> samples_;       // the last 2 n_max samples, newest at the back
+  // gaps_[i][n] = ||y_i - y_{i-n}|| of samples_[i] (n = 1..n_max; infinite where y_{i-n} did
+  // not exist), computed once when y_i came: the test over the last n samples of every n
+  // reads them, instead of 1 + ... + n_max new distances every period.
+  static constexpr int kMaxN = 64;  // AnalysisOptions: n_max <= 64
+  std::deque<std::array<double, kMaxN + 1>> gaps_;
+  std::vector<double> worst_;       // per n: the largest gap over the last n samples
   std::vector<double> best_log10_;  // log10 of min over n of ||y_j - y_{j-n}||, per period
   int n_found_ = 0;
   long detected_at_ = -1;

@@ -39,6 +39,15 @@ class FreeFlight {
   Eigen::Matrix4d transition(double dt) const;
   // First contact entry (z rising through 0) in (tau0, tau1], or nullopt.
   std::optional<double> find_entry(double tau0, const State& u0, double tau1) const;
+  // The free flight from (tau0, u0) to its first contact entry in (tau0, tau1], or to tau1
+  // when there is none: find_entry() and then propagate() to where it ends, the same values
+  // bit for bit, with the modal amplitudes and the last exponentials of the entry search
+  // reused (a third of a free flight's sines, cosines and exponentials).
+  struct Flight {
+    std::optional<double> entry;
+    State u;  // the state at *entry (z is then 0 to the entry tolerance) or at tau1
+  };
+  Flight fly(double tau0, const State& u0, double tau1) const;
   // Whether this is the free flight of `model`: the same linear part, forcing and entry
   // tolerance (so it can be shared by every integrator of that model).
   bool describes(const Model& model) const;
@@ -56,6 +65,15 @@ class FreeFlight {
     }
   };
   State particular(double tau) const;
+  State particular_at(std::complex<double> forcing) const;  // forcing: e^{i (omega tau + phi0)}
+  // What the entry search evaluated last: the modal amplitudes at tau0 and, at its last
+  // offset s, e^{lambda_j s} and e^{i (omega (tau0 + s) + phi0)}.
+  struct Search {
+    Vec4c alpha, modal;
+    std::complex<double> forcing;
+    double s = 0.0;
+  };
+  std::optional<double> search_entry(double tau0, const State& u0, double tau1, Search& last) const;
   // e^{lambda_j dt} for every mode; the second mode of a complex-conjugate pair takes the
   // conjugate of the first (half the complex exponentials of an underdamped system).
   Vec4c modal_exp(double dt) const;
