@@ -112,7 +112,9 @@ TEST(FreeFlightClosedForm, FlyIsFindEntryThenPropagateBitForBit) {
         const FreeFlight::Flight f = flight.fly(tau0, u, tau1);
         const auto entry = flight.find_entry(tau0, u, tau1);
         ASSERT_EQ(f.entry.has_value(), entry.has_value());
-        if (entry) EXPECT_EQ(*f.entry, *entry);
+        if (entry) {
+          EXPECT_EQ(*f.entry, *entry);
+        }
         const State exact = flight.propagate(tau0, u, entry ? *entry : tau1);
         for (int i = 0; i < 4; ++i) EXPECT_EQ(f.u[i], exact[i]) << "eps " << eps << " tau0 " << tau0 << " tau1 " << tau1;
         (entry ? entries : ends) += 1;

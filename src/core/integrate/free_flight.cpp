@@ -69,6 +69,7 @@ FreeFlight::FreeFlight(const Model& m) : sys_(m) {
     if (!lu_a.isInvertible()) return;
     constant_ = -lu_a.solve(c);
   }
+  forcing_z2_ = sys_.omega * sys_.omega * std::abs(amp_[1]);
   valid_ = amp_.allFinite() && constant_.allFinite() && V_inv_.allFinite();
 }
 
@@ -83,7 +84,14 @@ FreeFlight::Vec4c FreeFlight::modal_exp(double dt) const {
 }
 
 State FreeFlight::propagate(double tau0, const State& u0, double tau1) const {
-  const Vec4c alpha = V_inv_ * (u0 - particular(tau0)).cast<cd>();
+  return propagate(modes(tau0, u0), tau0, tau1);
+}
+
+FreeFlight::Modes FreeFlight::modes(double tau0, const State& u0) const {
+  return V_inv_ * (u0 - particular(tau0)).cast<cd>();
+}
+
+State FreeFlight::propagate(const Modes& alpha, double tau0, double tau1) const {
   const Vec4c modal = modal_exp(tau1 - tau0).cwiseProduct(alpha);
   return (V_ * modal).real() + particular(tau1);
 }
@@ -110,11 +118,11 @@ FreeFlight::Flight FreeFlight::fly(double tau0, const State& u0, double tau1) co
 }
 
 std::optional<double> FreeFlight::search_entry(double tau0, const State& u0, double tau1, Search& last) const {
-  last.alpha = V_inv_ * (u0 - particular(tau0)).cast<cd>();
+  last.alpha = modes(tau0, u0);
   const Vec4c& alpha = last.alpha;
   // z, w = z' and the bound M >= |z''| from the modal amplitudes (|e^{lambda s}| <= 1).
   Vec4c cz, cw;
-  double M = sys_.omega * sys_.omega * std::abs(amp_[1]);
+  double M = forcing_z2_;
   for (int j = 0; j < 4; ++j) {
     cz[j] = V_(1, j) * alpha[j];
     cw[j] = cz[j] * lambda_[j];

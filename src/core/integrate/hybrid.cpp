@@ -6,16 +6,22 @@
 namespace vibromap::detail {
 
 namespace {
-// The free flight's continuous extension is the closed form itself.
+// The free flight's continuous extension is the closed form itself; the modal amplitudes
+// are computed at the first evaluation and kept for the others (observers that sample
+// several phases).
 class FreeFlightDense final : public DenseOutput {
  public:
   FreeFlightDense(const FreeFlight& flight, double tau0, const State& u0) : flight_(flight), tau0_(tau0), u0_(u0) {}
-  State eval(double tau) const override { return flight_.propagate(tau0_, u0_, tau); }
+  State eval(double tau) const override {
+    if (!alpha_) alpha_ = flight_.modes(tau0_, u0_);
+    return flight_.propagate(*alpha_, tau0_, tau);
+  }
 
  private:
   const FreeFlight& flight_;
   double tau0_;
   State u0_;
+  mutable std::optional<FreeFlight::Modes> alpha_;
 };
 }  // namespace
 

@@ -35,6 +35,11 @@ class FreeFlight {
 
   // The state at tau1 of the contact-free motion through (tau0, u0).
   State propagate(double tau0, const State& u0, double tau1) const;
+  // The same in two parts, for many tau1 from one (tau0, u0) (a step's dense output): the
+  // motion's modal amplitudes, then the state at tau1 from them (propagate's values).
+  using Modes = Eigen::Matrix<std::complex<double>, 4, 1>;
+  Modes modes(double tau0, const State& u0) const;
+  State propagate(const Modes& alpha, double tau0, double tau1) const;
   // e^{A dt}: the derivative of propagate() with respect to u0.
   Eigen::Matrix4d transition(double dt) const;
   // First contact entry (z rising through 0) in (tau0, tau1], or nullopt.
@@ -53,7 +58,7 @@ class FreeFlight {
   bool describes(const Model& model) const;
 
  private:
-  using Vec4c = Eigen::Matrix<std::complex<double>, 4, 1>;
+  using Vec4c = Modes;
   // What the decomposition is computed from: u' = A u + b cos(omega tau + phi0) + c.
   struct System {
     Eigen::Matrix4d A;
@@ -83,6 +88,7 @@ class FreeFlight {
   Vec4c lambda_;
   std::array<int, 4> conjugate_of_{-1, -1, -1, -1};  // the mode this one is the conjugate of, or -1
   Vec4c amp_;          // (i omega I - A)^{-1} b
+  double forcing_z2_ = 0.0;  // omega^2 |amp_z|: the bound on the forced part of |z''|
   State constant_;     // -A^{-1} c
   bool valid_ = false;
 };
