@@ -44,6 +44,24 @@ ZMax max_of_z(const test::LinearOscillator& ref, const State& u0, double t0, dou
   }
   return {0.5 * (a + b), z(0.5 * (a + b))};
 }
+
+// far_apart() with the clearance shifted so that the largest z of its free motion over [0, 3]
+// is +eps or -eps: D -> D + (z* - eps) moves z by -(z* - eps) for the same x1, x2 - D. Also
+// the unshifted peak.
+struct Peaking {
+  Parameters p;
+  ZMax peak;
+};
+Peaking peaking_at(double eps) {
+  const Parameters base = far_apart();
+  const test::LinearOscillator ref0{Model(base)};
+  const ZMax peak = max_of_z(ref0, Model::to_internal(base.initial_state()), 0.0, 3.0);
+  Parameters p = base;
+  const double shift = peak.z - eps;
+  p.D = base.D + shift;
+  p.initial = Eigen::Vector4d(0.02, 10.0 + shift, -0.05, 0.1);
+  return {p, peak};
+}
 }  // namespace
 
 TEST(FreeFlightClosedForm, PropagationAndTransitionMatchTheMatrixExponential) {
@@ -63,17 +81,8 @@ TEST(FreeFlightClosedForm, PropagationAndTransitionMatchTheMatrixExponential) {
 }
 
 TEST(FreeFlightClosedForm, EntryIsTheFirstRootAndGrazesAreDecidedByTheirSign) {
-  // Shift the clearance so that the largest z of the free motion over [0, 3] is +eps or
-  // -eps: D -> D + (z* - eps) moves z by -(z* - eps) for the same x1, x2 - D.
-  const Parameters base = far_apart();
-  const test::LinearOscillator ref0{Model(base)};
-  const State u0 = Model::to_internal(base.initial_state());
-  const ZMax peak = max_of_z(ref0, u0, 0.0, 3.0);
   for (double eps : {1e-6, 1e-10, -1e-10, -1e-6}) {
-    Parameters p = base;
-    const double shift = peak.z - eps;
-    p.D = base.D + shift;
-    p.initial = Eigen::Vector4d(0.02, 10.0 + shift, -0.05, 0.1);
+    const auto [p, peak] = peaking_at(eps);
     const Model model(p);
     const FreeFlight flight(model);
     const auto entry = flight.find_entry(0.0, Model::to_internal(p.initial_state()), 3.0);
@@ -93,16 +102,9 @@ TEST(FreeFlightClosedForm, EntryIsTheFirstRootAndGrazesAreDecidedByTheirSign) {
 TEST(FreeFlightClosedForm, FlyIsFindEntryThenPropagateBitForBit) {
   // fly() reuses the entry search's last exponentials: its state must be propagate()'s to the
   // last bit, at entries (the grazing set-up above, several phases) and at the interval's end.
-  const Parameters base = far_apart();
-  const test::LinearOscillator ref0{Model(base)};
-  const State u0 = Model::to_internal(base.initial_state());
-  const ZMax peak = max_of_z(ref0, u0, 0.0, 3.0);
   int entries = 0, ends = 0;
   for (double eps : {1e-3, 1e-6, -1e-6}) {
-    Parameters p = base;
-    const double shift = peak.z - eps;
-    p.D = base.D + shift;
-    p.initial = Eigen::Vector4d(0.02, 10.0 + shift, -0.05, 0.1);
+    const Parameters p = peaking_at(eps).p;
     const Model model(p);
     const FreeFlight flight(model);
     const State start = Model::to_internal(p.initial_state());
