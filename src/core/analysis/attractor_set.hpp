@@ -62,7 +62,7 @@ using Cell = std::array<std::int64_t, 4>;
 struct Recurrent {
   std::unordered_set<std::uint64_t> near;  // visited cells and their neighbours
   std::set<Cell> visited;                  // the cells added (one that comes again adds nothing new)
-  void add(const Cell& visited);  // a visited cell and its neighbours
+  void add(const Cell& cell);  // a visited cell and its neighbours
 };
 
 // The orbit's offset history of one initial state, one scaled offset per period.

@@ -15,7 +15,8 @@
 namespace vibromap {
 
 std::string validate(const AnalysisOptions& o) {
-  if (o.n_max < 1 || o.n_max > 64) return "n_max must be in [1, 64]";
+  if (o.n_max < 1 || o.n_max > SteadyStateDetector::kMaxN)
+    return "n_max must be in [1, " + std::to_string(SteadyStateDetector::kMaxN) + "]";
   if (o.max_periods < 1) return "max_periods must be >= 1";
   if (!(o.steady_tol >= 0.0 && std::isfinite(o.steady_tol))) return "steady_tol must be >= 0";
   if (o.chatter_impacts < 1) return "chatter_impacts must be >= 1";

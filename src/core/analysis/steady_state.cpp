@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace vibromap {
 
@@ -17,7 +18,7 @@ constexpr long kMinTrendPeriods = 20;
 
 SteadyStateDetector::SteadyStateDetector(const Model& model, int n_max, double tol)
     : n_max_(n_max), tol_(tol), scale_(model) {
-  if (n_max < 1 || n_max > kMaxN) throw std::invalid_argument("SteadyStateDetector: n_max must be in [1, 64]");
+  if (n_max < 1 || n_max > kMaxN) throw std::invalid_argument("SteadyStateDetector: n_max must be in [1, " + std::to_string(kMaxN) + "]");
 }
 
 double SteadyStateDetector::distance(const State& a, const State& b) const { return scale_.distance(a, b); }
@@ -40,7 +41,7 @@ bool SteadyStateDetector::on_period_end(long period, const State& u) {
   residual_ = best;
 
   // worst[n]: largest ||y_i - y_{i-n}|| over the last n samples (infinite when too few).
-  std::vector<double>& worst = worst_;
+  std::vector<double>& worst = worst_;  // kept between periods: no allocation per period
   worst.assign(static_cast<std::size_t>(n_max_) + 1, std::numeric_limits<double>::infinity());
   for (int n = 1; n <= n_max_ && 2 * n <= count; ++n) {
     double w = 0.0;

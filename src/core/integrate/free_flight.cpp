@@ -92,8 +92,12 @@ FreeFlight::Modes FreeFlight::modes(double tau0, const State& u0) const {
 }
 
 State FreeFlight::propagate(const Modes& alpha, double tau0, double tau1) const {
-  const Vec4c modal = modal_exp(tau1 - tau0).cwiseProduct(alpha);
-  return (V_ * modal).real() + particular(tau1);
+  return state_at(alpha, modal_exp(tau1 - tau0), cis(sys_.omega * tau1 + sys_.phi0));
+}
+
+State FreeFlight::state_at(const Modes& alpha, const Modes& exponentials, std::complex<double> forcing) const {
+  const Vec4c modal = exponentials.cwiseProduct(alpha);
+  return (V_ * modal).real() + particular_at(forcing);
 }
 
 Eigen::Matrix4d FreeFlight::transition(double dt) const {
@@ -109,11 +113,11 @@ FreeFlight::Flight FreeFlight::fly(double tau0, const State& u0, double tau1) co
   Search last;
   Flight f;
   f.entry = search_entry(tau0, u0, tau1, last);
+  f.alpha = last.alpha;
   const double end = f.entry ? *f.entry : tau1;
-  // propagate(tau0, u0, end), taking what the search computed at the same arguments.
-  const Vec4c modal = (end - tau0 == last.s ? last.modal : modal_exp(end - tau0)).cwiseProduct(last.alpha);
-  const cd forcing = tau0 + last.s == end ? last.forcing : cis(sys_.omega * end + sys_.phi0);
-  f.u = (V_ * modal).real() + particular_at(forcing);
+  // propagate(f.alpha, tau0, end), taking what the search computed at the same arguments.
+  f.u = state_at(f.alpha, end - tau0 == last.s ? last.modal : modal_exp(end - tau0),
+                 tau0 + last.s == end ? last.forcing : cis(sys_.omega * end + sys_.phi0));
   return f;
 }
 

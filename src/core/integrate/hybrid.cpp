@@ -6,22 +6,18 @@
 namespace vibromap::detail {
 
 namespace {
-// The free flight's continuous extension is the closed form itself; the modal amplitudes
-// are computed at the first evaluation and kept for the others (observers that sample
-// several phases).
+// The free flight's continuous extension is the closed form itself, from the flight's modal
+// amplitudes (FreeFlight::fly computed them).
 class FreeFlightDense final : public DenseOutput {
  public:
-  FreeFlightDense(const FreeFlight& flight, double tau0, const State& u0) : flight_(flight), tau0_(tau0), u0_(u0) {}
-  State eval(double tau) const override {
-    if (!alpha_) alpha_ = flight_.modes(tau0_, u0_);
-    return flight_.propagate(*alpha_, tau0_, tau);
-  }
+  FreeFlightDense(const FreeFlight& flight, double tau0, const FreeFlight::Modes& alpha)
+      : flight_(flight), tau0_(tau0), alpha_(alpha) {}
+  State eval(double tau) const override { return flight_.propagate(alpha_, tau0_, tau); }
 
  private:
   const FreeFlight& flight_;
   double tau0_;
-  State u0_;
-  mutable std::optional<FreeFlight::Modes> alpha_;
+  const FreeFlight::Modes& alpha_;
 };
 }  // namespace
 
@@ -51,7 +47,7 @@ IntegrationStatus Hybrid<Cols>::free_phase(State& u, double& tau, Observer& obs)
   const FreeFlight::Flight flight = flight_->fly(tau, u, T_);
   const std::optional<double>& entry = flight.entry;
   const double tau1 = entry ? *entry : T_;
-  const FreeFlightDense dense(*flight_, tau, u);
+  const FreeFlightDense dense(*flight_, tau, flight.alpha);
   obs.on_step({period_, tau, tau1, ContactMode::free, &dense});
   const State& u1 = flight.u;
   if (!u1.allFinite()) return IntegrationStatus::non_finite;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "scene_internal.hpp"
+#include "vibromap/core/analysis/steady_state.hpp"
 #include "vibromap/core/text.hpp"
 
 // The key catalogue: one row per scene key, each with the accessors that read and write its
@@ -288,7 +289,7 @@ void add_analysis_keys(std::vector<Binding>& rows) {
                          field<an, &A::lyapunov>()));
   rows.push_back(integer(s, "lyapunov_periods", ge(10), "forcing periods over which the Lyapunov exponent is averaged",
                          field<an, &A::lyapunov_periods>()));
-  rows.push_back(integer(s, "n_max", interval(1, 64, false, false), "largest period looked for, in forcing periods",
+  rows.push_back(integer(s, "n_max", interval(1, SteadyStateDetector::kMaxN, false, false), "largest period looked for, in forcing periods",
                          field<an, &A::n_max>()));
   rows.push_back(integer(s, "max_periods", ge(1), "budget of forcing periods to reach steady state",
                          field<an, &A::max_periods>()));

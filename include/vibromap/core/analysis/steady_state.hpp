@@ -25,6 +25,7 @@ namespace vibromap {
 
 class SteadyStateDetector final : public Observer {
  public:
+  static constexpr int kMaxN = 64;  // the largest n_max (AnalysisOptions::n_max is validated against it)
   SteadyStateDetector(const Model& model, int n_max, double tol);
 
   bool on_period_end(long period, const State& u) override;
@@ -49,7 +50,6 @@ class SteadyStateDetector final : public Observer {
   // gaps_[i][n] = ||y_i - y_{i-n}|| of samples_[i] (n = 1..n_max; infinite where y_{i-n} did
   // not exist), computed once when y_i came: the test over the last n samples of every n
   // reads them, instead of 1 + ... + n_max new distances every period.
-  static constexpr int kMaxN = 64;  // AnalysisOptions: n_max <= 64
   std::deque<std::array<double, kMaxN + 1>> gaps_;
   std::vector<double> worst_;       // per n: the largest gap over the last n samples
   std::vector<double> best_log10_;  // log10 of min over n of ||y_j - y_{j-n}||, per period

@@ -50,7 +50,8 @@ class FreeFlight {
   // reused (a third of a free flight's sines, cosines and exponentials).
   struct Flight {
     std::optional<double> entry;
-    State u;  // the state at *entry (z is then 0 to the entry tolerance) or at tau1
+    State u;      // the state at *entry (z is then 0 to the entry tolerance) or at tau1
+    Modes alpha;  // modes(tau0, u0): what propagate(alpha, tau0, tau) needs for any tau of the flight
   };
   Flight fly(double tau0, const State& u0, double tau1) const;
   // Whether this is the free flight of `model`: the same linear part, forcing and entry
@@ -71,6 +72,9 @@ class FreeFlight {
   };
   State particular(double tau) const;
   State particular_at(std::complex<double> forcing) const;  // forcing: e^{i (omega tau + phi0)}
+  // The state at tau1 from the modal amplitudes alpha at tau0, given modal_exp(tau1 - tau0) and
+  // e^{i (omega tau1 + phi0)}.
+  State state_at(const Modes& alpha, const Modes& exponentials, std::complex<double> forcing) const;
   // What the entry search evaluated last: the modal amplitudes at tau0 and, at its last
   // offset s, e^{lambda_j s} and e^{i (omega (tau0 + s) + phi0)}.
   struct Search {
