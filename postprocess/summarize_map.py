@@ -76,6 +76,10 @@ def census_lines(sweep, done) -> list[str]:
         lines.append(f"soft fraction: median {np.median(soft):.3g}, cells with some soft basin "
                      f"{int((soft > 0).sum())}, with soft fraction >= 0.9: {int((soft >= 0.9).sum())}")
         lines.append(f"unresolved initial states: {np.mean(unresolved):.3g} of all, at most {np.max(unresolved):.3g} in a cell")
+        if "budget_fraction" in sweep.data:  # maps from before it was kept have none
+            budget = sweep.data["budget_fraction"][done]
+            lines.append(f"initial states followed to analysis.max_periods (no early decision): {np.mean(budget):.3g} "
+                         f"of all, at most {np.max(budget):.3g} in a cell")
     # The census's attractors told by recurrence, not by a period (census.hpp).
     recurrent = [code for code, name in sweep.regime_meanings.items() if name in NON_PERIODIC]
     non_periodic = np.isin(sweep.census["regime"][done], recurrent)  # (cells, A)

@@ -24,7 +24,8 @@ Map file (include/vibromap/io/map_file.hpp, one file per sweep; N axes, first ax
             cells_done, complete, stored (the quantity names, space separated),
             census_attractors (A > 0 in a census map)
   census map (a sweep whose scene had [census]): /attractors (N-D int32), /soft_fraction,
-            /unresolved_fraction, /unlisted_fraction (N-D float64), and per (cell, attractor)
+            /unresolved_fraction, /unlisted_fraction, /budget_fraction (N-D float64; budget_fraction
+            absent from maps written before it was kept), and per (cell, attractor)
             /attractor_<q> of shape + (A,) over the coordinate /attractor: regime, stable,
             hertz_valid, from_rest, soft, transient (int8, -1 beyond the cell's attractors;
             transient absent from maps written before it was kept), n, k,

@@ -58,7 +58,8 @@ def census_map(path):
         f.attrs["census_attractors"] = np.int64(A)
         f.create_dataset("attractors", data=count)
         for name, values in (("soft_fraction", soft), ("unresolved_fraction", np.where(done, 0.0, np.nan)),
-                             ("unlisted_fraction", np.where(done, 0.0, np.nan))):
+                             ("unlisted_fraction", np.where(done, 0.0, np.nan)),
+                             ("budget_fraction", np.where(done, np.where(count == 3, 0.25, 0.0), np.nan))):
             f.create_dataset(name, data=values)
         for name, values in per.items():
             f.create_dataset("attractor_" + name, data=values)
@@ -77,6 +78,8 @@ def test_census_datasets_are_read_with_their_attractor_dimension(tmp_path):
     assert bad == 0  # steady_residual may be NaN in a census map
     assert "cells with 1, 2, ... attractors: 1: 1, 2: 2, 3: 2" in text
     assert "with soft fraction >= 0.9: 1" in text  # the cell with one attractor
+    # The two cells with 3 attractors followed a quarter of their states to the budget's end.
+    assert "initial states followed to analysis.max_periods (no early decision): 0.1 of all, at most 0.25 in a cell" in text
     # Cells with 3 attractors list a non-periodic third: (1, 1) and (2, 0), each at 0.25 of the cell.
     assert ("non-periodic attractors: 2 in 2 cells, basin fraction 0.1 of all; "
             "states seen to leave them (transient chaos) in 1 cells") in text

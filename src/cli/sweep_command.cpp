@@ -41,7 +41,9 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
       .field("requests", f.requests)
       .field("request_us", f.requests ? 1e6 * f.request_s / static_cast<double>(f.requests) : 0.0);
   if (r.census_initial_conditions > 0)
-    w.field("census_initial_conditions", r.census_initial_conditions).field("initial_conditions_per_s", state_rate(r));
+    w.field("census_initial_conditions", r.census_initial_conditions)
+        .field("initial_conditions_per_s", state_rate(r))
+        .field("census_budget_states", r.census_budget_states);
   w.key("regimes").begin_object();
   for (const auto& [label, count] : r.regimes) w.field(label, count);
   w.end_object().end_object();
@@ -60,7 +62,10 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
       << " s)\n";
   if (r.census_initial_conditions > 0)
     out << "census         " << r.census_initial_conditions << " initial states per cell, " << state_rate(r)
-        << " initial states/s\n";
+        << " initial states/s\n"
+        << "budget         " << r.census_budget_states << " of "
+        << (f.items_resumed + f.items_computed) * static_cast<std::uint64_t>(r.census_initial_conditions)
+        << " initial states followed to analysis.max_periods (no early decision: brute force follows them as far)\n";
   out << "regimes       ";
   for (const auto& [label, count] : r.regimes) out << " " << label << " " << count;
   out << "\n";

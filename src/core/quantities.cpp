@@ -187,6 +187,7 @@ CellResult summarize(const CensusSummary& s) {
   c.soft_fraction = s.soft_fraction;
   c.unresolved_fraction = s.unresolved / K;
   c.unlisted_fraction = s.unlisted / K;
+  c.budget_fraction = s.budget_states / K;
   bool rest_decided = false;
   for (const Attractor& a : s.attractors) {
     AttractorRecord r;

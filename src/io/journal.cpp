@@ -16,7 +16,7 @@ namespace vibromap {
 namespace {
 
 constexpr char kMagic[4] = {'V', 'M', 'J', '1'};
-constexpr std::uint32_t kFormat = 2;  // 2: census attractor records carry the transient flag
+constexpr std::uint32_t kFormat = 3;  // 2: census attractor records carry the transient flag; 3: budget_fraction
 
 std::array<std::uint32_t, 256> crc_table() {
   std::array<std::uint32_t, 256> t{};

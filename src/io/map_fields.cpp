@@ -118,6 +118,9 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
       "unresolved_fraction", "fraction of initial states still settling when the budget ran out", "1"));
   fields.push_back(real_field<&CellResult::unlisted_fraction>(
       "unlisted_fraction", "fraction of initial states reaching an attractor beyond census.max_attractors", "1"));
+  fields.push_back(real_field<&CellResult::budget_fraction>(
+      "budget_fraction",
+      "fraction of initial states followed to analysis.max_periods without an early decision (as brute force)", "1"));
   const auto code = [](std::string name, std::string long_name, std::int8_t last, std::string meanings) {
     return code_field<&CellResult::regime>(std::move(name), std::move(long_name), last, std::move(meanings));
   };

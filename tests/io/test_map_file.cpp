@@ -239,6 +239,7 @@ SweepMap sample_census_map() {
     c.soft_fraction = 0.125 * static_cast<double>(i % 8);
     c.unresolved_fraction = i % 2 == 0 ? 0.0 : 0.0625;
     c.unlisted_fraction = 1.0 / (n + 1.0);
+    c.budget_fraction = i % 3 == 0 ? 0.0 : 0.03125 * static_cast<double>(i % 5);
     for (std::size_t a = 0; a < i % 4; ++a) {
       AttractorRecord r;
       const auto x = static_cast<double>(a);
@@ -275,7 +276,8 @@ TEST_F(MapFile, RoundTripsACensusMapWithItsAttractorDimension) {
     const CellResult& e = map.cells[i];
     const CellResult& a = back.cells[i];
     ASSERT_EQ(a.census.size(), e.census.size());
-    for (const auto member : {&CellResult::soft_fraction, &CellResult::unresolved_fraction, &CellResult::unlisted_fraction})
+    for (const auto member : {&CellResult::soft_fraction, &CellResult::unresolved_fraction, &CellResult::unlisted_fraction,
+                              &CellResult::budget_fraction})
       EXPECT_TRUE(same(a.*member, e.*member));
     for (std::size_t k = 0; k < e.census.size(); ++k) {
       const AttractorRecord& x = e.census[k];

@@ -87,6 +87,7 @@ struct CellResult {
   double soft_fraction = std::numeric_limits<double>::quiet_NaN();        // census: basin fraction of soft attractors
   double unresolved_fraction = std::numeric_limits<double>::quiet_NaN();  // census: initial states not decided
   double unlisted_fraction = std::numeric_limits<double>::quiet_NaN();    // census: beyond max_attractors
+  double budget_fraction = std::numeric_limits<double>::quiet_NaN();      // census: followed to max_periods
 
   double value(Quantity q) const;  // the quantity as a double (integers exactly up to 2^53)
 };

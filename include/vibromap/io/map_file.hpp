@@ -26,7 +26,8 @@
 // With a census (a sweep whose scene has [census]; root attribute census_attractors = A > 0):
 //   /attractor       1-D int32 coordinate 0..A-1, a dimension scale (the census's attractor index)
 //   /attractors      N-D int32: attractors the census lists in the cell (0..A)
-//   /soft_fraction, /unresolved_fraction, /unlisted_fraction   N-D float64, units 1
+//   /soft_fraction, /unresolved_fraction, /unlisted_fraction, /budget_fraction (the initial
+//                    states followed to analysis.max_periods, no early decision)   N-D float64, units 1
 //   /attractor_<q>   (N+1)-D, shape + (A,): per (cell, attractor): regime, stable, hertz_valid,
 //                    from_rest, soft, transient (int8 flags, -1 where the cell lists fewer attractors),
 //                    n, k (int32), T_con, k_con, F_max, z_ratio, max_floquet, fraction,

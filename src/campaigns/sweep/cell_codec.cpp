@@ -12,7 +12,7 @@ constexpr double CellResult::*kReals[] = {&CellResult::wall_s, &CellResult::stea
                                            &CellResult::max_multiplier, &CellResult::lyapunov,
                                            &CellResult::e_effective, &CellResult::energy_dissipated};
 constexpr double CellResult::*kCensusReals[] = {&CellResult::soft_fraction, &CellResult::unresolved_fraction,
-                                                 &CellResult::unlisted_fraction};
+                                                 &CellResult::unlisted_fraction, &CellResult::budget_fraction};
 constexpr std::int8_t AttractorRecord::*kAttractorCodes[] = {&AttractorRecord::regime, &AttractorRecord::stable,
                                                              &AttractorRecord::hertz_valid, &AttractorRecord::from_rest,
                                                              &AttractorRecord::soft, &AttractorRecord::transient};

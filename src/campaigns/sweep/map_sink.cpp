@@ -1,14 +1,20 @@
 #include "map_sink.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace vibromap::detail {
 
 std::string regime_label(const CellResult& c) { return Regime{static_cast<RegimeKind>(c.regime), c.n, c.k}.label(); }
 
-MapSink::MapSink(const CellCodec& codec, MapWriter writer, std::map<std::string, long> regimes, int ranks)
-    : ResultSink<CellResult>(codec), writer_(std::move(writer)), regimes_(std::move(regimes)), ranks_(ranks) {}
+void MapTally::add(const CellResult& c) {
+  ++regimes[regime_label(c)];
+  if (std::isfinite(c.budget_fraction)) census_budget += c.budget_fraction;
+}
+
+MapSink::MapSink(const CellCodec& codec, MapWriter writer, MapTally tally, int ranks)
+    : ResultSink<CellResult>(codec), writer_(std::move(writer)), tally_(std::move(tally)), ranks_(ranks) {}
 
 std::uint64_t MapSink::pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) {
   spans_.clear();
@@ -19,14 +25,14 @@ std::uint64_t MapSink::pending(std::uint64_t from, std::uint64_t max, std::vecto
 
 void MapSink::store_results(const ItemRange& range, std::vector<CellResult>& results) {
   writer_.write(range.begin, results);
-  for (const CellResult& c : results) ++regimes_[regime_label(c)];
+  for (const CellResult& c : results) tally_.add(c);
 }
 
 void MapSink::finish(bool) { writer_.finish(ranks_); }
 
 std::string MapSink::note() const {
   std::vector<std::pair<long, std::string>> top;
-  for (const auto& [label, count] : regimes_) top.emplace_back(-count, label);
+  for (const auto& [label, count] : tally_.regimes) top.emplace_back(-count, label);
   std::sort(top.begin(), top.end());
   std::string out;
   for (std::size_t i = 0; i < top.size() && i < 5; ++i)

@@ -10,10 +10,17 @@
 
 namespace vibromap::detail {
 
+// What the report says of the whole map (the cells it already held on resume included).
+struct MapTally {
+  std::map<std::string, long> regimes;  // regime label -> cells
+  double census_budget = 0.0;           // census: budget_fraction summed over the cells
+  void add(const CellResult& c);
+};
+
 class MapSink : public ResultSink<CellResult> {
  public:
-  // `regimes`: the counts of the cells the map already holds (resume).
-  MapSink(const CellCodec& codec, MapWriter writer, std::map<std::string, long> regimes, int ranks);
+  // `tally`: that of the cells the map already holds (resume).
+  MapSink(const CellCodec& codec, MapWriter writer, MapTally tally, int ranks);
 
   std::uint64_t items() const override { return writer_.layout().grid.size(); }
   std::uint64_t items_done() const override { return writer_.cells_done(); }
@@ -23,11 +30,11 @@ class MapSink : public ResultSink<CellResult> {
   void finish(bool complete) override;
   std::string note() const override;  // the five most frequent regimes
 
-  const std::map<std::string, long>& regimes() const { return regimes_; }
+  const MapTally& tally() const { return tally_; }
 
  private:
   MapWriter writer_;
-  std::map<std::string, long> regimes_;
+  MapTally tally_;
   int ranks_;
   std::vector<CellSpan> spans_;
 };

@@ -85,17 +85,17 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
   const MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
   const bool exists = std::filesystem::exists(config.output);
-  std::map<std::string, long> regimes;
+  detail::MapTally tally;
   if (config.resume && exists) {
-    MapWriter w = MapWriter::resume(config.output, [&](const CellResult& c) { ++regimes[detail::regime_label(c)]; });
+    MapWriter w = MapWriter::resume(config.output, [&](const CellResult& c) { tally.add(c); });
     check_same_run(w, layout, scene);
     report_repair(w);
-    return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(regimes), ranks);
+    return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(tally), ranks);
   }
   if (exists && !config.overwrite)
     throw SceneError(cat(config.output, ": already exists; use --resume to continue it or --overwrite to replace it"));
   check_space(config.output, layout);
-  return std::make_unique<detail::MapSink>(codec, MapWriter::create(config.output, layout, ranks), std::move(regimes),
+  return std::make_unique<detail::MapSink>(codec, MapWriter::create(config.output, layout, ranks), std::move(tally),
                                            ranks);
 }
 
@@ -138,8 +138,11 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   campaign.sink = sink.get();
   SweepReport report;
   report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
-  if (sink) report.regimes = sink->regimes();
-  if (scene.census) report.census_initial_conditions = scene.census->initial_conditions;
+  if (sink) report.regimes = sink->tally().regimes;
+  if (scene.census) {
+    report.census_initial_conditions = scene.census->initial_conditions;
+    if (sink) report.census_budget_states = std::llround(sink->tally().census_budget * report.census_initial_conditions);
+  }
   return report;
 }
 

@@ -5,6 +5,8 @@ attractor with its basin fraction, on MPI ranks, with checkpoint and resume.
 - each cell's census equals `vibromap run --census` at that cell's point (same numbers);
 - per cell, the listed fractions, the unresolved and the unlisted fractions sum to 1, and
   soft_fraction is the sum of the soft attractors' fractions;
+- budget_fraction is the share of states `run --census` reports followed to the budget's end,
+  and the report's census_budget_states their count over the map (after a resume too);
 - a census sweep killed with SIGKILL resumes to the same map as an uninterrupted run.
 """
 import json
@@ -74,13 +76,18 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
         assert (count >= 2).any()
         i, j = np.argwhere(count >= 2)[0]
         e1, e2 = f["E1"][i], f["E2"][j]
-        cell = {name: f[name][i, j] for name in ("attractors", "soft_fraction")}
+        cell = {name: f[name][i, j] for name in ("attractors", "soft_fraction", "budget_fraction")}
+        budget = f["budget_fraction"][()]
+        assert ((budget >= 0) & (budget <= 1)).all()
+        assert report["census_budget_states"] == round(8 * budget.sum())
         per = {name: f["attractor_" + name][i, j] for name in ("n", "k", "k_con", "fraction", "max_floquet", "x1")}
     run = subprocess.run([EXE, "run", str(scene), "--census", "--format", "json",
                           "--set", f"contact.E1={e1!r}", "--set", f"contact.E2={e2!r}"],
                          env=ENV, capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr
-    attractors = json.loads(run.stdout)["attractors"]
+    point = json.loads(run.stdout)
+    assert point["budget_states"] / point["K"] == cell["budget_fraction"]
+    attractors = point["attractors"]
     assert len(attractors) == cell["attractors"]
     for a, got in enumerate(attractors):
         assert got["n"] == per["n"][a] and got["k"] == per["k"][a]
@@ -95,7 +102,7 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
 def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
     scene = write_scene(tmp_path, 4, 4, checkpoint=0.2, k=24)
     reference = tmp_path / "reference.h5"
-    sweep(2, scene, reference)
+    whole = json.loads(sweep(2, scene, reference, "--format", "json").stdout)
 
     out = tmp_path / "killed.h5"
     proc = subprocess.Popen([MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out), "--quiet"],
@@ -113,4 +120,5 @@ def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
     report = json.loads(sweep(2, scene, out, "--resume", "--format", "json").stdout)
     assert report["cells_resumed"] == before
     assert report["cells_computed"] == 16 - before
+    assert report["census_budget_states"] == whole["census_budget_states"]
     assert_same_map(reference, out)

@@ -28,6 +28,7 @@ struct SweepReport {
   FarmReport farm;                       // cells, ranks, time, checkpoints, stop signal
   std::map<std::string, long> regimes;   // regime label -> cells, over the whole map (rank 0)
   int census_initial_conditions = 0;     // K of each cell's census (0: no census)
+  long census_budget_states = 0;         // census: initial states followed to analysis.max_periods, whole map
 };
 
 // Collective: every rank calls it with the same scene and config. Throws SceneError (no
