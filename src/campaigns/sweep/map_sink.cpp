@@ -10,7 +10,7 @@ std::string regime_label(const CellResult& c) { return Regime{static_cast<Regime
 
 void MapTally::add(const CellResult& c) {
   ++regimes[regime_label(c)];
-  if (std::isfinite(c.budget_fraction)) census_budget += c.budget_fraction;
+  if (census_k > 0 && std::isfinite(c.budget_fraction)) census_budget_states += std::lround(c.budget_fraction * census_k);
 }
 
 MapSink::MapSink(const CellCodec& codec, MapWriter writer, MapTally tally, int ranks)

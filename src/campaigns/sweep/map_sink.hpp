@@ -12,8 +12,9 @@ namespace vibromap::detail {
 
 // What the report says of the whole map (the cells it already held on resume included).
 struct MapTally {
+  int census_k = 0;                     // K of each cell's census (0: no census)
   std::map<std::string, long> regimes;  // regime label -> cells
-  double census_budget = 0.0;           // census: budget_fraction summed over the cells
+  long census_budget_states = 0;        // census: initial states followed to analysis.max_periods
   void add(const CellResult& c);
 };
 

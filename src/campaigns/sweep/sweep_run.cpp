@@ -86,6 +86,7 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   const MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
   const bool exists = std::filesystem::exists(config.output);
   detail::MapTally tally;
+  tally.census_k = scene.census ? scene.census->initial_conditions : 0;
   if (config.resume && exists) {
     MapWriter w = MapWriter::resume(config.output, [&](const CellResult& c) { tally.add(c); });
     check_same_run(w, layout, scene);
@@ -138,11 +139,11 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   campaign.sink = sink.get();
   SweepReport report;
   report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
-  if (sink) report.regimes = sink->tally().regimes;
-  if (scene.census) {
-    report.census_initial_conditions = scene.census->initial_conditions;
-    if (sink) report.census_budget_states = std::llround(sink->tally().census_budget * report.census_initial_conditions);
+  if (sink) {
+    report.regimes = sink->tally().regimes;
+    report.census_budget_states = sink->tally().census_budget_states;
   }
+  if (scene.census) report.census_initial_conditions = scene.census->initial_conditions;
   return report;
 }
 
