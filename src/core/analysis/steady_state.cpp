@@ -33,10 +33,11 @@ bool SteadyStateDetector::on_period_end(long period, const State& u) {
   const int last = count - 1;
   auto& gap = gaps_.emplace_back();
   gap.fill(std::numeric_limits<double>::infinity());
-  for (int n = 1; n <= n_max_ && n <= last; ++n) gap[static_cast<std::size_t>(n)] = distance(samples_[last], samples_[last - n]);
-
-  double best = std::numeric_limits<double>::infinity();
-  for (int n = 1; n <= n_max_ && n <= last; ++n) best = std::min(best, gap[static_cast<std::size_t>(n)]);
+  double best = std::numeric_limits<double>::infinity();  // the nearest earlier sample
+  for (int n = 1; n <= n_max_ && n <= last; ++n) {
+    gap[static_cast<std::size_t>(n)] = distance(samples_[last], samples_[last - n]);
+    best = std::min(best, gap[static_cast<std::size_t>(n)]);
+  }
   if (std::isfinite(best)) best_log10_.push_back(std::log10(std::max(best, 1e-300)));
   residual_ = best;
 
