@@ -7,7 +7,9 @@ basin fractions of one chosen cell.
                       per count); cells whose rest state reaches an attractor other than the
                       cell's largest basin are outlined
   --show soft         soft_fraction per cell: the total basin fraction of the attractors that
-                      are stable, Hertz-valid and have k_con <= census.soft_kcon (0..1)
+                      are soft (periodic with impacts, stable, Hertz-valid, k_con <= the map's
+                      soft_kcon) (0..1)
+A map made with analysis.steady = "shooting" says so in every picture's title.
   --show cell --at E1=1.4e10 E2=1e6
                       the basin fractions of the grid cell nearest those values, one bar per
                       attractor with its standard error, named by regime and k_con
@@ -144,7 +146,9 @@ def plot_map(sweep: SweepMap, sl, show: str):
         cmap = plt.get_cmap("viridis").copy()
         cmap.set_bad(COLOR_NOT_COMPUTED)
         mesh = ax.pcolormesh(x_edges, y_edges, soft, cmap=cmap, vmin=0.0, vmax=1.0, shading="flat")
-        fig.colorbar(mesh, ax=ax, pad=0.02).set_label("soft basin fraction (stable, Hertz-valid, k_con <= soft_kcon)")
+        kcon = f"{sweep.soft_kcon:g}" if "soft_kcon" in sweep.attrs else "census.soft_kcon"  # older maps: the scene's
+        fig.colorbar(mesh, ax=ax, pad=0.02).set_label("soft basin fraction (stable periodic with impacts, Hertz-valid, "
+                                                      f"k_con <= {kcon})", fontsize=9)
         robust = int((soft >= 0.9).sum())
         title = f"soft basin fraction (census); >= 0.9 in {maps.cells_text(robust)}"
         if (~done).any():
@@ -191,8 +195,9 @@ def plot_cell(sweep: SweepMap, index: tuple):
     for yy, f, e in zip(y, fractions, errors):
         ax.text(min(f + e + 0.02, 0.92), yy, f"{f:.3f}", va="center", fontsize=9)
     soft = float(sweep.data["soft_fraction"][index])
+    warning = sweep.answer_warning()  # the from-rest attractor's datasets of a shooting map
     ax.set_title(f"basins of the cell {cell_text(sweep, index)}  ({sweep.path.rsplit('/', 1)[-1]})\n"
-                 f"soft fraction {soft:.3f}; green: soft attractors", fontsize=10)
+                 f"soft fraction {soft:.3f}; green: soft attractors" + (f"\n{warning}" if warning else ""), fontsize=10)
     return fig
 
 

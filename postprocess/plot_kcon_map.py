@@ -1,14 +1,19 @@
 #!/usr/bin/python3
-"""Plot the impact softness k_con over a 2-D slice of a vibromap map, with the line where the
-impact turns soft.
+"""Plot the impact softness k_con over a 2-D slice of a vibromap map, with the soft region
+outlined.
 
 k_con = T / T_con (forcing period over the duration of the longest impact) is the source
 paper's softness measure: near 1000 the impact is rigid (a short "stick"-shaped force pulse),
 near 1-10 it is soft (a long "bell"). The heat map uses a log colour scale; cells without an
 impact (no contact, or k_con not finite) and cells not computed are drawn in two greys and
-named in the legend. A contour marks k_con = --threshold (default 10), the border between soft
-(below) and rigid (above). Other axes are held fixed as in plot_regime_map (--fix); the title
-names their values. The map must have stored k_con ([sweep] store = ["k_con", ...]).
+named in the legend. Cells beyond the Hertz limit (z_max/R* > the map's hertz_limit, 0.05 by
+default) are greyed and hatched: their k_con comes from a force law that does not hold there.
+A red line outlines the soft region by the one definition (periodic with impacts, stable,
+Hertz-valid, k_con <= the map's soft_kcon, 10 by default): the map's /soft, or for an older map
+computed from regime, stable, hertz_valid (else z_ratio) and k_con; an invalid cell is never
+inside it. Other axes are held fixed as in plot_regime_map (--fix); the title names their values
+and, for a map made by shooting, that each cell is some stable orbit, not necessarily the motion
+from rest. The map must have stored k_con ([sweep] store = ["k_con", ...]).
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file, or a map
 without k_con (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run
@@ -32,10 +37,23 @@ try:
     import numpy as np
     from matplotlib.collections import LineCollection
     from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
 
     # vibromap_h5 (h5py) first, so that a missing module is reported under this script's name.
-    from vibromap_h5 import MapSlice, MapSliceError, SweepMap, VibromapFileError, read_map, save_figure
+    from vibromap_h5 import (
+        FLAG_NO,
+        FLAG_YES,
+        HERTZ_KEY,
+        SOFT_KEY,
+        MapSlice,
+        MapSliceError,
+        SoftInfo,
+        SweepMap,
+        VibromapFileError,
+        add_soft_cells,
+        cell_boundary,
+        read_map,
+        save_figure,
+    )
 
     import plot_regime_map as maps
 except ImportError as exc:
@@ -44,10 +62,14 @@ except ImportError as exc:
 FIGSIZE_IN = (9.0, 6.5)  # width, height in inches; at the default 150 dpi: 1350 x 975 px
 STRIP_FIGSIZE_IN = (9.0, 3.5)  # a 1-D map: 1350 x 525 px
 CMAP = "viridis"  # dark = soft (small k_con), bright = rigid
-COLOR_THRESHOLD = "#e31a1c"  # red: the soft/rigid border
+COLOR_SOFT_OUTLINE = "#e31a1c"  # red: the border of the soft region
 COLOR_NO_IMPACT = "#9e9e9e"  # mid grey: computed, but no impact (k_con undefined)
 COLOR_NOT_COMPUTED = "#dedede"  # light grey: not computed yet
-THRESHOLD_GID = "k_con-threshold"  # gid of the threshold line collection (tests find it by this)
+HERTZ_HATCH = "xx"  # over Hertz-invalid cells, on a translucent white that greys their colour
+HERTZ_HATCH_COLOR = "0.25"
+HERTZ_FACE = (1.0, 1.0, 1.0, 0.55)
+SOFT_GID = "soft-outline"  # gid of the soft region's outline (tests find it by this)
+HERTZ_GID = "hertz-invalid"  # gid of the hatched Hertz-invalid cells
 
 
 def parse_args(argv: list[str] | None):
@@ -55,9 +77,11 @@ def parse_args(argv: list[str] | None):
         prog=PROG,
         description=(
             "Plot k_con = T/T_con (forcing period over impact duration) over a 2-D slice of a vibromap "
-            "map file, on a log colour scale, with the contour k_con = THRESHOLD where the impact turns "
-            "soft. k_con ~1000 is a rigid impact, ~1-10 a soft one. Cells without an impact or not "
-            "computed are grey. The map must store k_con ([sweep] store = [\"k_con\", ...])."
+            "map file, on a log colour scale, with the soft region outlined: periodic with impacts, "
+            "stable, Hertz-valid and k_con <= the map's soft_kcon (10 by default). k_con ~1000 is a "
+            "rigid impact, ~1-10 a soft one. Cells beyond the Hertz limit (z_max/R* > hertz_limit) are "
+            "greyed and hatched; cells without an impact or not computed are grey. The map must store "
+            "k_con ([sweep] store = [\"k_con\", ...])."
         ),
         suffix="_kcon",
     )
@@ -65,11 +89,12 @@ def parse_args(argv: list[str] | None):
         "--threshold",
         metavar="K",
         type=float,
-        default=10.0,
-        help="draw the contour k_con = K, the soft/rigid border (default: 10; ~1000 is rigid, ~1-10 soft)",
+        default=None,
+        help="soft means k_con <= K (default: the map's soft_kcon, 10 in maps without it; another K "
+        "recomputes the soft cells from regime, stable, Hertz validity and k_con; ~1000 is rigid, ~1-10 soft)",
     )
     args = maps.finish_args(parser, argv, "_kcon")
-    if not (np.isfinite(args.threshold) and args.threshold > 0):
+    if args.threshold is not None and not (np.isfinite(args.threshold) and args.threshold > 0):
         parser.error("--threshold must be a positive number")
     return args
 
@@ -92,124 +117,74 @@ def kcon_cells(sl: MapSlice):
     return np.ma.masked_array(k_con, mask=~valid), no_impact, not_computed
 
 
-def _axis_coordinates(axis, values):
-    """Coordinates in which contours are interpolated: log10 for a log axis, else the values."""
-    return np.log10(values) if axis is not None and axis.is_log else np.asarray(values, dtype=np.float64)
+def draw_kcon(fig, ax, x_edges, y_edges, k_con: np.ma.MaskedArray, soft_kcon: float, strip: bool) -> None:
+    """k_con on a log colour scale (masked cells transparent) and its colorbar, with soft_kcon
+    marked on the colorbar."""
+    low, high = float(k_con.min()), float(k_con.max())
+    if high <= low * 1.0000001:
+        low, high = low / 2.0, high * 2.0
+    cmap = plt.get_cmap(CMAP).copy()
+    cmap.set_bad(alpha=0.0)  # masked cells: the grey layer below shows through
+    mesh = ax.pcolormesh(x_edges, y_edges, k_con, cmap=cmap, norm=matplotlib.colors.LogNorm(low, high), shading="flat")
+    colorbar = fig.colorbar(mesh, ax=ax, pad=0.02)
+    colorbar.set_label("k_con = T/T_con" if strip else "k_con = T/T_con  (~1000 rigid, ~1-10 soft)")
+    if low <= soft_kcon <= high:
+        colorbar.ax.axhline(soft_kcon, color=COLOR_SOFT_OUTLINE, linewidth=2.0)
 
 
-def _from_coordinates(axis, u):
-    return 10.0**u if axis is not None and axis.is_log else u
+def soft_outline(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
+    """Outlines the soft cells (data[SOFT_KEY] == 1: Hertz-valid ones only) along their edges, a
+    LineCollection with gid SOFT_GID; returns its legend entry, which names the definition, or
+    says why the soft cells cannot be told."""
+    if not info.soft_known:
+        return Line2D([], [], color="none", label=f"soft cells unknown: {info.soft_source}")
+    soft = np.asarray(sl.data[SOFT_KEY]) == FLAG_YES
+    if not soft.any():
+        return Line2D([], [], color="none", label=f"no soft cell here ({info.definition()})")
+    segments = cell_boundary(soft, x_edges, y_edges)
+    ax.add_collection(LineCollection(segments, colors=COLOR_SOFT_OUTLINE, linewidths=2.0, capstyle="projecting",
+                                     gid=SOFT_GID), autolim=False)  # fmt: skip
+    return Line2D([], [], color=COLOR_SOFT_OUTLINE, linewidth=2.0,
+                  label=f"{info.definition()} (outlined): {maps.cells_text(int(soft.sum()))}")  # fmt: skip
 
 
-def threshold_segments(sl: MapSlice, k_con: np.ma.MaskedArray, threshold: float) -> list[np.ndarray]:
-    """Polylines (arrays of (x, y) in data units) where k_con crosses `threshold`, interpolated
-    linearly in log10(k_con) and in log10 of log axes (so that they sit right on log plots).
-    A slice one cell high (a strip) gives vertical segments at the crossings along x, one cell
-    wide horizontal segments at the crossings along y."""
-    z = np.ma.log10(k_con)
-    level = np.log10(threshold)
-    u = _axis_coordinates(sl.x, sl.x.plot_values)
-    if sl.y is None or z.shape[0] == 1:
-        y_edges = maps.cell_edges(sl.y) if sl.y is not None else np.array([0.0, 1.0])
-        return [
-            np.array([[x, y_edges[0]], [x, y_edges[-1]]]) for x in _from_coordinates(sl.x, _crossings(u, z[0], level))
-        ]
-    v = _axis_coordinates(sl.y, sl.y.plot_values)
-    if z.shape[1] == 1:
-        x_edges = maps.cell_edges(sl.x)
-        return [
-            np.array([[x_edges[0], y], [x_edges[-1], y]]) for y in _from_coordinates(sl.y, _crossings(v, z[:, 0], level))
-        ]
-    segments = []
-    for line in _contour_lines(u, v, z, level):
-        if len(line) >= 2:
-            segments.append(np.column_stack([_from_coordinates(sl.x, line[:, 0]), _from_coordinates(sl.y, line[:, 1])]))
-    return segments
+def hertz_marks(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
+    """Greys and hatches the Hertz-invalid cells (z_max/R* > hertz_limit: their k_con is computed
+    beyond the force law's validity); returns the legend entry, with their count."""
+    if not info.hertz_known:
+        return Line2D([], [], color="none", label=f"Hertz validity unknown: {info.hertz_source}")
+    invalid = np.asarray(sl.data[HERTZ_KEY]) == FLAG_NO
+    if invalid.any():
+        maps.hatch_cells(ax, x_edges, y_edges, invalid, HERTZ_HATCH, HERTZ_HATCH_COLOR, HERTZ_FACE, HERTZ_GID)
+    label = f"{info.invalid_text()}: {maps.cells_text(int(invalid.sum()))}"
+    return maps.cell_patch(HERTZ_FACE, label, HERTZ_HATCH, HERTZ_HATCH_COLOR)
 
 
-def _contour_lines(u, v, z, level):
-    """Contour lines of z (masked, shape (len(v), len(u))) at `level`, in (u, v) coordinates."""
-    try:
-        import contourpy  # matplotlib >= 3.6 depends on it
-
-        generator = contourpy.contour_generator(x=u, y=v, z=z, line_type=contourpy.LineType.Separate)
-        return generator.lines(level)
-    except ImportError:  # older matplotlib: contour on a throwaway figure
-        fig, ax = plt.subplots()
-        try:
-            return ax.contour(u, v, z, levels=[level]).allsegs[0]
-        finally:
-            plt.close(fig)
-
-
-def _crossings(u: np.ndarray, z: np.ma.MaskedArray, level: float) -> np.ndarray:
-    """Positions along u where the 1-D masked z crosses `level` between neighbouring unmasked
-    points (linear interpolation); a point exactly at the level counts once."""
-    found = []
-    for i in range(len(u) - 1):
-        a, b = z[i], z[i + 1]
-        if np.ma.is_masked(a) or np.ma.is_masked(b) or a == b or (a - level) * (b - level) > 0:
-            continue
-        found.append(u[i] + (level - a) / (b - a) * (u[i + 1] - u[i]))
-    return np.unique(np.asarray(found, dtype=np.float64))
-
-
-def plot(sweep: SweepMap, sl: MapSlice, threshold: float = 10.0):
-    """The figure: log-coloured k_con, grey cells without impact or not computed, the contour
-    k_con = threshold (a LineCollection with gid THRESHOLD_GID) and a colorbar."""
+def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
+    """The figure: log-coloured k_con, grey cells without impact or not computed, Hertz-invalid
+    cells greyed and hatched, the soft region (add_soft_cells' flag: never an invalid cell)
+    outlined (a LineCollection with gid SOFT_GID), a colorbar and a legend row below."""
     k_con, no_impact, not_computed = kcon_cells(sl)
-    strip = sl.y is None
-    # The legend gets a row of its own below the plot, so that constrained layout keeps it clear
-    # of the x label (matplotlib < 3.7 does not lay out figure legends).
-    fig, (ax, ax_legend) = plt.subplots(
-        2,
-        1,
-        figsize=STRIP_FIGSIZE_IN if strip else FIGSIZE_IN,
-        constrained_layout=True,
-        gridspec_kw={"height_ratios": [1.0, 0.16 if strip else 0.05]},
-    )
-    ax_legend.axis("off")
+    fig, ax, ax_legend = maps.figure_with_legend_row(sl, FIGSIZE_IN, STRIP_FIGSIZE_IN)
     x_edges, y_edges = maps.setup_axes(ax, sl)
-    ax.set_title(maps.slice_title(f"k_con = T/T_con, soft below {threshold:g}", sweep, sl), fontsize=10)
+    ax.set_title(maps.slice_title("k_con = T/T_con, soft region outlined", sweep, sl), fontsize=10)
 
     # Grey cells first: 0 = no impact, 1 = not computed, masked where k_con is shown.
     grey = np.ma.masked_array(not_computed.astype(np.int64), mask=~(no_impact | not_computed))
     grey_cmap = matplotlib.colors.ListedColormap([COLOR_NO_IMPACT, COLOR_NOT_COMPUTED])
     ax.pcolormesh(x_edges, y_edges, grey, cmap=grey_cmap, vmin=-0.5, vmax=1.5, shading="flat")
-
     handles = []
     if k_con.count() > 0:
-        low, high = float(k_con.min()), float(k_con.max())
-        if high <= low * 1.0000001:
-            low, high = low / 2.0, high * 2.0
-        cmap = plt.get_cmap(CMAP).copy()
-        cmap.set_bad(alpha=0.0)  # masked cells: the grey layer below shows through
-        mesh = ax.pcolormesh(
-            x_edges, y_edges, k_con, cmap=cmap, norm=matplotlib.colors.LogNorm(low, high), shading="flat"
-        )
-        colorbar = fig.colorbar(mesh, ax=ax, pad=0.02)
-        colorbar.set_label("k_con = T/T_con" if strip else "k_con = T/T_con  (~1000 rigid, ~1-10 soft)")
-        if low <= threshold <= high:
-            colorbar.ax.axhline(threshold, color=COLOR_THRESHOLD, linewidth=2.0)
-
-        segments = threshold_segments(sl, k_con, threshold)
-        if segments:
-            lines = LineCollection(segments, colors=COLOR_THRESHOLD, linewidths=2.0, gid=THRESHOLD_GID)
-            ax.add_collection(lines, autolim=False)
-            label = f"k_con = {threshold:g}: soft where k_con < {threshold:g}, rigid above"
-        else:
-            side = "soft" if high < threshold else "rigid"
-            label = f"k_con = {threshold:g} not crossed: all {side} here ({low:.3g} to {high:.3g})"
-        handles.append(Line2D([], [], color=COLOR_THRESHOLD, linewidth=2.0, label=label))
+        draw_kcon(fig, ax, x_edges, y_edges, k_con, info.soft_kcon, sl.y is None)
     else:
         handles.append(Line2D([], [], color="none", label="no cell with an impact in this slice"))
+    handles.append(soft_outline(ax, sl, info, x_edges, y_edges))
+    handles.append(hertz_marks(ax, sl, info, x_edges, y_edges))
     counts = ((no_impact, COLOR_NO_IMPACT, "no impact / no k_con"), (not_computed, COLOR_NOT_COMPUTED, "not computed"))
     for mask, color, what in counts:
-        cells = int(mask.sum())
-        if cells:
-            plural = "s" if cells != 1 else ""
-            handles.append(Patch(facecolor=color, edgecolor="0.4", linewidth=0.5, label=f"{what}: {cells} cell{plural}"))
-    ax_legend.legend(handles=handles, loc="center", ncol=len(handles), frameon=False, fontsize=9)
+        if mask.any():
+            handles.append(maps.cell_patch(color, f"{what}: {maps.cells_text(int(mask.sum()))}"))
+    maps.legend_row(fig, ax_legend, handles)
     return fig
 
 
@@ -218,12 +193,13 @@ def main(argv: list[str] | None = None) -> int:
     try:
         sweep = read_map(args.map)
         require_kcon(sweep)
+        info = add_soft_cells(sweep, args.threshold)
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        save_figure(plot(sweep, sl, args.threshold), args.output, args.dpi)
+        save_figure(plot(sweep, sl, info), args.output, args.dpi)
     except (VibromapFileError, MapSliceError) as exc:
         print(f"{PROG}: error: {exc}", file=sys.stderr)
         return 2
-    for note in maps.snapped_notes(sl):
+    for note in maps.snapped_notes(sl) + maps.soft_notes(info):
         print(f"{PROG}: note: {note}")
     print(f"{PROG}: wrote {args.output}")
     return 0

@@ -16,7 +16,10 @@ Three figures, named after the optimisation file OPT.h5 (or -o PREFIX):
                           file the optimisation names in its seeds_from attribute.
   PREFIX_best.png         displacements and contact force of the best point's steady motion
                           (plot_trajectory's figure), from the trajectory file the optimisation
-                          wrote beside OPT.h5.
+                          wrote beside OPT.h5; the title names the motion's Hertz validity
+                          (z_max/R* against the limit: "Hertz-valid" or "Hertz-INVALID") from
+                          the best point's re-solve from rest (best/00/integrate), when the
+                          file holds its z_ratio or hertz_valid.
 A figure whose input is missing (seeds from the scene's point: no map; no feasible point: no
 trajectory) is skipped with a note.
 
@@ -47,6 +50,7 @@ try:
 
     # vibromap_h5 (h5py) first, so that a missing module is reported under this script's name.
     from vibromap_h5 import (
+        HERTZ_LIMIT_DEFAULT,
         MapSliceError,
         VibromapFileError,
         open_h5,
@@ -110,6 +114,7 @@ class Optimisation:
     starts: list[Start]
     best: list[dict]  # per best point: every parameter (E1, ..., omega2), objective, regime, k_con, ...
     trajectory: str  # the best point's trajectory file name ("" when none)
+    hertz_limit: float = HERTZ_LIMIT_DEFAULT  # z_max/R* above which Hertz theory does not hold
 
     def column(self, name: str) -> int | None:
         return self.variables.index(name) if name in self.variables else None
@@ -154,6 +159,20 @@ def _read_best(group) -> dict:
     return point
 
 
+def file_hertz_limit(f) -> float:
+    """The Hertz limit the optimisation ran with: its hertz_limit attribute, else its scene's
+    [analysis] hertz_limit, else the default (0.05)."""
+    if "hertz_limit" in f.attrs:
+        return float(np.asarray(f.attrs["hertz_limit"]).reshape(()))
+    try:
+        import tomllib  # Python >= 3.11
+
+        analysis = tomllib.loads(_text(f.attrs.get("scene", ""))).get("analysis", {})
+        return float(analysis.get("hertz_limit", HERTZ_LIMIT_DEFAULT))
+    except (ImportError, ValueError, TypeError, AttributeError):
+        return HERTZ_LIMIT_DEFAULT
+
+
 def read_optimise(path: str) -> Optimisation:
     """Reads an optimisation file written by vibromap optimise (optimise_file.hpp's layout)."""
     path = os.fspath(path)
@@ -179,6 +198,7 @@ def read_optimise(path: str) -> Optimisation:
             starts=starts,
             best=best,
             trajectory=_text(f.attrs.get("trajectory", "")),
+            hertz_limit=file_hertz_limit(f),
         )
 
 
@@ -189,6 +209,23 @@ def soft_check_text(point: dict) -> str:
     verdict = "" if point.get("soft_check_passed", 0) else ", FAILS the check"
     return (f"\nsoft fraction {point['soft_check_soft_fraction']:.3g} +- {point['soft_check_soft_fraction_stderr']:.2g}"
             f" (K = {int(point['soft_check_initial_conditions'])}){verdict}")
+
+
+def hertz_text(opt: Optimisation) -> str:
+    """The best point's Hertz validity as its re-solve from rest (the motion PREFIX_best.png
+    shows) found it, e.g. "Hertz-valid: z_max/R* = 0.012 <= 0.05" or "Hertz-INVALID: z_max/R* =
+    0.21 > 0.05"; "" when the file holds neither its z_ratio nor its hertz_valid."""
+    point = opt.best[0] if opt.best else {}
+    z, flag = point.get("integrate_z_ratio"), point.get("integrate_hertz_valid")
+    if z is None and flag is None:
+        return ""
+    valid = bool(flag) if flag is not None else z <= opt.hertz_limit
+    verdict = "Hertz-valid" if valid else "Hertz-INVALID (not a valid answer)"
+    if z is None or not np.isfinite(z):
+        return verdict
+    if (z <= opt.hertz_limit) != valid:  # the file's flag against another limit: say only the ratio
+        return f"{verdict}: z_max/R* = {z:.3g}"
+    return f"{verdict}: z_max/R* = {z:.3g} {'<=' if valid else '>'} {opt.hertz_limit:g}"
 
 
 def running_best(objective: np.ndarray, feasible: np.ndarray, sense: str) -> np.ndarray:
@@ -388,7 +425,8 @@ def write_figures(args: argparse.Namespace) -> tuple[list[str], list[str]]:
     else:
         traj = read_trajectory(traj_path)
         fig = plot_trajectory.plot(traj, plot_trajectory.select_periods(traj, args.periods))
-        fig.suptitle(f"best point: {plot_trajectory.title(traj)}")
+        hertz = hertz_text(opt)
+        fig.suptitle(f"best point: {plot_trajectory.title(traj)}" + (f"\n{hertz}" if hertz else ""))
         out = f"{args.output}_best.png"
         save_figure(fig, out, args.dpi)
         written.append(out)

@@ -10,7 +10,8 @@ unstable (its largest Floquet multiplier outside the unit circle; the map's stab
 hatched, with their count in the legend. Cells are drawn on their true edges
 (in log space for a log axis, which is shown as log). A map with more than two axes is cut at
 one grid value of every other axis (--fix, default the middle of the axis); the title names
-those values. A 1-D map is drawn as a strip.
+those values, and, for a map made with analysis.steady = "shooting", that each cell is some
+stable orbit, not necessarily the motion from rest. A 1-D map is drawn as a strip.
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file (one line
 on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
@@ -38,9 +39,11 @@ try:
 
     from vibromap_h5 import (
         NOT_COMPUTED,
+        SOFT_FROM_MAP,
         STABLE_NO,
         MapSlice,
         MapSliceError,
+        SoftInfo,
         SweepMap,
         VibromapFileError,
         axis_name,
@@ -155,6 +158,21 @@ def snapped_notes(sl: MapSlice) -> list[str]:
     return notes
 
 
+def soft_notes(info: SoftInfo) -> list[str]:
+    """Notes on what the soft cells rest on when it is not the map's own /soft and hertz_valid:
+    computed for an older map, not known at all, or a /soft cell overruled as Hertz-invalid."""
+    notes = []
+    if not info.soft_known:
+        notes.append(f"soft cells unknown: {info.soft_source}")
+    elif info.soft_source != SOFT_FROM_MAP:
+        notes.append(f"soft cells {info.soft_source} ({info.definition()})")
+    if not info.hertz_known:
+        notes.append(f"Hertz validity unknown: {info.hertz_source}")
+    if info.overruled:
+        notes.append(f"{cells_text(info.overruled)} the map calls soft are Hertz-invalid: shown as not soft")
+    return notes
+
+
 def label_colors(labels: list[str]) -> list[str]:
     """A colour per label: the fixed kind colours, the periodic palette in the given order."""
     colors, periodic, other = [], 0, 0
@@ -193,14 +211,16 @@ def setup_axes(ax, sl: MapSlice):
 
 
 def slice_title(what: str, sweep: SweepMap, sl: MapSlice) -> str:
-    """Two lines: what over which axes, then the fixed values (and whether the run is partial)."""
+    """Two lines: what over which axes, then the fixed values (and whether the run is partial);
+    a third for a map made by shooting, whose cells are not necessarily the motion from rest."""
     over = sl.x.name if sl.y is None else f"{sl.y.name} over {sl.x.name}"
     first = f"{what}: {over}  ({os.path.basename(sweep.path)})"
     second = f"fixed: {sl.fixed_text()}" if sl.fixed else "all axes shown"
     done, total = sweep.attrs.get("cells_done"), sweep.attrs.get("cells_total")
     if sweep.attrs.get("complete") == 0 and done is not None and total is not None:
         second += f";  partial run: {done} of {total} cells done"
-    return f"{first}\n{second}"
+    warning = sweep.answer_warning()
+    return f"{first}\n{second}" + (f"\n{warning}" if warning else "")
 
 
 def unstable_cells(sl: MapSlice) -> np.ndarray:
@@ -211,17 +231,44 @@ def unstable_cells(sl: MapSlice) -> np.ndarray:
     return (np.asarray(stable) == STABLE_NO) & (np.asarray(sl.data["done"]) != 0)
 
 
-def hatch_cells(ax, x_edges, y_edges, mask) -> None:
-    """Hatches the cells of `mask` (one polygon per cell, so only they are drawn)."""
+def hatch_cells(ax, x_edges, y_edges, mask, hatch=UNSTABLE_HATCH, color=UNSTABLE_HATCH_COLOR, face="none", gid=None):
+    """Hatches the cells of `mask` (one polygon per cell, so only they are drawn) in `color`
+    over `face` ("none": the cell's own colour shows through); returns the PolyCollection."""
     rows, cols = np.nonzero(mask)
     quads = []
     for j, i in zip(rows.tolist(), cols.tolist()):
         x0, x1, y0, y1 = x_edges[i], x_edges[i + 1], y_edges[j], y_edges[j + 1]
         quads.append([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-    cells = PolyCollection(
-        quads, facecolors="none", edgecolors=UNSTABLE_HATCH_COLOR, linewidths=0.0, hatch=UNSTABLE_HATCH
-    )
+    cells = PolyCollection(quads, facecolors=face, edgecolors=color, linewidths=0.0, hatch=hatch, gid=gid)
     ax.add_collection(cells, autolim=False)
+    return cells
+
+
+LEGEND_COLUMN_CHARS = 60  # longer labels than this get the legend row to themselves (one column)
+
+
+def figure_with_legend_row(sl: MapSlice, figsize, strip_figsize):
+    """(fig, ax, ax_legend): a figure of figsize (strip_figsize for a 1-D map), the map above a
+    row of its own for the legend (legend_row fills it), so that constrained layout keeps the
+    legend clear of the x label and the data (matplotlib < 3.7 does not lay out figure legends)."""
+    fig, (ax, ax_legend) = plt.subplots(2, 1, figsize=strip_figsize if sl.y is None else figsize, constrained_layout=True)
+    ax_legend.axis("off")
+    return fig, ax, ax_legend
+
+
+def legend_row(fig, ax_legend, handles) -> None:
+    """The legend in its row below the map: two columns, or one when a label is long, and the
+    row as high as its lines (9-point text) need."""
+    ncol = 2 if max(len(h.get_label()) for h in handles) <= LEGEND_COLUMN_CHARS else 1
+    rows = -(-len(handles) // ncol)
+    legend_in = 0.3 + 0.2 * rows
+    ax_legend.get_gridspec().set_height_ratios([fig.get_figheight() - legend_in, legend_in])
+    ax_legend.legend(handles=handles, loc="center", ncol=ncol, frameon=False, fontsize=9)
+
+
+def cell_patch(color: str, label: str, hatch: str | None = None, hatch_color: str = UNSTABLE_HATCH_COLOR) -> Patch:
+    """A legend entry for a kind of cell: its colour, its hatch if any, its label."""
+    return Patch(facecolor=color, edgecolor=hatch_color if hatch else "0.4", hatch=hatch, linewidth=0.5, label=label)
 
 
 def plot(sweep: SweepMap, sl: MapSlice):
@@ -240,17 +287,12 @@ def plot(sweep: SweepMap, sl: MapSlice):
     x_edges, y_edges = setup_axes(ax, sl)
     ax.pcolormesh(x_edges, y_edges, index, cmap=cmap, norm=norm, shading="flat")
     ax.set_title(slice_title("regime map", sweep, sl), fontsize=10)
-    handles = [
-        Patch(facecolor=color, edgecolor="0.4", linewidth=0.5, label=f"{label}: {cells_text(count)}")
-        for label, color, count in zip(categories, colors, counts.values())
-    ]
+    handles = [cell_patch(color, f"{label}: {cells_text(count)}")
+               for label, color, count in zip(categories, colors, counts.values())]  # fmt: skip
     unstable = unstable_cells(sl)
     if unstable.any():
         hatch_cells(ax, x_edges, y_edges, unstable)
-        handles.append(
-            Patch(facecolor="white", edgecolor=UNSTABLE_HATCH_COLOR, hatch=UNSTABLE_HATCH, linewidth=0.5,
-                  label=f"unstable orbit: {cells_text(int(unstable.sum()))}")
-        )  # fmt: skip
+        handles.append(cell_patch("white", f"unstable orbit: {cells_text(int(unstable.sum()))}", UNSTABLE_HATCH))
     ax.legend(handles=handles, title="regime", loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return fig
 

@@ -1,6 +1,8 @@
 #!/usr/bin/python3
-"""Summarise a vibromap regime map: cells done, status and regime counts, stability, the
-slowest cells, and a check that every float quantity of every computed cell is finite
+"""Summarise a vibromap regime map: cells done, status and regime counts, stability, what each
+cell's answer is (the map's steady: the motion from the initial state, or, for shooting, some
+stable orbit, flagged as a warning), the soft cells and the Hertz-invalid cells among those with
+impacts, the slowest cells, and a check that every float quantity of every computed cell is finite
 (NaN is allowed only where the map says "not computed": max_multiplier and lyapunov, and
 steady_residual in a census map). A census map adds how many cells hold 1, 2, ... attractors,
 the soft fraction, and the non-periodic attractors with the cells where states were seen to
@@ -19,7 +21,8 @@ PROG = "summarize_map"
 try:
     import numpy as np
 
-    from vibromap_h5 import VibromapFileError, read_map, regime_counts
+    from vibromap_h5 import (FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError, add_soft_cells, impact_cells,
+                             read_map, regime_counts)  # fmt: skip
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -39,6 +42,7 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
     stable = sweep.data["stable"][done]
     lines.append("stability: " + ", ".join(f"{sweep.stable_meanings.get(int(c), c)} {int((stable == c).sum())}"
                                            for c in sorted(set(stable.tolist()))))
+    lines.extend(soft_lines(sweep, done))
     wall = sweep.data["wall_s"]
     lines.append(f"wall time per cell: median {np.median(wall[done]):.3g} s, max {wall[done].max():.3g} s, "
                  f"total {wall[done].sum():.3g} s")
@@ -60,6 +64,30 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
             bad += n
     lines.append("finite: every float quantity of every computed cell" if bad == 0 else f"{bad} non-finite values")
     return lines, bad
+
+
+def soft_lines(sweep, done) -> list[str]:
+    """What the cells' answers are (a warning for shooting), how many cells are soft, and how
+    many of those with impacts are Hertz-invalid, each with where it comes from or why unknown."""
+    lines = [f"answer: {sweep.answer_text()}"]
+    if sweep.answer_warning():
+        lines[0] += ('; WARNING: a cell, soft or not, may not be what the system does from rest '
+                     '(analysis.steady = "follow" gives that motion)')
+    info = add_soft_cells(sweep)
+    if info.soft_known:
+        soft = int((sweep.data[SOFT_KEY][done] == FLAG_YES).sum())
+        lines.append(f"soft: {soft} of {int(done.sum())} cells done ({info.rule()}; {info.soft_source})")
+    else:
+        lines.append(f"soft: unknown ({info.soft_source})")
+    if info.hertz_known:
+        impacts = impact_cells(sweep.data)
+        invalid = int((sweep.data[HERTZ_KEY][impacts] == FLAG_NO).sum())
+        lines.append(f"{info.invalid_text()}: {invalid} of {int(impacts.sum())} cells with impacts ({info.hertz_source})")
+    else:
+        lines.append(f"Hertz validity: unknown ({info.hertz_source})")
+    if info.overruled:
+        lines.append(f"WARNING: {info.overruled} cells the map calls soft are Hertz-invalid: not counted as soft")
+    return lines
 
 
 NON_PERIODIC = ("non_periodic", "chatter", "quasi_periodic", "chaotic")

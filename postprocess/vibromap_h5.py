@@ -32,6 +32,16 @@ Map file (include/vibromap/io/map_file.hpp, one file per sweep; N axes, first ax
             T_con, k_con, F_max, z_ratio, max_floquet, fraction, fraction_stderr, x1, x2, v1, v2
             (NaN beyond the cell's attractors); the ordinary datasets describe the attractor the
             rest state reaches, and steady_residual is NaN there
+  soft flag (maps written since the one definition of a soft motion; older maps lack all of it):
+            /soft (N-D int8, flag_values -1 0 1, flag_meanings "not_computed no yes"): 1 where the
+            motion is periodic with impacts, stable, Hertz-valid and has k_con <= soft_kcon;
+            /hertz_valid (N-D int64 0/1: z_ratio <= hertz_limit) always, no longer only when stored;
+            root attributes soft_kcon (default 10), hertz_limit (default 0.05) and steady ("follow":
+            the motion the initial state settles into; "shooting": some stable periodic orbit found
+            by Newton's method, not necessarily that motion; "integrate": brute-force integration).
+            add_soft_cells() reads them, or computes them from regime, stable, hertz_valid (else
+            z_ratio <= hertz_limit, 0.05 without the attribute) and k_con for an older map, or says
+            why it cannot.
 read_map() reads it (census datasets in SweepMap.census) (a map from before /stable was kept reads as stable == -1 everywhere);
 slice2d() takes a 2-D (or 1-D strip) slice for plotting;
 regime_labels() names each cell's regime: "(n,k)", "chatter", "no-contact", "not-computed".
@@ -53,9 +63,11 @@ class VibromapFileError(Exception):
     """A vibromap file cannot be read: missing, not HDF5, or not of the expected layout."""
 
 
-def write_plot(prog: str, make_figure, output: str, dpi: int, errors: tuple = (VibromapFileError,)) -> int:
+def write_plot(prog: str, make_figure, output: str, dpi: int, errors: tuple = (VibromapFileError,),
+               notes: list[str] | None = None) -> int:  # fmt: skip
     """A plotting script's end: draws make_figure() into output and says so (exit status 0), or
-    prints the one-line error of an unreadable input or unwritable output (2)."""
+    prints the one-line error of an unreadable input or unwritable output (2). `notes`, which
+    make_figure may fill, are printed before the "wrote" line."""
     import sys
 
     try:
@@ -63,6 +75,8 @@ def write_plot(prog: str, make_figure, output: str, dpi: int, errors: tuple = (V
     except errors as exc:
         print(f"{prog}: error: {exc}", file=sys.stderr)
         return 2
+    for note in notes or []:
+        print(f"{prog}: note: {note}")
     print(f"{prog}: wrote {output}")
     return 0
 
@@ -167,7 +181,7 @@ def read_trajectory(path: str) -> Trajectory:
 
 # Datasets every map has (map_file.hpp); the optional quantities come on top of these.
 MAP_REQUIRED = ("done", "status", "regime", "n", "k")
-MAP_ALWAYS = MAP_REQUIRED + ("stable", "wall_s", "steady_residual")
+MAP_ALWAYS = MAP_REQUIRED + ("stable", "soft", "wall_s", "steady_residual")
 # The regime and status flags as map_file.hpp lists them (RegimeKind / SolveStatus order, -1
 # first); read_map prefers the file's own flag_values/flag_meanings and falls back to these.
 REGIME_FLAG_VALUES = tuple(range(-1, 9))
@@ -181,6 +195,21 @@ STABLE_FLAG_MEANINGS = "unknown unstable stable"
 STABLE_UNKNOWN, STABLE_NO, STABLE_YES = STABLE_FLAG_VALUES  # codes of the stable dataset
 REGIME_PERIODIC = 0  # regime code whose label is "(n,k)"
 NOT_COMPUTED = "not-computed"
+# The soft flag and the Hertz validity of a cell (the map's /soft, add_soft_cells' derived ones).
+FLAG_UNKNOWN, FLAG_NO, FLAG_YES = -1, 0, 1
+# add_soft_cells' keys in SweepMap.data (so that slices carry them): 1 yes, 0 no, -1 not computed
+# or unknown. Their own keys, so that the file's /soft stays as read.
+SOFT_KEY, HERTZ_KEY = "soft_flag", "hertz_flag"
+SOFT_FROM_MAP = "from the map's /soft"  # SoftInfo.soft_source when the map's own flag is used
+# analysis.hertz_limit and analysis.soft_kcon as maps without the attributes were computed with.
+HERTZ_LIMIT_DEFAULT = 0.05
+SOFT_KCON_DEFAULT = 10.0
+# What a cell's answer is, by the map's steady attribute (analysis.steady).
+STEADY_ANSWERS = {
+    "follow": "the motion the initial state settles into (follow)",
+    "integrate": "the motion the initial state settles into, by brute-force integration (integrate)",
+    "shooting": "some stable orbit (shooting), not necessarily the motion from rest",
+}
 
 
 class MapSliceError(ValueError):
@@ -241,10 +270,38 @@ class SweepMap:
     census: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
     # census maps: "regime", "n", "k_con", "fraction", ... (attractor_<q> without its prefix),
     # each of shape + (A,); empty in a map without a census
+    filled: tuple[str, ...] = ()  # datasets the file lacks that read_map made up ("stable": unknown)
 
     @property
     def is_census(self) -> bool:
         return bool(self.census)
+
+    @property
+    def hertz_limit(self) -> float:
+        """z_max/R* above which Hertz theory does not hold (the file's, else the old default)."""
+        return float(self.attrs.get("hertz_limit", HERTZ_LIMIT_DEFAULT))
+
+    @property
+    def soft_kcon(self) -> float:
+        """The largest k_con of a soft motion (the file's, else the old default)."""
+        return float(self.attrs.get("soft_kcon", SOFT_KCON_DEFAULT))
+
+    @property
+    def steady(self) -> str:
+        """How the cells' motions were found: "follow", "shooting", "integrate"; "" when not recorded."""
+        return str(self.attrs.get("steady", ""))
+
+    def answer_text(self) -> str:
+        """What each cell's answer is, e.g. "some stable orbit (shooting), not necessarily the motion
+        from rest"; "not recorded (...)" for a map written before the steady attribute."""
+        if not self.steady:
+            return "not recorded (map written before the steady attribute)"
+        return STEADY_ANSWERS.get(self.steady, f"steady = {self.steady}")
+
+    def answer_warning(self) -> str:
+        """The line every picture of a shooting map carries ("" for any other map): its cells are
+        not necessarily the motion from rest, so a soft cell may not be reached from it."""
+        return f"answer: {STEADY_ANSWERS['shooting']}" if self.steady == "shooting" else ""
 
     @property
     def axis_names(self) -> list[str]:
@@ -402,13 +459,15 @@ def read_map(path: str) -> SweepMap:
             units[name] = _text(item.attrs.get("units", ""))
         regime_meanings = _flag_meanings(f["regime"], REGIME_FLAG_VALUES, REGIME_FLAG_MEANINGS, path)
         status_meanings = _flag_meanings(f["status"], STATUS_FLAG_VALUES, STATUS_FLAG_MEANINGS, path)
-        if isinstance(f.get("stable"), h5py.Dataset):
+        filled = () if isinstance(f.get("stable"), h5py.Dataset) else ("stable",)
+        if not filled:
             stable_meanings = _flag_meanings(f["stable"], STABLE_FLAG_VALUES, STABLE_FLAG_MEANINGS, path)
         else:  # written before stability was kept: unknown everywhere
             stable_meanings = dict(zip(STABLE_FLAG_VALUES, STABLE_FLAG_MEANINGS.split()))
             data["stable"] = np.full(shape, STABLE_UNKNOWN, dtype=np.int8)
             units["stable"] = ""
         attrs = {name: _attribute_value(value) for name, value in f.attrs.items()}
+    _check_soft_attributes(attrs, path)
     if "stored" in attrs:
         stored = str(attrs["stored"]).split()
         missing = [name for name in stored if name not in data]
@@ -427,7 +486,18 @@ def read_map(path: str) -> SweepMap:
         status_meanings=status_meanings,
         stable_meanings=stable_meanings,
         census=census,
+        filled=filled,
     )
+
+
+def _check_soft_attributes(attrs: dict, path: str) -> None:
+    """soft_kcon and hertz_limit, when present, must be positive numbers; steady a string."""
+    for name in ("soft_kcon", "hertz_limit"):
+        value = attrs.get(name, 1.0)
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (np.isfinite(value) and value > 0):
+            raise VibromapFileError(f"{path}: root attribute '{name}' is not a positive number ({value!r})")
+    if not isinstance(attrs.get("steady", ""), str):
+        raise VibromapFileError(f"{path}: root attribute 'steady' is not a string")
 
 
 def regime_labels(regime, n, k, meanings: dict[int, str] | None = None, done=None) -> np.ndarray:
@@ -481,6 +551,130 @@ def regime_counts(labels) -> dict[str, int]:
     unique, counts = np.unique(np.asarray(labels, dtype=str), return_counts=True)
     pairs = sorted(zip(unique.tolist(), counts.tolist()), key=lambda pair: _label_key(pair[0], kind_order))
     return {label: int(count) for label, count in pairs}
+
+
+@dataclasses.dataclass
+class SoftInfo:
+    """What add_soft_cells found: the definition it used and where each flag came from."""
+
+    soft_kcon: float
+    hertz_limit: float
+    soft_source: str  # SOFT_FROM_MAP, "computed from ...", or why it cannot be told
+    hertz_source: str  # "from the map's hertz_valid", "from z_ratio <= 0.05", or why it cannot be told
+    soft_known: bool
+    hertz_known: bool
+    overruled: int = 0  # cells the map's /soft calls soft though Hertz-invalid: not soft here
+
+    def rule(self) -> str:
+        """The one definition of soft, e.g. "stable periodic with impacts, Hertz-valid, k_con <= 10"."""
+        return f"stable periodic with impacts, Hertz-valid, k_con <= {self.soft_kcon:g}"
+
+    def definition(self) -> str:
+        """The one definition, as legends name it: "soft: " and the rule."""
+        return f"soft: {self.rule()}"
+
+    def invalid_text(self) -> str:
+        """e.g. "Hertz-invalid (z_max/R* > 0.05)", with the map's hertz_limit."""
+        return f"Hertz-invalid (z_max/R* > {self.hertz_limit:g})"
+
+
+def periodic_with_impacts(data: dict[str, np.ndarray]) -> np.ndarray:
+    """Cells computed whose motion is periodic with k > 0 impacts per period."""
+    return (np.asarray(data["done"]) != 0) & (np.asarray(data["regime"]) == REGIME_PERIODIC) & (np.asarray(data["k"]) > 0)
+
+
+def impact_cells(data: dict[str, np.ndarray]) -> np.ndarray:
+    """Cells computed with at least one impact: k_con > 0 where the map stores k_con, else
+    z_ratio > 0, else periodic with impacts."""
+    done = np.asarray(data["done"]) != 0
+    for name in ("k_con", "z_ratio"):
+        if name in data:
+            values = np.asarray(data[name], dtype=np.float64)
+            return done & np.isfinite(values) & (values > 0)
+    return periodic_with_impacts(data)
+
+
+def hertz_validity(sweep: SweepMap) -> tuple[np.ndarray | None, str]:
+    """Each cell's Hertz validity as int8 (1 valid, 0 invalid: z_max/R* > hertz_limit, -1 not
+    computed or z_ratio NaN) and where it came from: the map's hertz_valid, else z_ratio against
+    the map's hertz_limit (0.05 in maps without it); (None, why) when the map holds neither."""
+    done = np.asarray(sweep.data["done"]) != 0
+    if "hertz_valid" in sweep.data:
+        valid = np.asarray(sweep.data["hertz_valid"]) != 0
+        return np.where(done, valid, FLAG_UNKNOWN).astype(np.int8), "from the map's hertz_valid"
+    if "z_ratio" in sweep.data:
+        z = np.asarray(sweep.data["z_ratio"], dtype=np.float64)
+        flags = np.select([~done | np.isnan(z), z <= sweep.hertz_limit], [FLAG_UNKNOWN, FLAG_YES], FLAG_NO)
+        return flags.astype(np.int8), f"from z_ratio <= {sweep.hertz_limit:g}"
+    return None, "the map stores neither hertz_valid nor z_ratio"
+
+
+def computed_soft(sweep: SweepMap, hertz: np.ndarray | None, soft_kcon: float) -> tuple[np.ndarray | None, str]:
+    """The soft flag by the one definition (is_soft, regime.hpp), cell by cell: periodic with
+    impacts, stable == 1 (unknown is not soft), Hertz-valid and 0 < k_con <= soft_kcon; -1 where
+    not computed. (None, why) when the map lacks what it takes: no guessing."""
+    lacking = [what for what, missing in (("k_con", "k_con" not in sweep.data), ("hertz_valid or z_ratio", hertz is None),
+                                          ("stable (written before stability was kept)", "stable" in sweep.filled))
+               if missing]  # fmt: skip
+    if lacking:
+        return None, "the map has no /soft, and no " + ", ".join(lacking) + " to compute it from"
+    k_con = np.asarray(sweep.data["k_con"], dtype=np.float64)
+    soft = (periodic_with_impacts(sweep.data) & (np.asarray(sweep.data["stable"]) == STABLE_YES) & (hertz == FLAG_YES)
+            & (k_con > 0) & (k_con <= soft_kcon))  # fmt: skip
+    done = np.asarray(sweep.data["done"]) != 0
+    source = "hertz_valid" if "hertz_valid" in sweep.data else "z_ratio"
+    return np.where(done, soft, FLAG_UNKNOWN).astype(np.int8), f"computed from regime, stable, {source} and k_con"
+
+
+def add_soft_cells(sweep: SweepMap, soft_kcon: float | None = None) -> SoftInfo:
+    """Puts each cell's soft flag (data[SOFT_KEY]) and Hertz validity (data[HERTZ_KEY]) into the
+    map's data, so that its slices carry them, and says where they came from. The map's /soft is
+    used when it has one and soft_kcon is the map's own (the default); else soft is computed from
+    the other datasets (an older map, or another soft_kcon asked for). A cell the map calls soft
+    but Hertz-invalid is not soft here: no picture presents an invalid answer as soft. A flag
+    that cannot be told is left out of data, and SoftInfo says why."""
+    kcon = sweep.soft_kcon if soft_kcon is None else float(soft_kcon)
+    hertz, hertz_source = hertz_validity(sweep)
+    if "soft" in sweep.data and kcon == sweep.soft_kcon:
+        done = np.asarray(sweep.data["done"]) != 0
+        soft, soft_source = np.where(done, sweep.data["soft"], FLAG_UNKNOWN).astype(np.int8), SOFT_FROM_MAP
+    else:
+        soft, soft_source = computed_soft(sweep, hertz, kcon)
+    overruled = 0
+    if hertz is not None:
+        sweep.data[HERTZ_KEY] = hertz
+        if soft is not None:
+            wrong = (soft == FLAG_YES) & (hertz == FLAG_NO)
+            overruled = int(wrong.sum())
+            soft = np.where(wrong, FLAG_NO, soft).astype(np.int8)
+    if soft is not None:
+        sweep.data[SOFT_KEY] = soft
+    return SoftInfo(soft_kcon=kcon, hertz_limit=sweep.hertz_limit, soft_source=soft_source, hertz_source=hertz_source,
+                    soft_known=soft is not None, hertz_known=hertz is not None, overruled=overruled)  # fmt: skip
+
+
+def cell_boundary(mask: np.ndarray, x_edges: np.ndarray, y_edges: np.ndarray) -> list[np.ndarray]:
+    """The outline of the cells of `mask` (ny, nx) along their edges, as polylines (2, 2) in
+    data units: every edge between a cell in the mask and one outside it (or the map's border),
+    runs of such edges along one grid line joined. A point is inside the region exactly when a
+    ray from it crosses these segments an odd number of times."""
+    padded = np.pad(np.asarray(mask, dtype=bool), 1)
+    segments = []
+    vertical = padded[1:-1, 1:] != padded[1:-1, :-1]  # (ny, nx + 1): edge at x_edges[i] of row j
+    for i in range(vertical.shape[1]):
+        for j0, j1 in _runs(vertical[:, i]):
+            segments.append(np.array([[x_edges[i], y_edges[j0]], [x_edges[i], y_edges[j1]]]))
+    horizontal = padded[1:, 1:-1] != padded[:-1, 1:-1]  # (ny + 1, nx): edge at y_edges[j] of column i
+    for j in range(horizontal.shape[0]):
+        for i0, i1 in _runs(horizontal[j]):
+            segments.append(np.array([[x_edges[i0], y_edges[j]], [x_edges[i1], y_edges[j]]]))
+    return segments
+
+
+def _runs(flags: np.ndarray) -> list[tuple[int, int]]:
+    """(start, end) of each run of True in a 1-D bool array, end exclusive."""
+    edges = np.diff(np.concatenate(([0], flags.astype(np.int8), [0])))
+    return list(zip(np.nonzero(edges == 1)[0].tolist(), np.nonzero(edges == -1)[0].tolist()))
 
 
 def _nearest_index(axis: MapAxis, value: float) -> int:

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The README's main job: the E1 x E2 regime map of jobs/demo/e1_e2.toml on the local cores,
-# then its pictures. Usage: jobs/demo/run.sh [OUTDIR] [RANKS]
+# then its pictures: regimes, k_con, and where the motion is soft. Usage: jobs/demo/run.sh [OUTDIR] [RANKS]
 #   OUTDIR  where the map and the PNGs go (default: demo-out)
 #   RANKS   MPI ranks (default: the number of cores)
 # Ctrl-C (or SIGTERM) stops the sweep after a final checkpoint (exit 3); running the script
@@ -53,4 +53,5 @@ fi
 
 "$top/postprocess/vmpy" plot_regime_map "$map" --x E1 --y E2 -o "$out/e1_e2_regimes.png" || exit $?
 "$top/postprocess/vmpy" plot_kcon_map "$map" --x E1 --y E2 -o "$out/e1_e2_kcon.png" || exit $?
-echo "demo: map $map, pictures $out/e1_e2_regimes.png $out/e1_e2_kcon.png"
+"$top/postprocess/vmpy" plot_soft_map "$map" --x E1 --y E2 -o "$out/e1_e2_soft.png" || exit $?
+echo "demo: map $map, pictures $out/e1_e2_regimes.png $out/e1_e2_kcon.png $out/e1_e2_soft.png"

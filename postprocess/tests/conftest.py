@@ -88,3 +88,14 @@ def pixels_near(image: np.ndarray, color: str, tol: float = 0.03) -> int:
     """Number of pixels within `tol` (per RGB channel) of a matplotlib colour."""
     rgb = np.array(matplotlib.colors.to_rgb(color))
     return int(np.all(np.abs(image[..., :3] - rgb) < tol, axis=-1).sum())
+
+
+def inside(segments, point) -> bool:
+    """Whether point (x, y) lies inside the region that axis-parallel segments ((2, 2) arrays)
+    outline: a ray from it towards +x crosses an odd number of the vertical ones."""
+    x, y = point
+    crossings = 0
+    for (x0, y0), (x1, y1) in segments:
+        if x0 == x1 and x0 > x and min(y0, y1) <= y < max(y0, y1):
+            crossings += 1
+    return crossings % 2 == 1

@@ -8,6 +8,10 @@ Layout written (N axes, first axis slowest):
   /status          N-D int8, flag_values -1..3, flag_meanings
   /regime          N-D int8, flag_values -1..8, flag_meanings
   /stable          N-D int8, flag_values -1..1, flag_meanings "unknown unstable stable"
+  /soft            N-D int8, flag_values -1..1, flag_meanings "not_computed no yes", long_name
+                   (only when write_map is given soft=: maps from before it have none)
+  /hertz_valid     N-D int64 0/1, units 1 (given as hertz_valid=: always there in new maps, not
+                   named in `stored`; or as a stored quantity, as older maps kept it)
   /n, /k           N-D int32
   /wall_s          N-D float64, units s
   /steady_residual N-D float64, units 1
@@ -18,9 +22,10 @@ keep their creation order (netCDF-4 needs it tracked). Where done == 0,
 float datasets hold NaN (their _FillValue), integer ones 0, regime, status and stable -1: write_map
 enforces that, so callers may pass full arrays.
 Root attributes: title, Conventions, vibromap_version, scene, ranks, cells_total, cells_done,
-complete, stored.
+complete, stored; soft_kcon, hertz_limit (float) and steady (str) when given (new maps).
 
-Run as a script (python3 make_map.py OUT.h5) it writes a demo 3-D map for looking at plots.
+Run as a script (python3 make_map.py OUT.h5 [--shooting]) it writes a demo 3-D map for looking
+at plots (--shooting: as if made with analysis.steady = "shooting").
 """
 
 from __future__ import annotations
@@ -61,6 +66,11 @@ REGIME_MEANINGS = (
 )
 STATUS_MEANINGS = "not_computed ok budget failed invalid_input"
 STABLE_MEANINGS = "unknown unstable stable"
+SOFT_MEANINGS = "not_computed no yes"
+SOFT_LONG_NAME = (
+    "1 where the motion is soft: periodic with impacts, stable, Hertz-valid (z_ratio <= hertz_limit) and "
+    "k_con <= soft_kcon"
+)
 # Regime codes (RegimeKind order, -1 for a cell not computed).
 REGIME = {name: code for code, name in enumerate(REGIME_MEANINGS.split(), start=-1)}
 STATUS = {name: code for code, name in enumerate(STATUS_MEANINGS.split(), start=-1)}
@@ -80,102 +90,148 @@ def _float_dataset(f, name, values, done, units):
     return dataset
 
 
-def write_map(
-    path,
-    axes,
-    regime,
-    n,
-    k,
-    *,
-    done=None,
-    status=None,
-    stable=None,
-    wall_s=None,
-    steady_residual=None,
-    quantities=None,
-    scene="[system]\nm1 = 1000.0\n\n[sweep]\n",
-    ranks=2,
-    attach_scales=True,
-    title="vibromap regime map",
-    categories=None,
-):
+def _flag_dataset(f, name, values, done, meanings, long_name=None):
+    """An int8 CF flag dataset (flag_values -1, 0, ...; -1 where not done)."""
+    dataset = _int_dataset(f, name, values, "i1", done, -1)
+    if long_name:
+        dataset.attrs["long_name"] = long_name
+    dataset.attrs["flag_values"] = np.arange(-1, len(meanings.split()) - 1, dtype=np.int8)
+    dataset.attrs["flag_meanings"] = meanings
+    return dataset
+
+
+def _write_axes(f, axes, categories):
+    """The coordinate datasets, made dimension scales; returns them in order."""
+    scales = []
+    for name, values, scale in axes:
+        axis = f.create_dataset(name, data=np.asarray(values, dtype=np.float64), dtype="f8")
+        axis.attrs["units"] = AXIS_UNITS[name]
+        axis.attrs["long_name"] = AXIS_LONG_NAMES[name]
+        axis.attrs["scale"] = scale
+        if categories and name in categories:
+            axis.attrs["flag_values"] = np.arange(len(categories[name]), dtype=np.int8)
+            axis.attrs["flag_meanings"] = " ".join(categories[name])
+        axis.make_scale(name)
+        scales.append(axis)
+    return scales
+
+
+def _write_cells(f, done, arrays, quantities):
+    """The per-cell datasets in the C++ writer's order; arrays: status, regime, stable, soft,
+    hertz_valid (the last two None: left out), n, k, wall_s, steady_residual."""
+    datasets = [f.create_dataset("done", data=done, dtype="u1")]
+    datasets.append(_flag_dataset(f, "status", arrays["status"], done, STATUS_MEANINGS))
+    datasets.append(_flag_dataset(f, "regime", arrays["regime"], done, REGIME_MEANINGS))
+    datasets.append(_flag_dataset(f, "stable", arrays["stable"], done, STABLE_MEANINGS))
+    if arrays["soft"] is not None:
+        datasets.append(_flag_dataset(f, "soft", arrays["soft"], done, SOFT_MEANINGS, SOFT_LONG_NAME))
+    if arrays["hertz_valid"] is not None:
+        quantities = {"hertz_valid": arrays["hertz_valid"], **quantities}  # written as the quantity it was
+    datasets.append(_int_dataset(f, "n", arrays["n"], "i4", done, 0))
+    datasets.append(_int_dataset(f, "k", arrays["k"], "i4", done, 0))
+    datasets.append(_float_dataset(f, "wall_s", arrays["wall_s"], done, "s"))
+    datasets.append(_float_dataset(f, "steady_residual", arrays["steady_residual"], done, "1"))
+    for name, values in quantities.items():
+        if name in INTEGER_QUANTITIES:
+            dataset = _int_dataset(f, name, values, "i8", done, 0)
+            dataset.attrs["units"] = QUANTITY_UNITS[name]
+        else:
+            dataset = _float_dataset(f, name, values, done, QUANTITY_UNITS[name])
+        datasets.append(dataset)
+    return datasets
+
+
+def write_map(path, axes, regime, n, k, *, done=None, status=None, stable=None, wall_s=None, steady_residual=None,
+              quantities=None, scene="[system]\nm1 = 1000.0\n\n[sweep]\n", ranks=2, attach_scales=True,
+              title="vibromap regime map", categories=None, soft=None, hertz_valid=None, attributes=None):  # fmt: skip
     """Writes a map file. axes: [(name, values, scale), ...] in order (first slowest);
     regime, n, k and the optional arrays have the grid's shape; done defaults to regime != -1,
     status to ok where done, stable to unknown (-1) everywhere; quantities: {name: array} of the optional stored quantities.
     attach_scales=False leaves the axes unattached (a malformed map, for the reader's checks);
-    categories: {axis name: [choice names]} makes that axis categorical (CF flag_meanings)."""
+    categories: {axis name: [choice names]} makes that axis categorical (CF flag_meanings);
+    soft, hertz_valid: the new always-present /soft (0/1) and /hertz_valid (0/1) (None: left
+    out, as in older maps); attributes: extra root attributes (soft_kcon, hertz_limit, steady)."""
     shape = tuple(len(values) for _, values, _ in axes)
     regime = np.asarray(regime)
     assert regime.shape == shape, (regime.shape, shape)
-    done = (regime != REGIME["not_computed"]) if done is None else np.asarray(done)
-    done = done.astype(np.uint8)
-    if status is None:
-        status = np.full(shape, STATUS["ok"])
-    if wall_s is None:
-        wall_s = np.full(shape, 0.25)
-    if steady_residual is None:
-        steady_residual = np.full(shape, 1e-9)
+    done = ((regime != REGIME["not_computed"]) if done is None else np.asarray(done)).astype(np.uint8)
+    arrays = dict(
+        status=np.full(shape, STATUS["ok"]) if status is None else status,
+        regime=regime,
+        stable=np.full(shape, STABLE["unknown"]) if stable is None else stable,
+        soft=soft, hertz_valid=hertz_valid, n=n, k=k,
+        wall_s=np.full(shape, 0.25) if wall_s is None else wall_s,
+        steady_residual=np.full(shape, 1e-9) if steady_residual is None else steady_residual,
+    )  # fmt: skip
     quantities = dict(quantities or {})
-
     # Creation order tracked, as the C++ writer does: xarray then lists the variables in the
     # order written (done, status, regime, ...), not alphabetically.
     with h5py.File(path, "w", track_order=True) as f:
-        scales = []
-        for name, values, scale in axes:
-            axis = f.create_dataset(name, data=np.asarray(values, dtype=np.float64), dtype="f8")
-            axis.attrs["units"] = AXIS_UNITS[name]
-            axis.attrs["long_name"] = AXIS_LONG_NAMES[name]
-            axis.attrs["scale"] = scale
-            if categories and name in categories:
-                axis.attrs["flag_values"] = np.arange(len(categories[name]), dtype=np.int8)
-                axis.attrs["flag_meanings"] = " ".join(categories[name])
-            axis.make_scale(name)
-            scales.append(axis)
-
-        datasets = [f.create_dataset("done", data=done, dtype="u1")]
-        status_ds = _int_dataset(f, "status", status, "i1", done, STATUS["not_computed"])
-        status_ds.attrs["flag_values"] = np.arange(-1, 4, dtype=np.int8)
-        status_ds.attrs["flag_meanings"] = STATUS_MEANINGS
-        regime_ds = _int_dataset(f, "regime", regime, "i1", done, REGIME["not_computed"])
-        regime_ds.attrs["flag_values"] = np.arange(-1, 9, dtype=np.int8)
-        regime_ds.attrs["flag_meanings"] = REGIME_MEANINGS
-        stable = np.full(shape, STABLE["unknown"]) if stable is None else stable
-        stable_ds = _int_dataset(f, "stable", stable, "i1", done, STABLE["unknown"])
-        stable_ds.attrs["flag_values"] = np.arange(-1, 2, dtype=np.int8)
-        stable_ds.attrs["flag_meanings"] = STABLE_MEANINGS
-        datasets += [status_ds, regime_ds, stable_ds]
-        datasets.append(_int_dataset(f, "n", n, "i4", done, 0))
-        datasets.append(_int_dataset(f, "k", k, "i4", done, 0))
-        datasets.append(_float_dataset(f, "wall_s", wall_s, done, "s"))
-        datasets.append(_float_dataset(f, "steady_residual", steady_residual, done, "1"))
-        for name, values in quantities.items():
-            if name in INTEGER_QUANTITIES:
-                dataset = _int_dataset(f, name, values, "i8", done, 0)
-                dataset.attrs["units"] = QUANTITY_UNITS[name]
-            else:
-                dataset = _float_dataset(f, name, values, done, QUANTITY_UNITS[name])
-            datasets.append(dataset)
-
+        scales = _write_axes(f, axes, categories)
+        datasets = _write_cells(f, done, arrays, quantities)
         if attach_scales:
             for dataset in datasets:
                 for i, axis in enumerate(scales):
                     dataset.dims[i].attach_scale(axis)
-
-        f.attrs["title"] = title
-        f.attrs["Conventions"] = "CF-1.8"
-        f.attrs["vibromap_version"] = "0.1.0"
-        f.attrs["scene"] = scene
-        f.attrs["ranks"] = np.int64(ranks)
-        f.attrs["cells_total"] = np.int64(done.size)
-        f.attrs["cells_done"] = np.int64(done.sum())
-        f.attrs["complete"] = np.int64(1 if done.all() else 0)
-        f.attrs["stored"] = " ".join(quantities)
+        root = dict(title=title, Conventions="CF-1.8", vibromap_version="0.1.0", scene=scene, ranks=np.int64(ranks),
+                    cells_total=np.int64(done.size), cells_done=np.int64(done.sum()),
+                    complete=np.int64(1 if done.all() else 0), stored=" ".join(quantities), **(attributes or {}))  # fmt: skip
+        for name, value in root.items():
+            f.attrs[name] = value
 
 
-def demo_map(path):
+# The soft test map: E1 (log, 6 points) x E2 (log, 4 points), cell [i, j] (i along E1).
+SOFT_AXES = [("E1", np.geomspace(1e5, 1e10, 6), "log"), ("E2", np.array([1e4, 1e6, 1e8, 1e10]), "log")]
+SOFT_HERTZ_INVALID = ((0, 0), (1, 1), (3, 0), (5, 3))  # z_ratio 0.2: the first two have k_con <= 10
+SOFT_CELLS = ((0, 1), (0, 2), (1, 0), (1, 3))  # periodic, stable, Hertz-valid, k_con <= 10
+
+
+def soft_pattern():
+    """The soft test map's arrays: (1,1) everywhere with k_con = 2 * 3^i (2, 6, 18, 54, 162, 486),
+    stable, z_ratio 0.01, except: [0, 3] no contact (k_con 0, z_ratio 0), [4, 3] and [5, 3]
+    chatter, [5, 2] not computed, [1, 2] unstable (k_con 6), and SOFT_HERTZ_INVALID with z_ratio
+    0.2. soft and hertz_valid are the definition applied to them (soft_kcon 10, hertz_limit 0.05):
+    soft exactly in SOFT_CELLS."""
+    shape = (6, 4)
+    i = np.indices(shape)[0]
+    regime = np.full(shape, REGIME["periodic"])
+    regime[0, 3] = REGIME["no_contact"]
+    regime[4, 3] = regime[5, 3] = REGIME["chatter"]
+    regime[5, 2] = REGIME["not_computed"]
+    periodic = regime == REGIME["periodic"]
+    k_con = np.where(regime == REGIME["no_contact"], 0.0, 2.0 * 3.0**i)
+    stable = np.where(periodic, STABLE["stable"], STABLE["unknown"])
+    stable[1, 2] = STABLE["unstable"]
+    z_ratio = np.where(regime == REGIME["no_contact"], 0.0, 0.01)
+    for cell in SOFT_HERTZ_INVALID:
+        z_ratio[cell] = 0.2
+    hertz_valid = (z_ratio <= 0.05).astype(np.int64)
+    soft = (periodic & (stable == STABLE["stable"]) & (hertz_valid == 1) & (k_con > 0) & (k_con <= 10.0)).astype(np.int8)
+    n = np.where(periodic, 1, 0)
+    return dict(regime=regime, n=n, k=n.copy(), k_con=k_con, stable=stable, z_ratio=z_ratio, hertz_valid=hertz_valid,
+                soft=soft)  # fmt: skip
+
+
+def write_soft_map(path, steady="follow", new=True, quantities=("k_con", "z_ratio"), **changes):
+    """Writes the soft test map. new: with /soft, /hertz_valid and the attributes soft_kcon,
+    hertz_limit, steady (False: as a map written before them); quantities: the stored ones kept;
+    changes: arrays or attributes (soft_kcon=..., hertz_limit=...) replacing soft_pattern's.
+    Returns the arrays written."""
+    arrays = soft_pattern()
+    attributes = {"soft_kcon": 10.0, "hertz_limit": 0.05, "steady": steady}
+    for name, value in changes.items():
+        (attributes if name in attributes else arrays)[name] = value
+    extra = dict(soft=arrays["soft"], hertz_valid=arrays["hertz_valid"], attributes=attributes) if new else {}
+    write_map(path, SOFT_AXES, arrays["regime"], arrays["n"], arrays["k"], stable=arrays["stable"],
+              quantities={name: arrays[name] for name in quantities}, **extra)  # fmt: skip
+    return arrays
+
+
+def demo_map(path, steady="follow"):
     """A 3-D map E1 x E2 x R1 (log, log, lin) with a plausible look: (1,1) where the contact is
     soft, (2,1) and chatter for stiff bodies (the stiffest (2,1) orbits unstable), no contact at
-    one corner, some cells not done."""
+    one corner, some cells not done; the softest bodies deform beyond the Hertz limit
+    (z_ratio > 0.05), so /soft there is 0 though k_con is small."""
     e1 = np.geomspace(2e4, 2.1e11, 25)
     e2 = np.geomspace(2e4, 2.1e11, 20)
     r1 = np.array([0.09, 0.5, 1.0, 2.0])
@@ -194,6 +250,9 @@ def demo_map(path):
     # Periodic orbits stable, but the (2,1) ones losing stability next to the chatter region.
     stable = np.where(regime == REGIME["periodic"], STABLE["stable"], STABLE["unknown"])
     stable = np.where((n == 2) & (stiffness >= 8.2), STABLE["unstable"], stable)
+    z_ratio = np.where(k_con > 0, 0.3 * 10.0 ** (-0.45 * (stiffness - 4.3)), 0.0)
+    hertz_valid = z_ratio <= 0.05
+    soft = (regime == REGIME["periodic"]) & (k > 0) & (stable == STABLE["stable"]) & hertz_valid & (k_con <= 10.0)
     write_map(
         path,
         [("E1", e1, "log"), ("E2", e2, "log"), ("R1", r1, "lin")],
@@ -201,13 +260,17 @@ def demo_map(path):
         n,
         k,
         stable=stable,
-        quantities={"T_con": (2 * np.pi / 7.23) / np.where(k_con > 0, k_con, np.inf), "k_con": k_con},
+        quantities={"T_con": (2 * np.pi / 7.23) / np.where(k_con > 0, k_con, np.inf), "k_con": k_con,
+                    "z_ratio": z_ratio},
+        soft=soft,
+        hertz_valid=hertz_valid,
+        attributes={"soft_kcon": 10.0, "hertz_limit": 0.05, "steady": steady},
     )
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        print("usage: make_map.py OUT.h5", file=sys.stderr)
+    if len(sys.argv) not in (2, 3) or sys.argv[2:] not in ([], ["--shooting"]):
+        print("usage: make_map.py OUT.h5 [--shooting]", file=sys.stderr)
         sys.exit(2)
-    demo_map(sys.argv[1])
+    demo_map(sys.argv[1], "shooting" if sys.argv[2:] else "follow")
     print(f"make_map: wrote {sys.argv[1]}")

@@ -23,8 +23,8 @@ REGIME_MEANINGS = ("not_computed periodic chatter no_contact permanent_contact q
                    "non_periodic unresolved failed")
 STATUS_MEANINGS = "not_computed ok budget failed invalid_input"
 STABLE_MEANINGS = "unknown unstable stable"
-N_DIM = ["done", "status", "regime", "stable", "n", "k", "wall_s", "steady_residual"] + STORED
-DTYPES = {"done": "u1", "status": "i1", "regime": "i1", "stable": "i1", "n": "i4", "k": "i4", "wall_s": "f8",
+N_DIM = ["done", "status", "regime", "stable", "soft", "n", "k", "wall_s", "steady_residual"] + STORED
+DTYPES = {"done": "u1", "status": "i1", "regime": "i1", "stable": "i1", "soft": "i1", "n": "i4", "k": "i4", "wall_s": "f8",
           "steady_residual": "f8", "T_con": "f8", "k_con": "f8", "hertz_valid": "i8", "periods": "i8",
           "max_multiplier": "f8", "lyapunov": "f8"}
 FLOATS = ["wall_s", "steady_residual", "T_con", "k_con", "max_multiplier", "lyapunov"]
@@ -118,6 +118,10 @@ def test_h5py_reads_the_flags_and_root_attributes(sample_map):
         np.testing.assert_array_equal(stable["flag_values"], [-1, 0, 1])
         assert stable["flag_meanings"] == STABLE_MEANINGS
         assert "stability" in stable["long_name"]
+        soft = f["soft"].attrs
+        np.testing.assert_array_equal(soft["flag_values"], [-1, 0, 1])
+        assert soft["flag_meanings"] == "not_computed no yes"
+        assert "Hertz-valid" in soft["long_name"]
         assert "NaN where not computed" in f["max_multiplier"].attrs["long_name"]
         assert f["lyapunov"].attrs["units"] == "1/s"
         root = f.attrs

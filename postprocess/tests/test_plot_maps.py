@@ -32,6 +32,7 @@ import vibromap_h5
 
 REGIME_SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_regime_map.py")
 KCON_SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_kcon_map.py")
+SOFT_SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_soft_map.py")
 VMPY = os.path.join(conftest.POSTPROCESS_DIR, "vmpy")
 MIN_PNG_BYTES = 15_000  # a coloured map with axes, legend and title at 1350 x 900 px is well above this
 
@@ -405,14 +406,15 @@ def test_regime_figure_legend_counts_log_axes_and_cell_edges(map2d):
 
 def test_a_categorical_law_axis_is_drawn_one_named_column_per_law(tmp_path):
     """contact.law as an axis: values are indices in the order swept (here flores, hertz), drawn
-    at 0, 1, ... with the laws' names as ticks; k_con's threshold sits between the columns."""
+    at 0, 1, ... with the laws' names as ticks; the soft region's outline sits between the columns."""
     path = tmp_path / "law.h5"
     laws = ["hertz", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"]
     regime = np.zeros((2, 3), dtype=np.int8)
     k_con = np.array([[5.0, 20.0], [5.0, 20.0], [5.0, 20.0]]).T  # law x E2: soft under flores
     make_map.write_map(path, [("law", [3.0, 0.0], "lin"), ("E2", [1e4, 1e6, 1e8], "log")], regime,
                        np.ones((2, 3), dtype=np.int32), np.ones((2, 3), dtype=np.int32),
-                       quantities={"k_con": k_con}, categories={"law": laws})
+                       quantities={"k_con": k_con}, categories={"law": laws}, soft=k_con <= 10,
+                       hertz_valid=np.ones((2, 3)))  # fmt: skip
     m = vibromap_h5.read_map(str(path))
     assert m.axes["law"].categories == laws and not m.axes["law"].is_log
     assert m.axes["law"].tick_labels() == ["flores", "hertz"]
@@ -425,9 +427,15 @@ def test_a_categorical_law_axis_is_drawn_one_named_column_per_law(tmp_path):
         np.testing.assert_allclose(mesh.get_coordinates()[0, :, 0], [-0.5, 0.5, 1.5])
     finally:
         matplotlib.pyplot.close(fig)
-    [segment] = plot_kcon_map.threshold_segments(sl, np.ma.masked_invalid(m.data["k_con"].T), 10.0)
-    assert len(segment) >= 2
-    np.testing.assert_allclose(segment[:, 0], 0.5)  # halfway between the two laws' columns
+    info = vibromap_h5.add_soft_cells(m)
+    fig = plot_kcon_map.plot(m, plot_regime_map.choose_slice(m, "law", "E2", {}), info)
+    try:
+        [outline] = soft_outlines(fig)
+        # The soft column (flores) ends halfway between the two laws' columns.
+        e2_edges = vibromap_h5.cell_edges(m.axes["E2"])
+        assert any(np.allclose(segment, [[0.5, e2_edges[0]], [0.5, e2_edges[-1]]]) for segment in outline.get_segments())
+    finally:
+        matplotlib.pyplot.close(fig)
 
 
 def test_regime_figure_hatches_the_unstable_cells(map2d, tmp_path):
@@ -504,66 +512,136 @@ def test_regime_script_default_output_and_strip(map1d):
 
 # ---- plot_kcon_map ------------------------------------------------------------------------
 
-
-def threshold_lines(fig):
-    return [c for ax in fig.axes for c in ax.collections if c.get_gid() == plot_kcon_map.THRESHOLD_GID]
+SOFT_DEFINITION = "soft: stable periodic with impacts, Hertz-valid, k_con <= 10"
 
 
-def test_kcon_figure_draws_the_threshold_contour_where_it_crosses(map2d):
-    m = vibromap_h5.read_map(map2d[0])
-    sl = plot_regime_map.choose_slice(m, None, None, {})
-    fig = plot_kcon_map.plot(m, sl, threshold=5.0)
+def soft_outlines(fig):
+    return [c for ax in fig.axes for c in ax.collections if c.get_gid() == plot_kcon_map.SOFT_GID]
+
+
+def kcon_figure(path, x=None, y=None, fixed=None, threshold=None):
+    """(map, slice, figure) as plot_kcon_map's main draws them."""
+    m = vibromap_h5.read_map(path)
+    info = vibromap_h5.add_soft_cells(m, threshold)
+    sl = plot_regime_map.choose_slice(m, x, y, fixed or {})
+    return m, sl, plot_kcon_map.plot(m, sl, info)
+
+
+def test_kcon_figure_outlines_the_soft_cells_and_no_hertz_invalid_one(tmp_path):
+    path = tmp_path / "soft.h5"
+    make_map.write_soft_map(path)
+    m, sl, fig = kcon_figure(path)
     try:
-        [lines] = threshold_lines(fig)
-        segments = lines.get_segments()
-        assert segments and sum(len(s) for s in segments) >= 2
+        [outline] = soft_outlines(fig)
+        segments = outline.get_segments()
+        x_edges, y_edges = vibromap_h5.cell_edges(sl.x), vibromap_h5.cell_edges(sl.y)
         points = np.concatenate(segments)
-        # k_con = sqrt(E1/1e4) = 5 at E1 = 2.5e5 for every E2 with an impact (rows j = 0, 1).
-        np.testing.assert_allclose(points[:, 0], 2.5e5, rtol=1e-12)
-        assert points[:, 1].min() == pytest.approx(1e4) and points[:, 1].max() == pytest.approx(1e6)
-        ax = fig.axes[0]
-        assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
-        mesh = [c for c in ax.collections if isinstance(c.norm, matplotlib.colors.LogNorm)]
-        assert len(mesh) == 1 and mesh[0].norm.vmin == pytest.approx(10**0.5) and mesh[0].norm.vmax == pytest.approx(1000)
-        assert mesh[0].get_array().mask.sum() == 4 + 1 + 2  # no contact, failed (NaN), not computed
-        texts = legend_texts(fig)
-        assert texts == ["k_con = 5: soft where k_con < 5, rigid above", "no impact / no k_con: 5 cells", "not computed: 2 cells"]
-        assert any("~1000 rigid, ~1-10 soft" in t for t in figure_texts(fig))
+        assert np.all(np.isclose(points[:, 0, None], x_edges).any(axis=1)), "outline off the cell edges"
+        assert np.all(np.isclose(points[:, 1, None], y_edges).any(axis=1)), "outline off the cell edges"
+        e1, e2 = make_map.SOFT_AXES[0][1], make_map.SOFT_AXES[1][1]
+        for i, j in np.ndindex(len(e1), len(e2)):
+            # A log cell's centre is its grid value: inside the outline exactly for the soft cells.
+            assert conftest.inside(segments, (e1[i], e2[j])) == ((i, j) in make_map.SOFT_CELLS), (i, j)
+        # The Hertz-invalid cells with k_con 2 and 6 (<= 10) are outside it.
+        assert all(m.data["k_con"][cell] <= 10 for cell in make_map.SOFT_HERTZ_INVALID[:2])
+        [hatched] = [c for c in fig.axes[0].collections if c.get_gid() == plot_kcon_map.HERTZ_GID]
+        assert len(hatched.get_paths()) == 4 and hatched.get_hatch() == plot_kcon_map.HERTZ_HATCH
+        [mesh] = [c for c in fig.axes[0].collections if isinstance(c.norm, matplotlib.colors.LogNorm)]
+        assert (mesh.norm.vmin, mesh.norm.vmax) == (2.0, 486.0)
+        assert mesh.get_array().mask.sum() == 1 + 1  # no contact, not computed
+        assert legend_texts(fig) == [f"{SOFT_DEFINITION} (outlined): 4 cells", "Hertz-invalid (z_max/R* > 0.05): 4 cells",
+                                     "no impact / no k_con: 1 cell", "not computed: 1 cell"]  # fmt: skip
     finally:
         matplotlib.pyplot.close(fig)
 
 
-def test_kcon_figure_says_when_the_threshold_is_not_crossed(map3d):
-    m = vibromap_h5.read_map(map3d[0])
-    sl = plot_regime_map.choose_slice(m, "E1", "E2", {"R1": 0.1})
-    fig = plot_kcon_map.plot(m, sl, threshold=1e4)
+def test_kcon_figure_takes_the_limits_from_the_map(tmp_path):
+    """hertz_limit 0.3 and soft_kcon 20: the z_ratio 0.2 cells are valid, k_con 18 is soft."""
+    path = tmp_path / "limits.h5"
+    arrays = make_map.soft_pattern()
+    soft = (arrays["regime"] == R["periodic"]) & (arrays["stable"] == 1) & (arrays["k_con"] <= 20)
+    make_map.write_soft_map(path, hertz_limit=0.3, soft_kcon=20.0, hertz_valid=np.ones((6, 4), np.int64), soft=soft)
+    m, _, fig = kcon_figure(path)
     try:
-        assert threshold_lines(fig) == []
-        assert legend_texts(fig) == ["k_con = 10000 not crossed: all soft here (1 to 321)"]
+        texts = legend_texts(fig)
+        assert texts[:2] == [f"soft: stable periodic with impacts, Hertz-valid, k_con <= 20 (outlined): {int(soft.sum())} cells",
+                             "Hertz-invalid (z_max/R* > 0.3): 0 cells"]  # fmt: skip
+        assert not [c for c in fig.axes[0].collections if c.get_gid() == plot_kcon_map.HERTZ_GID]
+        colorbar = fig.axes[2]
+        assert [line.get_ydata()[0] for line in colorbar.get_lines()] == [20.0]
+    finally:
+        matplotlib.pyplot.close(fig)
+
+
+def test_kcon_threshold_option_recomputes_the_soft_cells(tmp_path):
+    path = tmp_path / "soft.h5"
+    arrays = make_map.write_soft_map(path)
+    m = vibromap_h5.read_map(path)
+    info = vibromap_h5.add_soft_cells(m, 20.0)
+    expected = ((arrays["regime"] == R["periodic"]) & (arrays["stable"] == 1) & (arrays["hertz_valid"] == 1)
+                & (arrays["k_con"] <= 20))  # fmt: skip
+    np.testing.assert_array_equal(m.data[vibromap_h5.SOFT_KEY] == 1, expected)
+    assert info.soft_source == "computed from regime, stable, hertz_valid and k_con" and expected.sum() == 4 + 4  # k_con 18 added
+    out = tmp_path / "k20.png"
+    result = run([sys.executable, KCON_SCRIPT, str(path), "--threshold", "20", "-o", str(out)])
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines() == [
+        "plot_kcon_map: note: soft cells computed from regime, stable, hertz_valid and k_con "
+        "(soft: stable periodic with impacts, Hertz-valid, k_con <= 20)",
+        f"plot_kcon_map: wrote {out}",
+    ]
+
+
+def test_kcon_figure_of_a_map_without_hertz_validity_says_soft_is_unknown(map3d, tmp_path):
+    _, _, fig = kcon_figure(map3d[0], "E1", "E2", {"R1": 0.1})
+    try:
+        assert soft_outlines(fig) == []
+        assert legend_texts(fig) == [
+            "soft cells unknown: the map has no /soft, and no hertz_valid or z_ratio to compute it from",
+            "Hertz validity unknown: the map stores neither hertz_valid nor z_ratio",
+        ]
         assert any("fixed: R1 = 0.1 m" in t for t in figure_texts(fig))
     finally:
         matplotlib.pyplot.close(fig)
-    fig = plot_kcon_map.plot(m, sl, threshold=150.0)  # k_con = 1 + 100 i + 10 j crosses 150
-    try:
-        [lines] = threshold_lines(fig)
-        assert len(lines.get_segments()) >= 1
-    finally:
-        matplotlib.pyplot.close(fig)
+    result = run([sys.executable, KCON_SCRIPT, str(map3d[0]), "-o", str(tmp_path / "old.png")])
+    assert result.returncode == 0, result.stderr
+    assert "plot_kcon_map: note: soft cells unknown: the map has no /soft" in result.stdout
 
 
-def test_kcon_strip_marks_the_crossing(map1d, tmp_path):
-    m = vibromap_h5.read_map(map1d)
-    sl = plot_regime_map.choose_slice(m, None, None, {})
-    fig = plot_kcon_map.plot(m, sl, threshold=5.0)
+def test_kcon_figure_of_an_older_map_computes_the_same_outline(tmp_path):
+    """Without /soft and /hertz_valid (z_ratio, stable and k_con stored) the outline is the same."""
+    new, old = tmp_path / "new.h5", tmp_path / "old.h5"
+    make_map.write_soft_map(new)
+    make_map.write_soft_map(old, new=False)
+    outlines = []
+    for path in (new, old):
+        _, _, fig = kcon_figure(path)
+        try:
+            [outline] = soft_outlines(fig)
+            outlines.append(sorted(map(tuple, np.concatenate(outline.get_segments()).tolist())))
+            assert legend_texts(fig)[:2] == [f"{SOFT_DEFINITION} (outlined): 4 cells", "Hertz-invalid (z_max/R* > 0.05): 4 cells"]
+        finally:
+            matplotlib.pyplot.close(fig)
+    assert outlines[0] == outlines[1]
+
+
+def test_kcon_strip_outlines_the_soft_cells(map1d, tmp_path):
+    """map1d with /soft: the (1,1) cells at E2 = 1e5, 1e6, 1e7 (k_con 1, 3.16, 10) are soft."""
+    with h5py.File(map1d, "a") as f:
+        soft = f.create_dataset("soft", data=np.array([1, 1, 1, 0, 0, 0, -1], dtype=np.int8))
+        soft.dims[0].attach_scale(f["E2"])
+        f.attrs["soft_kcon"], f.attrs["hertz_limit"] = 10.0, 0.05
+    _, _, fig = kcon_figure(map1d)
     try:
-        [lines] = threshold_lines(fig)
-        [segment] = lines.get_segments()
-        np.testing.assert_allclose(segment[:, 0], 2.5e6, rtol=1e-12)
-        np.testing.assert_array_equal(segment[:, 1], [0.0, 1.0])
+        [outline] = soft_outlines(fig)
+        segments = sorted(map(tuple, (tuple(map(tuple, s.tolist())) for s in outline.get_segments())))
+        left, right = 10**4.5, 10**7.5
+        expected = [((left, 0.0), (left, 1.0)), ((left, 0.0), (right, 0.0)), ((left, 1.0), (right, 1.0)), ((right, 0.0), (right, 1.0))]
+        np.testing.assert_allclose(np.array(segments), np.array(sorted(expected)), rtol=1e-12)
     finally:
         matplotlib.pyplot.close(fig)
     out = tmp_path / "strip.png"
-    result = run([sys.executable, KCON_SCRIPT, str(map1d), "-o", str(out), "--threshold", "5"])
+    result = run([sys.executable, KCON_SCRIPT, str(map1d), "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert png_size(out) == (1350, 525)
 
@@ -571,63 +649,70 @@ def test_kcon_strip_marks_the_crossing(map1d, tmp_path):
 def test_kcon_one_cell_wide_slices_and_a_map_with_nothing_done(tmp_path):
     path = tmp_path / "thin.h5"
     axes = [("m2", np.array([100.0, 200.0, 310.0]), "lin"), ("k2", np.array([4000.0]), "log")]
-    make_map.write_map(path, axes, np.zeros((3, 1), int), np.ones((3, 1)), np.ones((3, 1)), quantities={"k_con": np.array([[3.0], [10.0], [30.0]])})
+    make_map.write_map(path, axes, np.zeros((3, 1), int), np.ones((3, 1)), np.ones((3, 1)),
+                       quantities={"k_con": np.array([[3.0], [10.0], [30.0]])}, soft=np.array([[1], [1], [0]]),
+                       hertz_valid=np.ones((3, 1)), attributes={"soft_kcon": 10.0})  # fmt: skip
     m = vibromap_h5.read_map(path)
     k2_edges = vibromap_h5.cell_edges(m.axes["k2"])
-    # k_con = 10 sits on the grid value m2 = 200: one crossing, not one per neighbouring interval.
-    for x, y, expected in (("m2", "k2", [[200.0, k2_edges[0]], [200.0, k2_edges[1]]]),
-                           ("k2", "m2", [[k2_edges[0], 200.0], [k2_edges[1], 200.0]])):  # fmt: skip
-        fig = plot_kcon_map.plot(m, vibromap_h5.slice2d(m, x, y), threshold=10.0)
+    # The soft cells m2 = 100, 200 end at the edge m2 = 255, whichever way the slice lies.
+    for x, y, edge in (("m2", "k2", [[255.0, k2_edges[0]], [255.0, k2_edges[1]]]),
+                       ("k2", "m2", [[k2_edges[0], 255.0], [k2_edges[1], 255.0]])):  # fmt: skip
+        _, _, fig = kcon_figure(path, x, y)
         try:
-            [lines] = threshold_lines(fig)
-            [segment] = lines.get_segments()
-            np.testing.assert_allclose(segment, expected, rtol=1e-12)
+            [outline] = soft_outlines(fig)
+            assert len(outline.get_segments()) == 4
+            assert any(np.allclose(segment, edge, rtol=1e-12) for segment in outline.get_segments())
         finally:
             matplotlib.pyplot.close(fig)
 
     empty = tmp_path / "empty.h5"
-    make_map.write_map(empty, axes, np.full((3, 1), -1), np.zeros((3, 1)), np.zeros((3, 1)), quantities={"k_con": np.ones((3, 1))})
-    m = vibromap_h5.read_map(empty)
+    make_map.write_map(empty, axes, np.full((3, 1), -1), np.zeros((3, 1)), np.zeros((3, 1)), quantities={"k_con": np.ones((3, 1))},
+                       soft=np.zeros((3, 1)), hertz_valid=np.zeros((3, 1)))  # fmt: skip
+    m, _, fig = kcon_figure(empty)
     assert vibromap_h5.regime_counts(m.labels()) == {"not-computed": 3}
-    fig = plot_kcon_map.plot(m, plot_regime_map.choose_slice(m, None, None, {}))
     try:
-        assert threshold_lines(fig) == []
-        assert legend_texts(fig) == ["no cell with an impact in this slice", "not computed: 3 cells"]
+        assert soft_outlines(fig) == []
+        assert legend_texts(fig) == ["no cell with an impact in this slice", f"no soft cell here ({SOFT_DEFINITION})",
+                                     "Hertz-invalid (z_max/R* > 0.05): 0 cells", "not computed: 3 cells"]  # fmt: skip
     finally:
         matplotlib.pyplot.close(fig)
-    for script in (REGIME_SCRIPT, KCON_SCRIPT):
+    for script in (REGIME_SCRIPT, KCON_SCRIPT, SOFT_SCRIPT):
         result = run([sys.executable, script, str(empty), "-o", str(tmp_path / "empty.png")])
         assert result.returncode == 0, result.stderr
 
 
-def test_kcon_script_writes_a_png(map2d, tmp_path):
-    result = run([sys.executable, KCON_SCRIPT, str(map2d[0])])
+def test_kcon_script_writes_a_png(tmp_path):
+    path = tmp_path / "soft.h5"
+    make_map.write_soft_map(path)
+    result = run([sys.executable, KCON_SCRIPT, str(path)])
     assert result.returncode == 0, result.stderr
-    out = map2d[0].with_name("map2d_kcon.png")
+    out = path.with_name("soft_kcon.png")
     assert result.stdout == f"plot_kcon_map: wrote {out}\n"
     assert png_size(out) == (1350, 975)
     assert out.stat().st_size > MIN_PNG_BYTES
     image = matplotlib.image.imread(out)
-    assert pixels_near(image, plot_kcon_map.COLOR_THRESHOLD, tol=0.05) > 300  # the threshold line
-    assert pixels_near(image, plot_kcon_map.COLOR_NOT_COMPUTED, tol=0.01) > 2 * 15_000
-    assert pixels_near(image, plot_kcon_map.COLOR_NO_IMPACT, tol=0.01) > 5 * 15_000
+    assert pixels_near(image, plot_kcon_map.COLOR_SOFT_OUTLINE, tol=0.05) > 300  # the soft outline
+    assert pixels_near(image, plot_kcon_map.COLOR_NOT_COMPUTED, tol=0.01) > 15_000
+    assert pixels_near(image, plot_kcon_map.COLOR_NO_IMPACT, tol=0.01) > 15_000
 
 
-# ---- both scripts: errors, help, launcher ---------------------------------------------------
+# ---- the map scripts: errors, help, launcher -------------------------------------------------
+
+SCRIPTS = [(REGIME_SCRIPT, "plot_regime_map"), (KCON_SCRIPT, "plot_kcon_map"), (SOFT_SCRIPT, "plot_soft_map")]
 
 
-@pytest.mark.parametrize("script, prog", [(REGIME_SCRIPT, "plot_regime_map"), (KCON_SCRIPT, "plot_kcon_map")])
+@pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_missing_file_gives_exit_2_and_one_line(tmp_path, script, prog):
     missing = tmp_path / "missing.h5"
     one_line_error(run([sys.executable, script, str(missing)]), prog, str(missing), "no such file")
 
 
-@pytest.mark.parametrize("script, prog", [(REGIME_SCRIPT, "plot_regime_map"), (KCON_SCRIPT, "plot_kcon_map")])
+@pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_not_a_map_gives_exit_2_and_one_line(trajectory_file, script, prog):
     one_line_error(run([sys.executable, script, str(trajectory_file[0])]), prog, "not a vibromap map file")
 
 
-@pytest.mark.parametrize("script, prog", [(REGIME_SCRIPT, "plot_regime_map"), (KCON_SCRIPT, "plot_kcon_map")])
+@pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_unknown_axis_gives_exit_2_and_one_line(map3d, tmp_path, script, prog):
     out = tmp_path / "never.png"
     one_line_error(run([sys.executable, script, str(map3d[0]), "--x", "omega2", "-o", str(out)]), prog, "no axis 'omega2'", "E1, E2, R1")
@@ -643,7 +728,7 @@ def test_map_without_kcon_gives_exit_2_and_one_line(tmp_path):
     assert not path.with_name("no_kcon_kcon.png").exists()
 
 
-@pytest.mark.parametrize("script", [REGIME_SCRIPT, KCON_SCRIPT])
+@pytest.mark.parametrize("script", [REGIME_SCRIPT, KCON_SCRIPT, SOFT_SCRIPT])
 def test_bad_option_values_give_exit_2(map2d, script):
     result = run([sys.executable, script, str(map2d[0]), "--fix", "E1"])
     assert result.returncode == 2 and "expected NAME=VALUE" in result.stderr
@@ -659,11 +744,15 @@ def test_help_describes_the_options():
         assert fragment in result.stdout, fragment
     result = run([sys.executable, KCON_SCRIPT, "--help"])
     assert result.returncode == 0
-    for fragment in ("MAP.h5", "--x", "--y", "--fix", "--threshold", "1000", "rigid", "soft", "default: 10"):
+    for fragment in ("MAP.h5", "--x", "--y", "--fix", "--threshold", "1000", "rigid", "soft", "soft_kcon", "Hertz-valid"):
+        assert fragment in result.stdout, fragment
+    result = run([sys.executable, SOFT_SCRIPT, "--help"])
+    assert result.returncode == 0
+    for fragment in ("MAP.h5", "--x", "--y", "--fix", "--output", "soft_kcon", "hertz_limit", "Hertz-invalid", "rigid"):
         assert fragment in result.stdout, fragment
 
 
-@pytest.mark.parametrize("script, prog", [(REGIME_SCRIPT, "plot_regime_map"), (KCON_SCRIPT, "plot_kcon_map")])
+@pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_missing_modules_give_a_one_line_hint_to_use_vmpy(script, prog):
     code = (
         "import sys, runpy; sys.modules['h5py'] = None; "
@@ -677,7 +766,7 @@ def test_missing_modules_give_a_one_line_hint_to_use_vmpy(script, prog):
 
 
 def test_scripts_are_executable_with_the_debian_shebang():
-    for script in (REGIME_SCRIPT, KCON_SCRIPT):
+    for script, _ in SCRIPTS:
         assert os.access(script, os.X_OK), script
         with open(script) as f:
             assert f.readline() == "#!/usr/bin/python3\n"

@@ -19,6 +19,7 @@ import sys
 
 import h5py
 import matplotlib.lines
+import matplotlib.pyplot
 import numpy as np
 import pytest
 
@@ -58,8 +59,12 @@ def write_start(group, index, seed, algorithm, x, objective, feasible, regime_n,
     group.create_dataset("stable", data=np.ones(len(objective), dtype=np.int8))
 
 
-def write_optimisation(path, seeds_from="map.h5", trajectory="traj.h5"):
+def write_optimisation(path, seeds_from="map.h5", trajectory="traj.h5", integrate=None, scene=None):
+    """integrate: more attributes of the best point's re-solve from rest (z_ratio, hertz_valid);
+    scene: the scene text attribute (none by default)."""
     with h5py.File(path, "w") as f:
+        if scene is not None:
+            f.attrs["scene"] = scene
         f.attrs["variables"] = "m2 omega2"
         f.attrs["scales"] = "lin lin"
         f.attrs["quantity"] = "k_con"
@@ -77,7 +82,7 @@ def write_optimisation(path, seeds_from="map.h5", trajectory="traj.h5"):
         best.attrs.update({"start": np.int64(0), "evaluation": np.int64(3), "objective": 3.0, "m2": 280.0,
                            "omega2": 4.5, "k2": 280.0 * 4.5**2, "E1": 2.099e11, "E2": 2.099e11, "R1": 2.0, "R2": 2.0})
         best.create_dataset("x", data=X0[3])
-        best.create_group("integrate").attrs["regime"] = "(1,1)"
+        best.create_group("integrate").attrs.update({"regime": "(1,1)", **(integrate or {})})
 
 
 @pytest.fixture
@@ -174,3 +179,27 @@ def test_bad_files_end_with_one_line_and_exit_2(tmp_path, files):
     proc = run([sys.executable, SCRIPT, str(files[0]), "--x", "E9"])
     assert proc.returncode == 2
     assert "no axis 'E9' for x" in proc.stderr
+
+
+@pytest.mark.parametrize("integrate, scene, expected", [
+    ({"z_ratio": 0.012, "hertz_valid": np.int64(1)}, None, "Hertz-valid: z_max/R* = 0.012 <= 0.05"),
+    ({"z_ratio": 0.21, "hertz_valid": np.int64(0)}, None, "Hertz-INVALID (not a valid answer): z_max/R* = 0.21 > 0.05"),
+    ({"z_ratio": 0.21, "hertz_valid": np.int64(1)}, "[analysis]\nhertz_limit = 0.3\n", "Hertz-valid: z_max/R* = 0.21 <= 0.3"),
+    ({"z_ratio": 0.07}, None, "Hertz-INVALID (not a valid answer): z_max/R* = 0.07 > 0.05"),
+    ({"hertz_valid": np.int64(0)}, None, "Hertz-INVALID (not a valid answer)"),
+    ({}, None, None),
+])  # fmt: skip
+def test_best_figure_names_the_best_points_hertz_validity(files, monkeypatch, integrate, scene, expected):
+    opt_path = files[0]
+    write_optimisation(opt_path, integrate=integrate, scene=scene)
+    titles = {}
+
+    def keep_title(fig, path, dpi):
+        titles[os.path.basename(path)] = fig._suptitle.get_text() if fig._suptitle else ""
+        matplotlib.pyplot.close(fig)
+
+    monkeypatch.setattr(plot_optimise, "save_figure", keep_title)
+    assert plot_optimise.main([str(opt_path), "-o", str(opt_path.parent / "out")]) == 0
+    lines = titles["out_best.png"].splitlines()
+    assert lines[0].startswith("best point: regime (1,1)")
+    assert lines[1:] == ([expected] if expected else [])

@@ -60,7 +60,7 @@ std::string csv_field(const std::string& s) {
 // "shooting (4)" (Newton iterations) or "integrate".
 std::string steady_text(const AccuracyRow& r) {
   std::string s = to_string(r.steady_used);
-  if (r.steady_used == SteadyMethod::shooting) {
+  if (r.steady_used != SteadyMethod::integrate) {
     s += " (";
     s += std::to_string(r.newton_iterations);
     s += ")";

@@ -88,14 +88,23 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
     set(point.first, point.second, lambda);
     return point;
   };
-  // The start: the motion from rest at KEY = from.
-  const auto [p0, o0] = at(args.from);
-  const PointSummary start = solve_point(p0, o0);
-  const bool periodic = start.regime.kind == RegimeKind::periodic || start.regime.kind == RegimeKind::no_contact;
-  if (start.status != SolveStatus::ok || !periodic)
-    throw SceneError(cat(args.scene, ": at ", key, " = ", short_number(args.from), " the motion from rest is ",
-                         start.regime.label(), " (", to_string(start.status),
-                         "), not a periodic orbit to continue; start elsewhere (--from)"));
+  // The start: the motion from rest at KEY = from (analysis.steady); where that is not periodic,
+  // a branch may still start from the stable orbit shooting finds there (continuation follows
+  // orbits that exist, reached from rest or not).
+  auto [p0, o0] = at(args.from);
+  const auto is_periodic = [](const PointSummary& s) {
+    return s.status == SolveStatus::ok &&
+           (s.regime.kind == RegimeKind::periodic || s.regime.kind == RegimeKind::no_contact);
+  };
+  PointSummary start = solve_point(p0, o0);
+  if (!is_periodic(start) && o0.analysis.steady == SteadyMethod::follow) {
+    o0.analysis.steady = SteadyMethod::shooting;
+    start = solve_point(p0, o0);
+  }
+  if (!is_periodic(start))
+    throw SceneError(cat(args.scene, ": at ", key, " = ", short_number(args.from), " neither the motion from rest nor ",
+                         "shooting gives a periodic orbit (", start.regime.label(), ", ", to_string(start.status),
+                         "); start elsewhere (--from)"));
   ContinuationOptions co;
   co.n = std::max(start.regime.n, 1);  // a motion without contact repeats every period
   co.ds_max = args.ds_max;

@@ -115,7 +115,7 @@ void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint
     w.field(name, get_parameter(v.params, name));
   w.end_object().field("k_con", s.k_con).field("T_con", s.T_con).field("F_max", s.F_max).field("regime", s.regime.label());
   stable_value(w.key("stable"), s.stable);
-  w.field("z_ratio", s.z_ratio).field("hertz_valid", s.hertz_valid);
+  w.field("z_ratio", s.z_ratio).field("hertz_valid", s.hertz_valid).field("soft", s.soft);
   w.field("objective_found", objective_sense(o.objective) * v.value).field("start", v.start);
   w.field("algorithm", to_string(r.starts.at(static_cast<std::size_t>(v.start)).spec.algorithm));
   w.field("law", to_string(v.params.law)).field("restitution", v.params.restitution);
@@ -278,7 +278,9 @@ void print_best_table(std::ostream& out, const OptimiseReport& r, const Optimise
         << number(v.shooting.k_con) << ", " << v.shooting.regime.label() << " " << stable_text(v.shooting.stable)
         << (solves_agree(v) ? ", agrees" : ", DISAGREES") << ")  start " << v.start << "\n    ";
     if (!s.hertz_valid)
-      out << "Hertz theory flagged: z_max/R* = " << number(s.z_ratio, 3) << " (beyond [analysis] hertz_limit)\n    ";
+      out << "HERTZ-INVALID: z_max/R* = " << number(s.z_ratio, 3)
+          << " beyond [analysis] hertz_limit: the force law does not hold there (optimise.hertz_valid = false)\n    ";
+    out << "soft " << (s.soft ? "yes" : "no") << " (periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon)\n    ";
     print_soft_check(out, v, o);
     for (const std::string_view name : {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"})
       out << name << " " << number(get_parameter(v.params, name)) << "  ";

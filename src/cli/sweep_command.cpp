@@ -44,6 +44,7 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
     w.field("census_initial_conditions", r.census_initial_conditions)
         .field("initial_conditions_per_s", state_rate(r))
         .field("census_budget_states", r.census_budget_states);
+  w.field("soft_cells", r.soft).field("impacting_cells", r.impacting).field("hertz_invalid_cells", r.hertz_invalid);
   w.key("regimes").begin_object();
   for (const auto& [label, count] : r.regimes) w.field(label, count);
   w.end_object().end_object();
@@ -66,6 +67,8 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
         << "budget         " << r.census_budget_states << " of "
         << (f.items_resumed + f.items_computed) * static_cast<std::uint64_t>(r.census_initial_conditions)
         << " initial states followed to analysis.max_periods (no early decision: brute force follows them as far)\n";
+  out << "soft           " << r.soft << " cells (periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon); "
+      << r.hertz_invalid << " of " << r.impacting << " cells with impacts beyond the Hertz limit\n";
   out << "regimes       ";
   for (const auto& [label, count] : r.regimes) out << " " << label << " " << count;
   out << "\n";

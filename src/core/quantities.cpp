@@ -150,6 +150,7 @@ CellResult summarize(const PointSummary& s) {
   c.k = s.regime.k;
   c.hertz_valid = s.hertz_valid ? 1 : 0;
   c.stable = static_cast<std::int8_t>(s.stable);
+  c.soft = s.soft ? 1 : 0;
   if (!s.floquet.empty()) c.max_multiplier = std::abs(s.floquet.front());
   c.lyapunov = s.lyapunov;
   c.periods = s.periods;
@@ -182,6 +183,7 @@ CellResult summarize(const CensusSummary& s) {
   c.rhs_evals = s.counters.rhs_evals;
   c.wall_s = s.wall_s;
   c.steady_residual = std::numeric_limits<double>::quiet_NaN();
+  c.soft = 0;  // the motion from rest: its attractor's flag, when rest was decided
   if (s.status != SolveStatus::ok) return c;
   const double K = s.K > 0 ? static_cast<double>(s.K) : 1.0;
   c.soft_fraction = s.soft_fraction;
@@ -216,6 +218,7 @@ CellResult summarize(const CensusSummary& s) {
     c.n = r.n;
     c.k = r.k;
     c.stable = r.stable;
+    c.soft = r.soft;
     c.hertz_valid = r.hertz_valid;
     c.max_multiplier = a.max_floquet;
     c.T_con = a.T_con;

@@ -113,7 +113,7 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   count.set_int = [](CellResult& c, std::size_t, std::int64_t v) { c.census.resize(static_cast<std::size_t>(v)); };
   fields.push_back(count);
   fields.push_back(real_field<&CellResult::soft_fraction>(
-      "soft_fraction", "basin fraction of the soft attractors (stable, Hertz-valid, k_con <= census.soft_kcon)", "1"));
+      "soft_fraction", "basin fraction of the soft attractors (periodic with impacts, stable, Hertz-valid, k_con <= soft_kcon)", "1"));
   fields.push_back(real_field<&CellResult::unresolved_fraction>(
       "unresolved_fraction", "fraction of initial states still settling when the budget ran out", "1"));
   fields.push_back(real_field<&CellResult::unlisted_fraction>(
@@ -140,7 +140,7 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
       flag("attractor_hertz_valid", "1 where the attractor's z_ratio is within the Hertz validity limit"), slots));
   fields.push_back(attractor_field<&A::from_rest>(flag("attractor_from_rest", "1 for the attractor rest reaches"), slots));
   fields.push_back(attractor_field<&A::soft>(
-      flag("attractor_soft", "1 where the attractor is soft (stable, Hertz-valid, k_con <= census.soft_kcon)"), slots));
+      flag("attractor_soft", "1 where the attractor is soft (periodic with impacts, stable, Hertz-valid, k_con <= soft_kcon)"), slots));
   fields.push_back(attractor_field<&A::transient>(
       flag("attractor_transient",
            "1 where states were seen to leave the non-periodic attractor (transient chaos: its fraction falls as "
@@ -219,6 +219,11 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_
       "stable", "stability of the periodic orbit from its Floquet multipliers (unknown where not computed)", 1,
       "not_computed unstable stable"));
   fields.back().flag_meanings = "unknown unstable stable";
+  fields.push_back(code_field<&CellResult::soft>(
+      "soft",
+      "1 where the motion is soft: periodic with impacts, stable, Hertz-valid (z_ratio <= hertz_limit) and "
+      "k_con <= soft_kcon",
+      1, "not_computed no yes"));
   fields.push_back(count_field<&CellResult::n>("n", "period of the regime in forcing periods (0 where not periodic)"));
   fields.push_back(count_field<&CellResult::k>("k", "impacts per regime period (0 where not periodic)"));
   fields.push_back(real_field<&CellResult::wall_s>("wall_s", "wall-clock time spent on the cell", "s"));

@@ -115,6 +115,9 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
   file.set_attribute("complete", 0);
   file.set_attribute("stored", stored);
   file.set_attribute("census_attractors", layout.attractors);
+  file.set_attribute("steady", layout.steady);
+  file.set_attribute("hertz_limit", layout.hertz_limit);
+  file.set_attribute("soft_kcon", layout.soft_kcon);
 }
 
 // Refuses a layout the file cannot hold, before any file is touched.
@@ -228,6 +231,9 @@ MapLayout read_layout(const Hdf5File& file) {
   layout.grid = Grid(std::move(axes));
   layout.scene_text = file.read_string_attribute("scene");
   layout.identity = file.read_string_attribute("identity");
+  if (file.has_attribute("steady")) layout.steady = file.read_string_attribute("steady");
+  if (file.has_attribute("hertz_limit")) layout.hertz_limit = file.read_double_attribute("hertz_limit");
+  if (file.has_attribute("soft_kcon")) layout.soft_kcon = file.read_double_attribute("soft_kcon");
   if (file.has_attribute("census_attractors")) {  // maps made before the census have none
     const std::int64_t a = file.read_int_attribute("census_attractors");
     if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");

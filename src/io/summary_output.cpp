@@ -116,6 +116,15 @@ void write_floquet(std::ostream& os, const PointSummary& s) {
   }
 }
 
+// Why the motion is soft (is_soft), or the first condition it fails.
+std::string soft_note(const PointSummary& s, const AnalysisOptions& a) {
+  if (s.soft) return "periodic with impacts, stable, Hertz-valid, k_con <= " + num(a.soft_kcon);
+  if (s.regime.kind != RegimeKind::periodic || s.regime.k == 0) return "not periodic with impacts";
+  if (s.stable != 1) return s.stable == 0 ? "unstable" : "stability unknown";
+  if (!s.hertz_valid) return "Hertz-invalid: z_ratio " + num(s.z_ratio, "%.3g") + " > " + num(a.hertz_limit);
+  return "k_con " + num(s.k_con, "%.4g") + " > " + num(a.soft_kcon);
+}
+
 void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) {
   const std::string nk = s.regime.n > 0 ? "repeats after " + std::to_string(s.regime.n) + " T with " +
                                               std::to_string(s.regime.k) + " impact(s)"
@@ -129,8 +138,9 @@ void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) 
   const std::string limit = num(scene.options.analysis.hertz_limit);
   row(os, "z_ratio", num(s.z_ratio), "-",
       "z_max/R*: Hertz theory " + std::string(s.hertz_valid ? "valid" : "NOT valid") + " (limit " + limit + ")");
+  row(os, "soft", s.soft ? "yes" : "no", "", soft_note(s, scene.options.analysis));
   row(os, "steady_residual", num(s.steady_residual, "%.3g"), "-",
-      s.steady_method == SteadyMethod::shooting ? "scaled Newton residual |P^n(y) - y|"
+      s.steady_method != SteadyMethod::integrate ? "scaled Newton residual |P^n(y) - y|"
                                                 : "scaled |y(jT) - y((j-n)T)| at the end");
   write_steady(os, s);
   row(os, "periods", std::to_string(s.periods), "", "forcing periods integrated");
@@ -213,7 +223,8 @@ void write_summary_json(std::ostream& os, const PointSummary& s) {
       .field("F_max", s.F_max)
       .field("z_max", s.z_max)
       .field("z_ratio", s.z_ratio)
-      .field("hertz_valid", s.hertz_valid);
+      .field("hertz_valid", s.hertz_valid)
+      .field("soft", s.soft);
   w.key("impacts").begin_array();
   for (const Impact& im : s.impacts) write_impact_json(w, im, s.T);
   w.end_array()

@@ -138,7 +138,7 @@ std::pair<RunResult, double> timed(int repeat, const std::function<RunResult()>&
 
 // ---- vibromap's own solver --------------------------------------------------------------
 
-std::string steady_label(SteadyMethod m) { return m == SteadyMethod::shooting ? "shooting" : "integrate"; }
+std::string steady_label(SteadyMethod m) { return to_string(m); }
 std::string vibromap_label(const PointOptions& o) {
   return to_string(o.integrator.method) + "+" + steady_label(o.analysis.steady);
 }

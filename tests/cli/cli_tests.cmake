@@ -121,6 +121,24 @@ vibromap_cli_test(run_table1_json RC 0 ARGS run jobs/paper/table1.toml --format 
                   OUT "\"status\": \"ok\".*\"regime\": \"\\(1,1\\)\".*\"impacts\": \\[")
 vibromap_cli_test(run_table2_table RC 0 ARGS run jobs/paper/table2.toml
                   OUT "regime +\\(1,1\\).*T_con \\(s\\)")
+# One definition of soft: Table 2 is soft (k_con 8.96, z_max/R* 0.024); Table 1 is rigid
+# (k_con 1111); Table 2 with E2 = 2e4 Pa and R1 = R2 = 0.1 m has small k_con but z_max/R* 3.7,
+# beyond the Hertz limit, so it is not soft. The default answer is the motion from rest.
+vibromap_cli_test(run_table2_is_soft RC 0 ARGS run jobs/paper/table2.toml --format json
+                  OUT "\"hertz_valid\": true,[ \n]*\"soft\": true.*\"steady_method\": \"follow\"")
+vibromap_cli_test(run_table1_is_not_soft RC 0 ARGS run jobs/paper/table1.toml --format json
+                  OUT "\"regime\": \"\\(1,1\\)\".*\"hertz_valid\": true,[ \n]*\"soft\": false")
+vibromap_cli_test(run_hertz_invalid_is_not_soft RC 0
+                  ARGS run jobs/paper/table2.toml --set contact.E2=2e4 --set contact.R1=0.1 --set contact.R2=0.1
+                       --format json
+                  OUT "\"z_ratio\": 3\\.[0-9]+,[ \n]*\"hertz_valid\": false,[ \n]*\"soft\": false")
+vibromap_cli_test(run_table2_soft_row RC 0 ARGS run jobs/paper/table2.toml
+                  OUT "soft +yes +periodic with impacts, stable, Hertz-valid, k_con <= 10")
+# Keys of earlier versions are refused with what replaced them.
+vibromap_cli_test(run_retired_basin_check RC 2 ARGS run jobs/paper/table2.toml --set analysis.basin_check=true
+                  ERR "\\[analysis\\] basin_check was removed: the motion from the initial state is now the default")
+vibromap_cli_test(run_retired_census_soft_kcon RC 2 ARGS run jobs/paper/table2.toml --set census.soft_kcon=5
+                  ERR "\\[census\\] soft_kcon was removed: soft has one definition everywhere: set analysis.soft_kcon")
 
 # `vibromap accuracy`: help, bad input (exit 2), an unwritable CSV (exit 4, before the
 # study), and the default study end to end on Table 2 (~6 s, rk4 at 2^15 steps dominating;
@@ -130,7 +148,7 @@ vibromap_cli_test(accuracy_help RC 0 ARGS accuracy --help
 vibromap_cli_test(accuracy_missing_scene RC 2 ARGS accuracy jobs/no_such_scene.toml
                   ERR "jobs/no_such_scene\\.toml: cannot read scene: no such file")
 vibromap_cli_test(accuracy_bad_set RC 2 ARGS accuracy jobs/paper/table2.toml --set analysis.steady=newton
-                  ERR "--set analysis\\.steady=newton: must be one of \"shooting\", \"integrate\"")
+                  ERR "--set analysis\\.steady=newton: must be one of \"follow\", \"shooting\", \"integrate\"")
 vibromap_cli_test(accuracy_bad_format RC 2 ARGS accuracy jobs/paper/table2.toml --format csv ERR "--format")
 vibromap_cli_test(accuracy_csv_directory_missing RC 4
                   ARGS accuracy jobs/paper/table2.toml --csv no_such_dir/a.csv

@@ -85,3 +85,18 @@ TEST(SteadyState, ConvergingAndWanderingSequencesAreToldApart) {
   EXPECT_TRUE(slow.still_converging());
   EXPECT_FALSE(wander.still_converging());
 }
+
+// The one definition of soft (regime.hpp): every condition is needed, and the threshold is inclusive.
+TEST(Soft, NeedsPeriodicImpactsStabilityHertzValidityAndSmallKcon) {
+  const Regime one_one{RegimeKind::periodic, 1, 1};
+  EXPECT_TRUE(is_soft(one_one, 1, true, 8.9, 10.0));
+  EXPECT_TRUE(is_soft(one_one, 1, true, 10.0, 10.0));
+  EXPECT_FALSE(is_soft(one_one, 1, true, 10.0001, 10.0));               // rigid enough
+  EXPECT_FALSE(is_soft(one_one, 0, true, 2.0, 10.0));                   // unstable
+  EXPECT_FALSE(is_soft(one_one, -1, true, 2.0, 10.0));                  // stability unknown
+  EXPECT_FALSE(is_soft(one_one, 1, false, 2.0, 10.0));                  // beyond the Hertz limit
+  EXPECT_FALSE(is_soft({RegimeKind::periodic, 1, 0}, 1, true, 0.0, 10.0));  // no impact
+  EXPECT_FALSE(is_soft({RegimeKind::chatter, 1, 7}, 1, true, 2.0, 10.0));
+  EXPECT_FALSE(is_soft({RegimeKind::non_periodic, 0, 0}, -1, true, 2.0, 10.0));
+  EXPECT_TRUE(is_soft({RegimeKind::periodic, 3, 3}, 1, true, 24.9, 30.0));
+}

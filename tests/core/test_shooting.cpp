@@ -65,16 +65,15 @@ TEST(Shooting, UnstableOrbitIsFlaggedAndBruteForceLeavesIt) {
   EXPECT_EQ(s.stable, 1);
 }
 
-TEST(Shooting, WithBasinCheckAgreesWithBruteForceOnAGridOfThePaperBox) {
+TEST(Shooting, TheDefaultFollowAgreesWithBruteForceOnAGridOfThePaperBox) {
   // A 5 x 5 grid of E1 x E2 over [2e4, 2.1e11] Pa (log), Table 2's system. Several cells
-  // have coexisting attractors (see CoexistingAttractors...); the basin check makes shooting
-  // follow the one reached from rest, as brute force does.
+  // have coexisting attractors (see CoexistingAttractors...); the default (follow) answers
+  // with the one reached from rest, as brute force does.
   int compared = 0;
   for (int i = 0; i < 5; ++i) {
     for (int j = 0; j < 5; ++j) {
       const double E1 = 2e4 * std::pow(2.1e11 / 2e4, i / 4.0), E2 = 2e4 * std::pow(2.1e11 / 2e4, j / 4.0);
       PointOptions shooting, brute;
-      shooting.analysis.basin_check = true;
       brute.analysis.steady = SteadyMethod::integrate;
       const PointSummary a = solve_point(table2_base(E1, E2), shooting);
       const PointSummary b = solve_point(table2_base(E1, E2), brute);
@@ -91,10 +90,10 @@ TEST(Shooting, WithBasinCheckAgreesWithBruteForceOnAGridOfThePaperBox) {
 TEST(Shooting, CoexistingAttractorsAreBothStable) {
   // Table 2's system at E1 = 1e9, E2 = 1e10 Pa: from rest the motion settles on a stable
   // (3,3) orbit; Newton from a short transient finds a stable (1,1) orbit. Two attractors,
-  // so the two methods may answer differently there (the basin check picks the first).
+  // so shooting may answer with the second; the default (follow) answers with the first.
   PointOptions brute, fast, checked;
   brute.analysis.steady = SteadyMethod::integrate;
-  checked.analysis.basin_check = true;
+  fast.analysis.steady = SteadyMethod::shooting;
   const PointSummary a = solve_point(table2_base(1e9, 1e10), brute);
   const PointSummary b = solve_point(table2_base(1e9, 1e10), fast);
   const PointSummary c = solve_point(table2_base(1e9, 1e10), checked);
@@ -108,10 +107,11 @@ TEST(Shooting, CoexistingAttractorsAreBothStable) {
 TEST(Shooting, IsFasterThanBruteForceInWork) {
   // Work, not time (timing belongs in benchmarks): RHS evaluations to steady state.
   for (const Parameters& p : {Parameters{}, table2_base(1.4e10, 1.0e6)}) {
-    PointOptions brute;
+    PointOptions brute, fast;
     brute.analysis.steady = SteadyMethod::integrate;
     brute.integrator.method = Method::dopri5;
-    const PointSummary a = solve_point(p, PointOptions{}), b = solve_point(p, brute);
+    fast.analysis.steady = SteadyMethod::shooting;
+    const PointSummary a = solve_point(p, fast), b = solve_point(p, brute);
     EXPECT_EQ(a.steady_method, SteadyMethod::shooting);
     EXPECT_LT(a.counters.rhs_evals * 5, b.counters.rhs_evals);
     EXPECT_NEAR(a.T_con / b.T_con, 1.0, 1e-8);

@@ -60,7 +60,6 @@ void expect_same_point(const CellPoint& cell, const Scene& expected, const std::
   const AnalysisOptions& a = cell.options.analysis;
   const AnalysisOptions& b = expected.options.analysis;
   EXPECT_EQ(a.steady, b.steady) << what;
-  EXPECT_EQ(a.basin_check, b.basin_check) << what;
   EXPECT_EQ(a.lyapunov, b.lyapunov) << what;
   for (const auto& [x, y, name] : {std::tuple{a.newton_tol, b.newton_tol, "newton_tol"},
                                    {a.steady_tol, b.steady_tol, "steady_tol"}, {a.hertz_limit, b.hertz_limit, "hertz_limit"}})

@@ -36,7 +36,7 @@ TEST(Identity, OneSortedLinePerKeyInShortestForm) {
   EXPECT_EQ(text.find("system.k2"), std::string::npos) << text;
   EXPECT_NE(text.find("\nsweep.axis.0 = contact.E1 log [20000, 64807406.98407869, 2.1e+11]\n"), std::string::npos)
       << text;
-  EXPECT_NE(text.find("\nsweep.store = [T_con, k_con, F_max, z_max]\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nsweep.store = [T_con, k_con, F_max, z_max, hertz_valid]\n"), std::string::npos) << text;
   EXPECT_EQ(text.find("interval"), std::string::npos) << text;
   EXPECT_EQ(text.find("initial."), std::string::npos) << text;  // [initial] only where given
   EXPECT_EQ(text.back(), '\n');

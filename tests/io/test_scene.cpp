@@ -178,11 +178,11 @@ TEST(Scene, MethodsAreNamedAsTheCoreNamesThem) {
   for (const Method m : {Method::hybrid, Method::dopri5, Method::rk4}) {
     EXPECT_EQ(parse("", {concat({"solver.method=", to_string(m)})}).options.integrator.method, m);
   }
-  for (const SteadyMethod m : {SteadyMethod::shooting, SteadyMethod::integrate}) {
+  for (const SteadyMethod m : {SteadyMethod::follow, SteadyMethod::shooting, SteadyMethod::integrate}) {
     EXPECT_EQ(parse("", {concat({"analysis.steady=", to_string(m)})}).options.analysis.steady, m);
   }
   EXPECT_EQ(parse("").options.integrator.method, Method::hybrid);
-  EXPECT_EQ(parse("").options.analysis.steady, SteadyMethod::shooting);
+  EXPECT_EQ(parse("").options.analysis.steady, SteadyMethod::follow);  // the motion from the initial state
 }
 
 TEST(Scene, BooleanKeyReadsTomlTrueAndFalse) {
@@ -282,7 +282,7 @@ const std::vector<BadScene>& bad_scenes() {
                                                           "must be one of \"hybrid\", \"dopri5\", \"rk4\"",
                                                           "did you mean \"rk4\"?"}},
       {"bad steady", "[analysis]\nsteady = \"shoting\"\n", {}, {"[analysis] steady = \"shoting\"",
-                                                                "must be one of \"shooting\", \"integrate\"",
+                                                                "must be one of \"follow\", \"shooting\", \"integrate\"",
                                                                 "did you mean \"shooting\"?"}},
       {"bool as string", "[analysis]\nlyapunov = \"yes\"\n", {}, {"[analysis] lyapunov = \"yes\"", "must be true or false"}},
       {"bool as number", "[analysis]\nlyapunov = 1\n", {}, {"[analysis] lyapunov = 1", "must be true or false"}},

@@ -148,7 +148,8 @@ TEST(SweepScene, StoreAndIntervals) {
   EXPECT_EQ(s.store, (std::vector<Quantity>{Quantity::v_in, Quantity::T_con, Quantity::hertz_valid, Quantity::rhs_evals}));
   EXPECT_EQ(s.checkpoint_interval, 5.0);
   EXPECT_EQ(s.progress_interval, 0.5);
-  EXPECT_TRUE(sweep_of("[sweep]\nE1 = { values = [1e9] }\nstore = []\n").store.empty());
+  // Every map stores hertz_valid (its pictures mark where the Hertz law fails): added when not listed.
+  EXPECT_EQ(sweep_of("[sweep]\nE1 = { values = [1e9] }\nstore = []\n").store, std::vector<Quantity>{Quantity::hertz_valid});
 }
 
 TEST(SweepScene, SubtableFormIsAnAxisToo) {
@@ -288,7 +289,8 @@ TEST(SweepScene, SetChangesAnIntervalAndAnAxis) {
   EXPECT_EQ(s.axes.at(0).values.size(), 5u);
   EXPECT_EQ(s.axes[0].values.front(), 1e5);
   EXPECT_EQ(s.axes[0].values.back(), 1e9);
-  EXPECT_EQ(sweep_of(text, {"sweep.store=[\"k_con\"]"}).store, (std::vector<Quantity>{Quantity::k_con}));
+  EXPECT_EQ(sweep_of(text, {"sweep.store=[\"k_con\"]"}).store,
+            (std::vector<Quantity>{Quantity::k_con, Quantity::hertz_valid}));
   // A scene without [sweep] becomes a sweep by --set.
   EXPECT_EQ(sweep_of("", {"sweep.R2={values=[0.5, 1]}"}).axes.at(0).name, "R2");
 }
@@ -509,7 +511,7 @@ TEST(SweepScene, KeysListingDocumentsTheSweepKeys) {
                           "sweep.progress_interval "}) {
     EXPECT_NE(text.find(key), std::string::npos) << key;
   }
-  EXPECT_NE(text.find("[\"T_con\", \"k_con\", \"F_max\", \"z_max\"]"), std::string::npos);  // store's default
+  EXPECT_NE(text.find("[\"T_con\", \"k_con\", \"F_max\", \"z_max\", \"hertz_valid\"]"), std::string::npos);  // store's default
   EXPECT_NE(text.find("grid axis over any real or integer key above"), std::string::npos);
   EXPECT_NE(text.find("at most 8 axes, not both keys of a pair"), std::string::npos);
   EXPECT_NE(text.find("(E1, E2, R1, R2, m2, k2, omega2, then schema order)"), std::string::npos);  // order's default
@@ -578,7 +580,7 @@ TEST(SweepScene, DemoE1E2IsTheTable2BaseOverThePaperBox) {
   }
   EXPECT_EQ(Grid(w.axes).size(), 23u * 22u);
   EXPECT_EQ(w.store, (std::vector<Quantity>{Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max,
-                                            Quantity::z_ratio, Quantity::v_in}));
+                                            Quantity::z_ratio, Quantity::v_in, Quantity::hertz_valid}));
   EXPECT_EQ(w.checkpoint_interval, 10.0);
 }
 

@@ -61,7 +61,7 @@ struct AttractorRecord {
   std::int8_t stable = -1;            // 1 stable, 0 unstable, -1 unknown
   std::int8_t hertz_valid = 0;
   std::int8_t from_rest = 0;          // 1: the rest state reaches it
-  std::int8_t soft = 0;               // 1: stable, Hertz-valid, k_con <= census.soft_kcon
+  std::int8_t soft = 0;               // 1: soft (is_soft, regime.hpp)
   std::int8_t transient = 0;          // 1: non-periodic, and states were seen to leave it (census.hpp)
   std::int32_t n = 0, k = 0;
   double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_ratio = 0.0;
@@ -75,6 +75,7 @@ struct CellResult {
   std::int8_t regime = kNotComputed;
   std::int8_t hertz_valid = 0;
   std::int8_t stable = -1;  // 1 stable, 0 unstable, -1 unknown (not computed or not periodic)
+  std::int8_t soft = kNotComputed;  // 1 soft (is_soft, regime.hpp), 0 not, -1 not computed
   std::int32_t n = 0, k = 0;
   std::int64_t periods = 0, rhs_evals = 0, clipped_impacts = 0;
   double wall_s = 0.0, steady_residual = 0.0;

@@ -79,6 +79,12 @@ struct MapLayout {
   std::string scene_text;        // provenance: the scene after overrides
   std::string identity;          // what --resume compares (one "key = value" line per cell-defining key)
   std::size_t attractors = 0;    // census: the attractor dimension's length (0: no census)
+  // What the cells' answers mean (root attributes, for readers and pictures): analysis.steady
+  // ("follow": the motion from the initial state; "shooting": some stable orbit; "integrate":
+  // brute force), and the Hertz limit and soft threshold of the soft flag.
+  std::string steady = {};
+  double hertz_limit = 0.05;
+  double soft_kcon = 10.0;
 };
 
 // Cells [begin, end) in flat order.

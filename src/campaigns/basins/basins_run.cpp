@@ -62,7 +62,7 @@ BasinsContent new_content(const Scene& scene, const BasinsPlane& plane) {
   c.scene_text = scene.text;
   c.identity = run_identity(scene, plane);
   c.plane = plane;
-  c.soft_kcon = scene.census.value_or(CensusOptions{}).soft_kcon;
+  c.soft_kcon = scene.options.analysis.soft_kcon;
   c.labels.assign(static_cast<std::size_t>(plane.pixels()), kNotComputedLabel);
   c.done.assign(c.labels.size(), 0);
   return c;

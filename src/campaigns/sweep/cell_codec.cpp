@@ -27,6 +27,7 @@ void CellCodec::encode(const CellResult& c, ByteWriter& out) const {
   out.put(c.regime);
   out.put(c.hertz_valid);
   out.put(c.stable);
+  out.put(c.soft);
   out.put(c.n);
   out.put(c.k);
   out.put(c.periods);
@@ -53,6 +54,7 @@ CellResult CellCodec::decode(ByteReader& in) const {
   c.regime = in.get<std::int8_t>();
   c.hertz_valid = in.get<std::int8_t>();
   c.stable = in.get<std::int8_t>();
+  c.soft = in.get<std::int8_t>();
   c.n = in.get<std::int32_t>();
   c.k = in.get<std::int32_t>();
   c.periods = in.get<std::int64_t>();

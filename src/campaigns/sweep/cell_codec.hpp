@@ -14,7 +14,7 @@ class CellCodec : public ResultCodec<CellResult> {
  public:
   // census: the sweep keeps each cell's census.
   explicit CellCodec(bool census = false) : census_(census) {}
-  std::uint32_t version() const override { return census_ ? 5 : 4; }
+  std::uint32_t version() const override { return census_ ? 7 : 6; }  // 6, 7: the soft flag
   void encode(const CellResult& c, ByteWriter& out) const override;
   CellResult decode(ByteReader& in) const override;
 

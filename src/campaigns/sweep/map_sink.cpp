@@ -10,6 +10,11 @@ std::string regime_label(const CellResult& c) { return Regime{static_cast<Regime
 
 void MapTally::add(const CellResult& c) {
   ++regimes[regime_label(c)];
+  soft += c.soft == 1 ? 1 : 0;
+  if (c.k > 0 || c.T_con > 0.0) {
+    ++impacting;
+    hertz_invalid += c.hertz_valid ? 0 : 1;
+  }
   if (census_k > 0 && std::isfinite(c.budget_fraction)) census_budget_states += std::lround(c.budget_fraction * census_k);
 }
 

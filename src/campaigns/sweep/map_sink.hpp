@@ -15,6 +15,9 @@ struct MapTally {
   int census_k = 0;                     // K of each cell's census (0: no census)
   std::map<std::string, long> regimes;  // regime label -> cells
   long census_budget_states = 0;        // census: initial states followed to analysis.max_periods
+  long soft = 0;                        // cells whose motion is soft (is_soft)
+  long impacting = 0;                   // cells with impacts in their motion (k > 0 or T_con > 0)
+  long hertz_invalid = 0;               // of those, cells beyond the Hertz limit
   void add(const CellResult& c);
 };
 

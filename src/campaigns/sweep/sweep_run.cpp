@@ -83,7 +83,11 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   if (!scene.sweep) throw SceneError(scene.path + ": no [sweep] section: nothing to sweep (see 'vibromap keys')");
   lock = std::make_unique<OutputLock>(config.output);
   const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
-  const MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
+  MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
+  const AnalysisOptions& analysis = scene.options.analysis;
+  layout.steady = to_string(analysis.steady);
+  layout.hertz_limit = analysis.hertz_limit;
+  layout.soft_kcon = analysis.soft_kcon;
   const bool exists = std::filesystem::exists(config.output);
   detail::MapTally tally;
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;
@@ -142,6 +146,9 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   if (sink) {
     report.regimes = sink->tally().regimes;
     report.census_budget_states = sink->tally().census_budget_states;
+    report.soft = sink->tally().soft;
+    report.impacting = sink->tally().impacting;
+    report.hertz_invalid = sink->tally().hertz_invalid;
   }
   if (scene.census) report.census_initial_conditions = scene.census->initial_conditions;
   return report;

@@ -339,8 +339,7 @@ std::optional<std::size_t> AttractorSet::add_periodic(const State& y0_in, int n_
     a.max_floquet = es.eigenvalues().cwiseAbs().maxCoeff();
     a.stable = a.max_floquet < 1.0 ? 1 : 0;
   }
-  a.soft = a.stable == 1 && a.hertz_valid && a.regime.kind == RegimeKind::periodic && a.k_con > 0.0 &&
-           a.k_con <= census_.soft_kcon;
+  a.soft = is_soft(a.regime, a.stable, a.hertz_valid, a.k_con, options_.analysis.soft_kcon);
   records_.push_back(a);
   orbits_.push_back(std::move(o));
   recurrent_.emplace_back();

@@ -16,7 +16,6 @@ using census_detail::Offsets;
 std::string validate(const CensusOptions& o) {
   if (o.initial_conditions < 1 || o.initial_conditions > 1'000'000) return "initial_conditions must be in [1, 1000000]";
   if (o.max_attractors < 1 || o.max_attractors > 64) return "max_attractors must be in [1, 64]";
-  if (!(o.soft_kcon > 0.0 && std::isfinite(o.soft_kcon))) return "soft_kcon must be > 0";
   if (o.recurrences < 2 || o.recurrences > 100'000) return "recurrences must be in [2, 100000]";
   if (!(o.cell > 0.0 && std::isfinite(o.cell))) return "cell must be > 0";
   if (!(o.rtol >= 1e-14 && o.rtol <= 1e-3)) return "rtol must be in [1e-14, 1e-3]";

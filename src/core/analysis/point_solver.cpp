@@ -21,6 +21,7 @@ std::string validate(const AnalysisOptions& o) {
   if (!(o.steady_tol >= 0.0 && std::isfinite(o.steady_tol))) return "steady_tol must be >= 0";
   if (o.chatter_impacts < 1) return "chatter_impacts must be >= 1";
   if (!(o.hertz_limit > 0.0)) return "hertz_limit must be > 0";
+  if (!(o.soft_kcon > 0.0 && std::isfinite(o.soft_kcon))) return "soft_kcon must be > 0";
   if (o.trajectory_periods < 0) return "trajectory_periods must be >= 0";
   if (o.trajectory_samples < 10) return "trajectory_samples must be >= 10";
   if (o.transient_periods < 1) return "transient_periods must be >= 1";
@@ -44,7 +45,11 @@ namespace {
 
 constexpr int kShootingCandidates = 3;       // periods tried by Newton, most promising first
 constexpr double kNewtonTolFactor = 10.0;     // auto Newton tolerance, in units of rtol
-constexpr int kTransientTries = 3;            // transients of t, 3t, 9t periods before brute force
+constexpr int kTransientTries = 3;            // shooting: transients of t, 3t, 9t periods before brute force
+// Following, the transient is brute force's own path, so a later try costs only its Newton
+// search and check: orbits reached after a long wander (a (3,3) after 100-1000 periods) are
+// then taken when the state closes in on them, before the samples repeat to steady_tol.
+constexpr int kFollowTries = 5;               // follow: t, 3t, 9t, 27t, 81t periods
 // The transient only has to bring Newton a start inside its basin: it is integrated at this
 // relative tolerance (or the scene's, when looser). Contacts are still found exactly (closed-
 // form free flight) and resolved to 1e-4; every Newton evaluation that decides the answer
@@ -230,7 +235,7 @@ std::string check_inputs(const Parameters& p, const PointOptions& o) {
 }
 
 bool shooting_enabled(const PointOptions& o) {
-  return o.analysis.steady == SteadyMethod::shooting && o.integrator.method != Method::rk4;
+  return o.analysis.steady != SteadyMethod::integrate && o.integrator.method != Method::rk4;
 }
 
 ShootingOptions shooting_options(const PointOptions& o, int n) {
@@ -248,11 +253,13 @@ void record_shooting(PointSummary& s, const ShootingResult& sh) {
   s.stable = sh.stable() ? 1 : 0;
 }
 
-// With basin_check the answer must be the attractor the motion from the initial state goes
-// to: where attractors coexist, a transient at a looser tolerance may take another way, so
-// the transient is then integrated at the scene's tolerance.
+bool follows(const PointOptions& o) { return o.analysis.steady == SteadyMethod::follow; }
+
+// Following, the answer must be the attractor the motion from the initial state goes to:
+// where attractors coexist, a transient at a looser tolerance may take another way, so the
+// transient is then integrated at the scene's tolerance (brute force's path, step by step).
 double transient_rtol(const PointOptions& o) {
-  return o.analysis.basin_check ? o.integrator.rtol : std::max(o.integrator.rtol, kTransientRtol);
+  return follows(o) ? o.integrator.rtol : std::max(o.integrator.rtol, kTransientRtol);
 }
 
 double measure_rtol(double rtol) { return std::max(kMeasureRtolFactor * rtol, std::min(rtol, kMeasureRtolFloor)); }
@@ -276,9 +283,20 @@ bool measure_cycle(PointSummary& s, Run& r, const State& y, int n) {
   return ok;
 }
 
+// The check that the transient closes in on an orbit (transient_approaches) starts from the
+// state brute force itself reaches (the transient runs at the scene's tolerance) and compares
+// offsets of 1e-3..1 motion scales with a 25 % margin: integrating the check at this
+// tolerance (or the scene's, when looser) moves them by far less than the margin.
+constexpr double kCheckRtol = 1e-6;
+IntegratorOptions check_options(const Run& r) {
+  IntegratorOptions o = budgeted(r);
+  o.rtol = std::max(o.rtol, kCheckRtol);
+  return o;
+}
+
 // The n points y, P(y), ..., P^{n-1}(y) of a cycle (fewer when integration fails).
 std::vector<State> cycle_points(Run& r, const Model& model, const State& y, int n) {
-  const auto integ = make_integrator(model, budgeted(r));
+  const auto integ = make_integrator(model, check_options(r));
   std::vector<State> points{y};
   State u = y;
   integ->reset(u);
@@ -315,7 +333,7 @@ bool transient_approaches(Run& r, const ShootingSection& section, const Shooting
     if (scale.distance(section.transient_end, cycle[static_cast<std::size_t>(i)]) <
         scale.distance(section.transient_end, cycle[static_cast<std::size_t>(phase)]))
       phase = i;
-  const auto integ = make_integrator(section.model, budgeted(r));
+  const auto integ = make_integrator(section.model, check_options(r));
   State u = section.transient_end;
   integ->reset(u);
   Observer none;
@@ -405,11 +423,11 @@ bool solve_by_shooting(PointSummary& s, Run& r) {
     ShootingOptions so = shooting_options(r.options, n);
     const ShootingResult sh = find_orbit(s, r, *section, so);
     if (!sh.converged || !sh.stable()) continue;
-    if (r.options.analysis.basin_check && !transient_approaches(r, *section, sh, so.n, so.tol)) continue;
+    if (follows(r.options) && !transient_approaches(r, *section, sh, so.n, so.tol)) continue;
     const std::optional<State> y = from_section(r, *section, sh.y);
     if (!y || !measure_cycle(s, r, *y, so.n)) return false;
     s.status = SolveStatus::ok;
-    s.steady_method = SteadyMethod::shooting;
+    s.steady_method = r.options.analysis.steady;
     s.steady_residual = sh.residual;
     record_shooting(s, sh);
     return true;
@@ -487,7 +505,14 @@ PointSummary measure_orbit(const Parameters& p, const PointOptions& options, con
   return s;
 }
 
-std::string to_string(SteadyMethod m) { return m == SteadyMethod::shooting ? "shooting" : "integrate"; }
+std::string to_string(SteadyMethod m) {
+  switch (m) {
+    case SteadyMethod::follow: return "follow";
+    case SteadyMethod::shooting: return "shooting";
+    case SteadyMethod::integrate: break;
+  }
+  return "integrate";
+}
 
 PointSummary solve_point(const Parameters& p, const PointOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -512,7 +537,8 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
   bool solved = false;
   if (shooting_enabled(options)) {
     long transient = options.analysis.transient_periods;
-    for (int attempt = 0; attempt < kTransientTries && !solved; ++attempt, transient *= 3) {
+    const int tries = follows(options) ? kFollowTries : kTransientTries;
+    for (int attempt = 0; attempt < tries && !solved; ++attempt, transient *= 3) {
       const long periods = std::min(transient, options.analysis.max_periods) - integrator->period();
       if (periods <= 0) break;
       charge_shooting(r);
@@ -532,6 +558,7 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
   if (!solved) solve_by_integration(s, r, observers, run);
 
   measure_impacts(s, model, options.analysis.hertz_limit);
+  s.soft = is_soft(s.regime, s.stable, s.hertz_valid, s.k_con, options.analysis.soft_kcon);
   if (options.analysis.trajectory_periods > 0 && s.status != SolveStatus::failed) record_trajectory(s, r);
   s.periods = integrator->period();
   s.counters = integrator->counters();

@@ -60,4 +60,9 @@ Regime parse_regime(std::string_view s) {
   return Regime{parse_regime_kind(s), 0, 0};
 }
 
+bool is_soft(const Regime& regime, int stable, bool hertz_valid, double k_con, double soft_kcon) {
+  return regime.kind == RegimeKind::periodic && regime.k > 0 && stable == 1 && hertz_valid && k_con > 0.0 &&
+         k_con <= soft_kcon;
+}
+
 }  // namespace vibromap

@@ -63,9 +63,6 @@ std::vector<CensusRow> make_rows() {
   rows.push_back(census_row("max_attractors", SceneKeyType::integer, interval(1, 64, false, false), "-",
                             "attractors listed, most visited first; states reaching others are counted as unlisted",
                             std::to_string(d.max_attractors), integer_field<C, &C::max_attractors>()));
-  rows.push_back(census_row("soft_kcon", SceneKeyType::real, gt(0), "-",
-                            "an attractor is soft when stable, periodic with impacts, Hertz-valid and k_con <= this",
-                            toml_float(d.soft_kcon), real_field<C, &C::soft_kcon>()));
   rows.push_back(census_row("recurrences", SceneKeyType::integer, interval(2, 1e5, false, false), "-",
                             "stroboscopic points in a row on a known non-periodic attractor's cells: a stay on it (a "
                             "state that stays, then leaves, flags the attractor transient)",

@@ -104,7 +104,7 @@ constexpr Accessors initial_component() {
 // The values a choice key offers, in the order the scene lists them. Their names are the
 // core's to_string(), so the scene, the summaries and the core spell them one way.
 constexpr std::array kMethodValues = {Method::hybrid, Method::dopri5, Method::rk4};
-constexpr std::array kSteadyValues = {SteadyMethod::shooting, SteadyMethod::integrate};
+constexpr std::array kSteadyValues = {SteadyMethod::follow, SteadyMethod::shooting, SteadyMethod::integrate};
 // In all_contact_laws() order: a [sweep] axis over contact.law stores this index.
 constexpr std::array kLawValues = {ContactLawKind::hertz, ContactLawKind::hunt_crossley,
                                    ContactLawKind::lankarani_nikravesh, ContactLawKind::flores,
@@ -268,10 +268,12 @@ void add_analysis_keys(std::vector<Binding>& rows) {
   using A = AnalysisOptions;
   constexpr auto an = &PointOptions::analysis;
   rows.push_back(choice(s, "steady",
-                        "how the steady motion is found: shooting (Newton on the stroboscopic map; gives "
-                        "Floquet multipliers; falls back to integrate) or integrate (until samples repeat)",
+                        "how the steady motion is found: follow (the motion the initial state settles into, as "
+                        "brute-force integration finds it, stopped early once it is seen closing in on a stable "
+                        "orbit found by Newton), shooting (faster: some stable orbit, not necessarily the motion "
+                        "from the initial state; maps say so) or integrate (brute force, until samples repeat)",
                         enum_field<kSteadyValues, an, &A::steady>(), enum_names<kSteadyValues>()));
-  rows.push_back(integer(s, "transient_periods", ge(1), "shooting: forcing periods integrated before Newton starts",
+  rows.push_back(integer(s, "transient_periods", ge(1), "follow, shooting: forcing periods integrated before Newton starts",
                          field<an, &A::transient_periods>()));
   rows.push_back(real(s, "newton_tol", ge(0), "-",
                       "shooting: scaled residual |P^n(y) - y| at which Newton stops; 0: auto, rtol",
@@ -279,10 +281,6 @@ void add_analysis_keys(std::vector<Binding>& rows) {
   rows.push_back(integer(s, "newton_max_iterations", interval(1, 1000, false, false),
                          "shooting: Newton iterations before falling back to integrate",
                          field<an, &A::newton_max_iterations>()));
-  rows.push_back(boolean(s, "basin_check",
-                         "shooting: accept an orbit only when the transient is seen closing in on it (slower; "
-                         "where attractors coexist, follows the one reached from the initial state)",
-                         field<an, &A::basin_check>()));
   rows.push_back(boolean(s, "lyapunov",
                          "estimate the largest Lyapunov exponent when no period is found (quasi-periodic "
                          "or chaotic); costs lyapunov_periods more periods",
@@ -300,6 +298,10 @@ void add_analysis_keys(std::vector<Binding>& rows) {
                          field<an, &A::chatter_impacts>()));
   rows.push_back(real(s, "hertz_limit", gt(0), "-", "z_max/R* above which Hertz theory is flagged invalid",
                       field<an, &A::hertz_limit>()));
+  rows.push_back(real(s, "soft_kcon", gt(0), "-",
+                      "a motion is soft when periodic with impacts, stable, Hertz-valid (z_max/R* <= hertz_limit) "
+                      "and k_con <= this; one definition for run, maps, census, optimiser and pictures",
+                      field<an, &A::soft_kcon>()));
   rows.push_back(integer(s, "trajectory_periods", ge(0),
                          "forcing periods of steady motion kept as a trajectory (used by run --trajectory)",
                          field<an, &A::trajectory_periods>()));

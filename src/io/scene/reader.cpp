@@ -90,7 +90,20 @@ namespace {
 // ---------------------------------------------------------------------------------------
 // Structure: sections, keys, overrides.
 
+// Keys a scene may still carry from an earlier version, with what replaced them.
+struct RetiredKey {
+  std::string_view section, key, instead;
+};
+constexpr RetiredKey kRetiredKeys[] = {
+    {"analysis", "basin_check",
+     "the motion from the initial state is now the default answer (analysis.steady = \"follow\"); "
+     "analysis.steady = \"shooting\" asks for the faster \"some stable orbit exists\" answer"},
+    {"census", "soft_kcon", "soft has one definition everywhere: set analysis.soft_kcon"},
+};
+
 [[noreturn]] void fail_unknown_key(const std::string& loc, std::string_view section, std::string_view key) {
+  for (const RetiredKey& r : kRetiredKeys)
+    if (r.section == section && r.key == key) fail(cat(loc, ": [", section, "] ", key, " was removed: ", r.instead));
   std::string msg = cat(loc, ": unknown key '", clip(key), "' in [", section, "]");
   const auto keys = keys_of(section);
   const auto home = section_of(key);

@@ -259,6 +259,9 @@ std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& 
   sweep.axes = read_axes(*sec, ctx, given);
   if (const toml::node* node = sec->get("order")) apply_order(sweep.axes, given, *node, locate(ctx, kSweep, "order", *node));
   if (const toml::node* node = sec->get("store")) sweep.store = read_store(*node, locate(ctx, kSweep, "store", *node));
+  // Every map says where the Hertz law holds: its pictures mark the cells where it does not.
+  if (std::find(sweep.store.begin(), sweep.store.end(), Quantity::hertz_valid) == sweep.store.end())
+    sweep.store.push_back(Quantity::hertz_valid);
   for (const SweepInterval& row : sweep_intervals()) {
     if (const toml::node* node = sec->get(row.info.key)) sweep.*row.field = read_real(row.info, *node, locate(ctx, row.info, *node));
   }

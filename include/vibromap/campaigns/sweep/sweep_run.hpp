@@ -29,6 +29,9 @@ struct SweepReport {
   std::map<std::string, long> regimes;   // regime label -> cells, over the whole map (rank 0)
   int census_initial_conditions = 0;     // K of each cell's census (0: no census)
   long census_budget_states = 0;         // census: initial states followed to analysis.max_periods, whole map
+  long soft = 0;                         // cells whose motion is soft (is_soft), whole map
+  long impacting = 0;                    // cells whose motion has impacts, whole map
+  long hertz_invalid = 0;                // of those, cells beyond the Hertz limit
 };
 
 // Collective: every rank calls it with the same scene and config. Throws SceneError (no

@@ -44,7 +44,6 @@ struct CensusOptions {
   std::optional<std::array<double, 2>> v1, v2;  // m/s
   std::uint64_t seed = 1;       // seed of the draws, -
   int max_attractors = 8;       // attractors listed; initial states reaching others are counted as unlisted, -
-  double soft_kcon = 10.0;      // an attractor is soft when stable, Hertz-valid and k_con <= soft_kcon, -
   int recurrences = 100;        // stroboscopic points in a row on a non-periodic attractor's cells: a stay on it, -
   bool decide_by_recurrence = false;  // true: a stay on a known non-periodic attractor decides the state (Attractors.jl's
                                       // rule), unless states were seen to leave that set (census.cpp: why it is off)
@@ -81,7 +80,7 @@ struct Attractor {
   double fraction_stderr = 0.0; // sqrt(p (1 - p) / K)
   bool from_rest = false;       // the rest state reaches it
   std::vector<Eigen::Vector4d> strobe;  // periodic: the n stroboscopic states (x1, x2, v1, v2) at period starts
-  bool soft = false;            // stable, Hertz-valid and k_con <= soft_kcon
+  bool soft = false;            // is_soft (regime.hpp): periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon
   bool transient = false;       // non-periodic: a state seen `recurrences` periods in a row on it left it
                                 // later for another attractor. A chaotic saddle (transient chaos): its
                                 // fraction is the share still on it at the budget's end, and falls as
@@ -101,7 +100,7 @@ struct CensusSummary {
   int K = 0;
   int unresolved = 0;                  // initial states labelled kUnresolvedLabel
   int unlisted = 0;                    // initial states labelled kUnlistedLabel
-  double soft_fraction = 0.0;          // sum of the fractions of soft attractors
+  double soft_fraction = 0.0;          // sum of the fractions of soft attractors (is_soft, regime.hpp)
   int decided_early = 0;               // initial states decided by capture or recurrence
   std::vector<Eigen::Vector4d> initial_conditions;  // with CensusOptions::labels
   std::vector<int> labels;                          // with CensusOptions::labels: index into attractors

@@ -24,20 +24,26 @@ namespace vibromap {
 
 // How the steady motion is found.
 enum class SteadyMethod {
-  shooting,   // Newton's method on the stroboscopic map from a short transient, with the
-              // monodromy matrix from the variational equations; falls back to integrate
-              // when Newton fails or the orbit found is unstable
-  integrate,  // integrate until the stroboscopic samples repeat
+  follow,     // the default: the motion the initial state settles into, as brute-force
+              // integration from it finds it. The state is integrated at the scene's
+              // tolerance (the same path as integrate); Newton's method on the stroboscopic map
+              // proposes a stable orbit, and the answer is that orbit only once the state is
+              // seen closing in on it as the orbit's linearisation predicts; otherwise
+              // integration goes on until the samples repeat, as integrate does
+  shooting,   // faster, and a different question: some stable periodic orbit near the end of a
+              // short, loosely integrated transient (Newton with the monodromy matrix from the
+              // variational equations; falls back to integrate when Newton fails or the orbit
+              // is unstable). Where attractors coexist it may not be the motion from the
+              // initial state; maps made this way say so
+  integrate,  // brute force: integrate until the stroboscopic samples repeat
 };
 std::string to_string(SteadyMethod m);
 
 struct AnalysisOptions {
-  SteadyMethod steady = SteadyMethod::shooting;  // steady-state method, shooting | integrate
+  SteadyMethod steady = SteadyMethod::follow;  // steady-state method, follow | shooting | integrate
   int transient_periods = 10;  // shooting: periods integrated before Newton starts (tripled, twice, while it fails), -
   double newton_tol = 0.0;     // shooting: scaled residual ||P^n(y) - y|| to stop at; 0 = auto: 10 * rtol, -
   int newton_max_iterations = 20;  // shooting: Newton iterations before giving up, -
-  bool basin_check = false;    // shooting: accept an orbit only when the transient is seen closing in on it
-                               // (slower; where attractors coexist, follows the one reached from the initial state)
   bool lyapunov = false;       // estimate the largest Lyapunov exponent when no period is found
   int lyapunov_periods = 400;  // periods over which the Lyapunov exponent is averaged (after a quarter as many to align), -
   int n_max = 8;               // largest period looked for, in forcing periods, -
@@ -45,6 +51,8 @@ struct AnalysisOptions {
   double steady_tol = 0.0;     // steady-state tolerance (scaled max-norm); 0 = auto: 100 * rtol (rk4: 1e-9), -
   int chatter_impacts = 5;     // impacts per forcing period from which the motion is called chatter, -
   double hertz_limit = 0.05;   // z_max / R* above which Hertz theory is flagged as invalid, -
+  double soft_kcon = 10.0;     // a motion is soft when periodic with impacts, stable, Hertz-valid and
+                               // k_con <= this (is_soft, regime.hpp), -
   int trajectory_periods = 0;  // after steady state, integrate and keep this many periods (0: none), -
   int trajectory_samples = 2000;  // uniform samples per forcing period in a kept trajectory, -
 };
@@ -79,9 +87,11 @@ struct PointSummary {
   double z_max = 0.0;           // largest peak penetration, m
   double z_ratio = 0.0;         // largest z_max / R*, -
   bool hertz_valid = true;      // z_ratio <= hertz_limit
+  bool soft = false;            // is_soft (regime.hpp): periodic with impacts, stable, Hertz-valid, k_con <= soft_kcon
   std::vector<Impact> impacts;  // impacts of one steady cycle (nT), in time order
   double steady_residual = 0.0; // scaled ||y_j - y_{j-n}|| at the end (shooting: Newton residual), -
-  SteadyMethod steady_method = SteadyMethod::integrate;  // the method that produced the answer
+  SteadyMethod steady_method = SteadyMethod::integrate;  // what produced the answer: follow (Newton's orbit, seen
+                                                        // reached from the initial state), shooting or integrate
   int newton_iterations = 0;    // shooting: Newton iterations spent (0 when not used)
   // Floquet multipliers of the periodic orbit (eigenvalues of the monodromy matrix over nT);
   // empty when not computed. stable: 1 all |mu| < 1, 0 some |mu| > 1, -1 unknown.

@@ -33,4 +33,12 @@ struct Regime {
 // Parses "(n,k)" or a kind name; throws std::invalid_argument.
 Regime parse_regime(std::string_view s);
 
+// The one definition of a soft motion, used by run, maps, the census, the optimiser and the
+// pictures alike: periodic with impacts (RegimeKind::periodic, k > 0), stable (every Floquet
+// multiplier inside the unit circle: stable == 1; unknown stability is not soft), Hertz-valid
+// (z_max/R* <= analysis.hertz_limit, where the force law the motion was computed with holds)
+// and k_con <= soft_kcon (analysis.soft_kcon, 10 by default; k_con = T / T_con of the longest
+// impact). A soft answer computed beyond the Hertz limit is no answer, so it is never soft.
+bool is_soft(const Regime& regime, int stable, bool hertz_valid, double k_con, double soft_kcon);
+
 }  // namespace vibromap

@@ -72,7 +72,7 @@
 //                                 # not given: the rest state +- the motion's scale
 //   seed = 1
 //   max_attractors = 8
-//   soft_kcon = 10.0              # soft: stable, Hertz-valid, k_con <= soft_kcon
+//                                 # (soft is one definition for all: analysis.soft_kcon)
 //   recurrences, cell, rtol       # the census's numerics (vibromap keys)
 
 #include <array>

@@ -16,7 +16,8 @@ inline constexpr std::size_t kMaxSweepAxes = 8;
 
 struct SweepOptions {
   std::vector<Axis> axes;  // the swept keys, at most kMaxSweepAxes (order: first axis slowest in the flat index)
-  std::vector<Quantity> store = {Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max};  // optional quantities to store
+  // Optional quantities to store; hertz_valid is always among them (read_sweep adds it).
+  std::vector<Quantity> store = {Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max, Quantity::hertz_valid};
   double checkpoint_interval = 60.0;  // seconds between checkpoints of the map file, s
   double progress_interval = 10.0;    // seconds between progress lines when stderr is not a terminal, s
 };
