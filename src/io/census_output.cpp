@@ -1,6 +1,7 @@
 #include "vibromap/io/census_output.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <ostream>
 #include <string>
 
@@ -38,6 +39,10 @@ void write_attractor(JsonWriter& w, const Attractor& a) {
   w.field("fraction_stderr", a.fraction_stderr);
   w.field("from_rest", a.from_rest);
   w.field("transient", a.transient);
+  w.field("escape_rate", a.escape_rate);  // exits per period past the budget (NaN: none followed on)
+  w.field("mean_lifetime_periods", a.escape_rate > 0.0 ? 1.0 / a.escape_rate : std::numeric_limits<double>::quiet_NaN());
+  w.field("escape_exposure_periods", a.escape_exposure);
+  w.field("escapes", a.escapes);
   w.key("strobe").begin_array();
   for (const Eigen::Vector4d& x : a.strobe) write_state(w, x);
   w.end_array();
@@ -66,6 +71,8 @@ void write_census_json(std::ostream& os, const CensusSummary& s) {
   w.field("periods", s.periods);
   w.field("budget_states", s.budget_states);
   w.field("budget_periods", s.budget_periods);
+  w.field("transient_periods", s.transient_periods);
+  w.field("transient_states", s.transient_states);
   w.field("wall_s", s.wall_s);
   w.field("initial_states_per_s", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0);
   w.field("ranks", s.ranks);
@@ -97,6 +104,9 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   if (s.budget_states > 0)
     os << "budget         " << s.budget_states << " states undecided to the budget's end took " << s.budget_periods
        << " of the periods (brute force follows them as far)\n";
+  if (s.transient_periods > 0)
+    os << "transient      " << s.transient_periods << " periods past analysis.max_periods followed states on leaking "
+       << "non-periodic sets; " << s.transient_states << " still on one at the end\n";
   os << "\n";
   os << "  #  regime          fraction  +-stderr   k_con       T_con (s)   F_max (N)   z/R*      max|mu|   rest  soft\n";
   int i = 0;
@@ -110,11 +120,17 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   const int recurrences = scene.census ? scene.census->recurrences : CensusOptions{}.recurrences;
   i = 0;
   for (const Attractor& a : s.attractors) {
-    if (a.transient)
+    if (a.transient) {
       os << "\n  #" << i << " is transient chaos: a state stayed " << recurrences
          << " periods in a row on it, then left for another attractor.\n"
-         << "     Its fraction is the share still on it after analysis.max_periods = "
-         << scene.options.analysis.max_periods << " and falls as that grows.\n";
+         << "     Its fraction is the share still on it when the follow past the budget stopped (census.cpp);"
+         << " it falls as that grows.\n";
+      if (a.escape_exposure > 0)
+        os << "     Escape rate " << fmt("%.3g", a.escape_rate) << " per period (" << a.escapes << " exits in "
+           << a.escape_exposure << " periods followed past the budget"
+           << (a.escape_rate > 0.0 ? ", mean lifetime " + fmt("%.0f", 1.0 / a.escape_rate) + " periods" : std::string())
+           << ").\n";
+    }
     ++i;
   }
 }

@@ -119,7 +119,7 @@ TEST(OptimiseScene, DefaultsAreTheDocumentedOnes) {
   EXPECT_EQ(o.objective, ObjectiveKind::min_k_con);
   EXPECT_EQ(o.regime, (Regime{RegimeKind::periodic, 1, 1}));
   EXPECT_EQ(o.stability, StabilityRule::if_known);
-  EXPECT_FALSE(o.hertz_valid);
+  EXPECT_TRUE(o.hertz_valid);  // the default: answers within the Hertz law
   EXPECT_EQ(o.algorithms, std::vector<Algorithm>{Algorithm::bobyqa});
   EXPECT_EQ(o.seeds, 4);
   EXPECT_EQ(o.map, "");
@@ -393,10 +393,8 @@ TEST(OptimiseScene, RobustJobIsThePaperBoxWithRobustSoftness) {
   EXPECT_EQ(o.soft_check_initial_conditions, 512);
   EXPECT_FALSE(robust.census.has_value());
   o.min_soft_fraction = 0.0;
-  o.hertz_valid = false;
   expect_same_optimise(o, *box.optimise);
-  const Scene same = load_scene(source_path("jobs/paper/optimise_robust.toml"),
-                                {"optimise.min_soft_fraction=0", "optimise.hertz_valid=false"});
+  const Scene same = load_scene(source_path("jobs/paper/optimise_robust.toml"), {"optimise.min_soft_fraction=0"});
   EXPECT_EQ(canonical_text(same, IdentityScope::optimise), canonical_text(box, IdentityScope::optimise));
 }
 

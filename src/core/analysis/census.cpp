@@ -17,6 +17,8 @@ std::string validate(const CensusOptions& o) {
   if (o.initial_conditions < 1 || o.initial_conditions > 1'000'000) return "initial_conditions must be in [1, 1000000]";
   if (o.max_attractors < 1 || o.max_attractors > 64) return "max_attractors must be in [1, 64]";
   if (o.recurrences < 2 || o.recurrences > 100'000) return "recurrences must be in [2, 100000]";
+  if (o.max_transient_periods < 0 || o.max_transient_periods > 100'000'000)
+    return "max_transient_periods must be in [0, 100000000]";
   if (!(o.cell > 0.0 && std::isfinite(o.cell))) return "cell must be > 0";
   if (!(o.rtol >= 1e-14 && o.rtol <= 1e-3)) return "rtol must be in [1e-14, 1e-3]";
   const std::pair<const char*, const std::optional<std::array<double, 2>>*> sides[] = {
@@ -104,9 +106,10 @@ class PhaseSampler final : public Observer {
 
 using Followed = CensusFollower::Outcome;
 
-// One initial state followed to its attractor (census.hpp says how it is decided).
+// One initial state followed to its attractor (census.hpp says how it is decided), for at most
+// `budget` forcing periods (analysis.max_periods, or a round of the follow past it).
 Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
-                IntegrationCounters& work) {
+                long budget, IntegrationCounters& work) {
   const Model& model = set.model();
   const PointOptions& follow_options = set.follow_options();
   const auto integ = make_integrator(model, follow_options.integrator);
@@ -116,7 +119,7 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
   // Deciding a state needs its impacts' times only (the Newton section); the peaks, forces and
   // impulses describe a non-periodic attractor from the budget's last n_max periods, so they
   // are measured from the period before those on (an impact begun earlier is not used).
-  const long measure_from = o.analysis.max_periods - o.analysis.n_max - 1;
+  const long measure_from = budget - o.analysis.n_max - 1;
   impacts.set_measuring(measure_from <= 0);
   SteadyStateDetector steady(model, o.analysis.n_max, steady_tolerance(follow_options));
   PhaseSampler sampler;
@@ -135,11 +138,12 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
     f.label = index ? static_cast<int>(*index) : kUnlistedLabel;
     f.early = early;
     f.periods = periods;
+    f.end_state = Model::to_physical(u);
     work += integ->counters();
     return f;
   };
 
-  for (long j = 0; j < o.analysis.max_periods; ++j) {
+  for (long j = 0; j < budget; ++j) {
     if (set.size() != known) {
       known = set.size();
       sampler.set_phases(set.phases());
@@ -150,6 +154,7 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
     if (j == measure_from) impacts.set_measuring(true);
     if (integ->advance_period(u, observers) != IntegrationStatus::ok) {
       f.periods = j;
+      f.failed = true;
       work += integ->counters();
       return f;  // unresolved: the integration failed
     }
@@ -201,15 +206,81 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
           if (set.discover(u, n, impacts.impacts(), impacts.open_impact(), j, work)) break;
     }
   }
-  const long last = o.analysis.max_periods - 1;
+  const long last = budget - 1;
   f.budget = true;
   if (steady.still_converging()) {
     f.periods = last + 1;
+    f.end_state = Model::to_physical(u);
     work += integ->counters();
     return f;
   }
   const long first = last - std::min<long>(o.analysis.n_max, last + 1) + 1;
   return done(set.add_recurrent({recent.begin(), recent.end()}, impacts.impacts(), first, last), false, last + 1);
+}
+
+}  // namespace
+
+namespace {
+
+// The survival of states on one non-periodic set past analysis.max_periods.
+struct Escape {
+  long exposure = 0;  // periods states were followed on from the set (censored at the end of a round)
+  int exits = 0;      // of those states, how many left it
+};
+
+bool on_leaking_set(const CensusFollower& follower, const CensusFollower::Outcome& f) {
+  if (!f.budget || f.label < 0) return false;
+  const Attractor& a = follower.attractor(static_cast<std::size_t>(f.label));
+  return !a.periodic && a.transient;
+}
+
+// Still settling at the end of its budget (unresolved, not failed): a later round decides it.
+bool settling(const CensusFollower::Outcome& f) { return f.budget && !f.failed && f.label == kUnresolvedLabel; }
+
+// Transient chaos (census.hpp): a state the budget left on a non-periodic set that states were
+// seen to leave (a chaotic saddle), or still settling (often a state that left such a set late),
+// is followed on in rounds of analysis.max_periods, until at most sqrt(K)/4 such states remain:
+// their share is then at most 1/(4 sqrt K), a quarter of the largest standard error
+// sqrt(p(1-p)/K) of any fraction, so they move no fraction by more than that. The rest state is
+// followed on while it is one of them (its label is the map's answer).
+// census.max_transient_periods caps a state's periods in all. Each round's survival gives a
+// set's escape rate: exits over the periods followed from it (the maximum-likelihood rate of
+// an exponential lifetime with censoring; memoryless, so timed from the round's start).
+void follow_leaking_states(CensusFollower& follower, const CensusOptions& census, long round,
+                           std::vector<CensusFollower::Outcome>& outcomes, std::vector<Escape>& escapes,
+                           CensusSummary& s) {
+  const double allowed = std::sqrt(static_cast<double>(outcomes.size())) / 4.0;
+  std::vector<long> spent(outcomes.size());
+  for (std::size_t k = 0; k < outcomes.size(); ++k) spent[k] = outcomes[k].periods;
+  for (;;) {
+    std::vector<std::size_t> pending;
+    for (std::size_t k = 0; k < outcomes.size(); ++k)
+      if ((on_leaking_set(follower, outcomes[k]) || settling(outcomes[k])) &&
+          spent[k] + round <= census.max_transient_periods)
+        pending.push_back(k);
+    const bool rest = !pending.empty() && pending.front() == 0;
+    if (pending.empty() || (static_cast<double>(pending.size()) <= allowed && !rest)) break;
+    if (static_cast<double>(pending.size()) <= allowed) pending.erase(pending.begin() + 1, pending.end());  // rest alone
+    for (const std::size_t k : pending) {
+      const int from = outcomes[k].label;
+      const CensusFollower::Outcome f = follower.follow(outcomes[k].end_state, round);
+      if (escapes.size() < follower.size()) escapes.resize(follower.size());
+      if (from >= 0) {
+        escapes[static_cast<std::size_t>(from)].exposure += f.periods;
+        escapes[static_cast<std::size_t>(from)].exits += f.label != from ? 1 : 0;
+      }
+      spent[k] += f.periods;
+      s.periods += f.periods;
+      s.transient_periods += f.periods;
+      s.budget_periods += f.budget ? f.periods : 0;
+      outcomes[k] = f;
+    }
+  }
+  s.transient_states = 0;
+  for (const CensusFollower::Outcome& f : outcomes)
+    s.transient_states += on_leaking_set(follower, f) || settling(f) ? 1 : 0;
+  s.budget_states = 0;
+  for (const CensusFollower::Outcome& f : outcomes) s.budget_states += f.budget ? 1 : 0;
 }
 
 }  // namespace
@@ -241,18 +312,29 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
   }
 
   CensusFollower follower(p, options, census);
-  std::vector<int> labels;
+  std::vector<CensusFollower::Outcome> outcomes;
   for (const Eigen::Vector4d& x0 : ics) {
     const CensusFollower::Outcome f = follower.follow(x0);
-    labels.push_back(f.label);
     s.periods += f.periods;
     s.decided_early += f.early ? 1 : 0;
     s.budget_states += f.budget ? 1 : 0;
     s.budget_periods += f.budget ? f.periods : 0;
+    outcomes.push_back(f);
   }
+  std::vector<Escape> escapes;
+  follow_leaking_states(follower, census, options.analysis.max_periods, outcomes, escapes, s);
   s.counters = follower.counters();
   std::vector<Attractor> found;
-  for (std::size_t i = 0; i < follower.size(); ++i) found.push_back(follower.attractor(i));
+  for (std::size_t i = 0; i < follower.size(); ++i) {
+    found.push_back(follower.attractor(i));
+    if (i < escapes.size() && escapes[i].exposure > 0) {
+      found.back().escape_rate = static_cast<double>(escapes[i].exits) / static_cast<double>(escapes[i].exposure);
+      found.back().escape_exposure = escapes[i].exposure;
+      found.back().escapes = escapes[i].exits;
+    }
+  }
+  std::vector<int> labels;
+  for (const CensusFollower::Outcome& f : outcomes) labels.push_back(f.label);
   list_attractors(s, found, labels, census.max_attractors);
   if (census.labels) {
     s.initial_conditions = ics;
@@ -351,7 +433,10 @@ CensusFollower::CensusFollower(CensusFollower&&) noexcept = default;
 CensusFollower& CensusFollower::operator=(CensusFollower&&) noexcept = default;
 
 CensusFollower::Outcome CensusFollower::follow(const Eigen::Vector4d& x0) {
-  return vibromap::follow(impl_->set, impl_->options, impl_->census, x0, impl_->counters);
+  return follow(x0, impl_->options.analysis.max_periods);
+}
+CensusFollower::Outcome CensusFollower::follow(const Eigen::Vector4d& x0, long budget) {
+  return vibromap::follow(impl_->set, impl_->options, impl_->census, x0, budget, impl_->counters);
 }
 std::size_t CensusFollower::size() const { return impl_->set.size(); }
 const Attractor& CensusFollower::attractor(std::size_t i) const { return impl_->set.record(i); }

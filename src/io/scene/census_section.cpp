@@ -67,6 +67,11 @@ std::vector<CensusRow> make_rows() {
                             "stroboscopic points in a row on a known non-periodic attractor's cells: a stay on it (a "
                             "state that stays, then leaves, flags the attractor transient)",
                             std::to_string(d.recurrences), integer_field<C, &C::recurrences>()));
+  rows.push_back(census_row("max_transient_periods", SceneKeyType::integer, interval(0, 1e8, false, false), "-",
+                            "transient chaos: a state the budget leaves on a non-periodic set that states were seen "
+                            "to leave is followed on in rounds of analysis.max_periods, until at most sqrt(K)/4 "
+                            "such states (and not rest) remain, up to this many periods in all; 0: not at all",
+                            std::to_string(d.max_transient_periods), integer_field<C, &C::max_transient_periods>()));
   rows.push_back(census_row("decide_by_recurrence", SceneKeyType::boolean, any_finite(), "-",
                             "a stay labels the state with that attractor unless states were seen to leave it "
                             "(Attractors.jl's rule; faster, but on transient chaos it keeps states brute force sees "

@@ -165,8 +165,9 @@ void add_optimise_goal_rows(std::vector<OptimiseRow>& rows, const OptimiseOption
       "known stable is feasible) or ignored",
       all_stability_rules(), d.stability, choice_field<O, parse_stability_rule, &O::stability>()));
   rows.push_back(optimise_row("hertz_valid", SceneKeyType::boolean, any_finite(), "-",
-                              "also keep Hertz theory valid, z_max/R* <= [analysis] hertz_limit, as a constraint "
-                              "(seeding needs hertz_valid or z_ratio in the map)",
+                              "keep Hertz theory valid, z_max/R* <= [analysis] hertz_limit, as a constraint (the "
+                              "default: beyond it the force law the answer was computed with does not hold); false is "
+                              "an explicit choice whose answers are flagged Hertz-invalid",
                               d.hertz_valid ? "true" : "false", bool_field<O, &O::hertz_valid>()));
   rows.push_back(optimise_row("algorithm", SceneKeyType::choice, any_finite(), "-",
                               "local algorithm, or a list of them, each started from every seed: bobyqa, cobyla, "

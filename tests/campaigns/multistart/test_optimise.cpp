@@ -317,7 +317,8 @@ PointSummary summary(Regime regime, int stable, double mu) {
 }
 
 TEST(PointObjective, ViolationBandsFollowTheRegime) {
-  const OptimiseOptions o;  // keep a stable (1,1), minimise k_con
+  OptimiseOptions o;  // keep a stable (1,1), minimise k_con
+  o.hertz_valid = false;  // the regime and stability bands alone (Hertz validity: the next test)
   const Evaluation kept = evaluate_summary(summary({RegimeKind::periodic, 1, 1}, 1, 0.97), o);
   EXPECT_TRUE(kept.feasible);
   EXPECT_NEAR(kept.violation, -0.03, 1e-12);
@@ -340,7 +341,9 @@ TEST(PointObjective, HertzValidityIsAContinuousConstraintWhenAsked) {
   OptimiseOptions o;
   PointSummary s = summary({RegimeKind::periodic, 1, 1}, 1, 0.97);
   s.z_ratio = 0.08;  // beyond the default hertz_limit 0.05
-  EXPECT_TRUE(evaluate_summary(s, o).feasible);  // not asked: flagged elsewhere, not a constraint
+  EXPECT_TRUE(o.hertz_valid);  // a constraint by default: beyond the limit the force law does not hold
+  o.hertz_valid = false;
+  EXPECT_TRUE(evaluate_summary(s, o).feasible);  // turned off: flagged in the output, not a constraint
   o.hertz_valid = true;
   EXPECT_NEAR(evaluate_summary(s, o, 0.05).violation, 0.6, 1e-12);  // 0.08 / 0.05 - 1
   EXPECT_FALSE(evaluate_summary(s, o, 0.05).feasible);
@@ -393,6 +396,7 @@ TEST(Multistart, SeedsAreTheBestQualifyingCellsInsideTheBox) {
   OptimiseOptions o;
   o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}, {"k2", 1e3, 1e4, AxisScale::log}};
   o.seeds = 2;
+  o.hertz_valid = false;  // first without the Hertz constraint (the map has no z_ratio)
   const std::vector<Quantity> stored = {Quantity::k_con};
   const std::vector<Seed> seeds = select_seeds(grid, cells, done, stored, Parameters{}, o);
   ASSERT_EQ(seeds.size(), 2u);
@@ -420,6 +424,7 @@ TEST(Multistart, AMapAxisThatCannotBeFreeIsRefused) {
   const std::vector<std::uint8_t> done(grid.size(), 1);
   OptimiseOptions o;
   o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}};
+  o.hertz_valid = false;  // the axis is refused first, whatever the map stores
   try {
     select_seeds(grid, cells, done, {Quantity::k_con}, Parameters{}, o);
     ADD_FAILURE() << "no error for a map axis over omega";
@@ -522,6 +527,7 @@ TEST(PointObjective, AShortStartImprovesOnTheProbedCorner) {
   OptimiseOptions o;
   o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}, {"omega2", 3.606, 5.646, AxisScale::lin}};
   o.local.max_evaluations = 40;
+  o.hertz_valid = false;  // the corner is far beyond the Hertz limit (z_max/R* ~ 10): the search alone is tested
   Parameters base;
   base.E1 = base.E2 = 2e4;
   base.R1 = base.R2 = 0.09;
@@ -599,7 +605,8 @@ TEST(PointObjective, MinSoftFractionMakesTheBistableTable2PointInfeasible) {
 }
 
 TEST(PointObjective, SoftShortfallBandsAndAFailedCensus) {
-  const OptimiseOptions o = free_e2(1.0);
+  OptimiseOptions o = free_e2(1.0);
+  o.hertz_valid = false;  // the bands of the soft shortfall alone
   Evaluation e = evaluate_summary(summary({RegimeKind::periodic, 1, 1}, 1, 0.97), o);
   CensusSummary c;
   c.K = 32;
@@ -627,6 +634,7 @@ TEST(PointObjective, MinSoftFractionZeroChangesNothing) {
   OptimiseOptions o;
   o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}, {"omega2", 3.606, 5.646, AxisScale::lin}};
   o.local.max_evaluations = 40;
+  o.hertz_valid = false;  // AShortStartImprovesOnTheProbedCorner's start, Hertz-invalid
   o.min_soft_fraction = 0.0;
   o.soft_check_initial_conditions = 7;
   CensusOptions census;

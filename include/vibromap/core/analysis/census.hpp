@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,6 +51,9 @@ struct CensusOptions {
   double cell = 0.25;           // cell size of the non-periodic recurrence grid, in motion scales, -
   double rtol = 1e-6;           // tolerance at which initial states are followed (orbits are refined at the
                                 // scene's); the scene's when looser. Ignored without early_stop, -
+  long max_transient_periods = 10000;  // a state on a leaking non-periodic set (transient chaos) is followed
+                                       // past analysis.max_periods, in rounds of it, up to this many periods
+                                       // in all (census.cpp: until few such states remain); 0: not at all, -
   bool early_stop = true;       // false: follow every initial state to its steady state at the scene's
                                 // tolerance, with no capture, recurrence or Newton search (brute force, for checks)
   bool labels = false;          // keep each initial state and its attractor index in the summary
@@ -81,6 +85,10 @@ struct Attractor {
   bool from_rest = false;       // the rest state reaches it
   std::vector<Eigen::Vector4d> strobe;  // periodic: the n stroboscopic states (x1, x2, v1, v2) at period starts
   bool soft = false;            // is_soft (regime.hpp): periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon
+  double escape_rate = std::numeric_limits<double>::quiet_NaN();  // transient: states' exits per period followed
+                                // past the budget (1 / mean lifetime); NaN when none was followed on
+  long escape_exposure = 0;     // the periods followed past the budget from this set
+  int escapes = 0;              // the states that left it then
   bool transient = false;       // non-periodic: a state seen `recurrences` periods in a row on it left it
                                 // later for another attractor. A chaotic saddle (transient chaos): its
                                 // fraction is the share still on it at the budget's end, and falls as
@@ -107,6 +115,8 @@ struct CensusSummary {
   long periods = 0;                    // forcing periods integrated for all initial states
   int budget_states = 0;               // initial states followed to the end of the budget (undecided)
   long budget_periods = 0;             // the periods those took: what early decisions cannot save
+  long transient_periods = 0;          // periods spent following states on leaking sets past analysis.max_periods
+  int transient_states = 0;            // states still on a leaking non-periodic set, or still settling, at the end
   IntegrationCounters counters;       // one process's (census_point); empty from several ranks
   double wall_s = 0.0;
   int ranks = 1;                       // MPI ranks the initial states were shared out over
@@ -135,11 +145,15 @@ class CensusFollower {
     int label = kUnresolvedLabel;  // index into attractor(), kUnresolvedLabel or kUnlistedLabel
     bool early = false;            // decided by capture or recurrence
     long periods = 0;              // forcing periods integrated
-    bool budget = false;           // followed to the end of analysis.max_periods without a decision
+    bool budget = false;           // followed to the end of its budget without a decision
+    bool failed = false;           // the integration failed
+    Eigen::Vector4d end_state = Eigen::Vector4d::Zero();  // physical state where it was left (budget: to go on from)
   };
   // x0: physical state (x1, x2, v1, v2). Unlisted here means no room for another attractor
   // (4 max_attractors kept); count, fraction, from_rest of the attractors are not filled in.
   Outcome follow(const Eigen::Vector4d& x0);
+  // As follow, for `budget` periods (a later round of a state left on a leaking set).
+  Outcome follow(const Eigen::Vector4d& x0, long budget);
   std::size_t size() const;
   const Attractor& attractor(std::size_t i) const;
   const IntegrationCounters& counters() const;

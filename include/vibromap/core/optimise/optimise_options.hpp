@@ -89,7 +89,8 @@ struct OptimiseOptions {
   int impact = 0;                                      // max_T_con: index of the impact in the steady cycle, time order, -
   std::optional<Regime> regime = Regime{RegimeKind::periodic, 1, 1};  // the regime to keep; nullopt: any with an impact
   StabilityRule stability = StabilityRule::if_known;   // how the orbit's stability counts
-  bool hertz_valid = false;                            // also keep Hertz theory valid: z_max/R* <= [analysis] hertz_limit
+  bool hertz_valid = true;                             // keep Hertz theory valid: z_max/R* <= [analysis] hertz_limit
+                                                       // (false: an explicit choice; its answers are flagged Hertz-invalid)
   std::vector<FreeVariable> variables;                 // the free parameters (at least one)
   std::vector<Algorithm> algorithms = {Algorithm::bobyqa};  // each seed is started with each algorithm
   // The contact law as a categorical free variable: every seed and algorithm is started once with
