@@ -15,6 +15,8 @@ void PixelCodec::encode(const PixelResult& r, ByteWriter& out) const {
   out.put(r.periods);
   out.put(static_cast<std::uint8_t>(r.early));
   out.put(static_cast<std::uint8_t>(r.budget));
+  out.put(static_cast<std::uint8_t>(r.failed));
+  for (int i = 0; i < 4; ++i) out.put(r.end_state[i]);
   if (r.label < 0) return;
   const Attractor& a = r.attractor;
   out.put(static_cast<std::uint8_t>(a.periodic));
@@ -37,6 +39,8 @@ PixelResult PixelCodec::decode(ByteReader& in) const {
   r.periods = in.get<std::int64_t>();
   r.early = in.get<std::uint8_t>() != 0;
   r.budget = in.get<std::uint8_t>() != 0;
+  r.failed = in.get<std::uint8_t>() != 0;
+  for (int i = 0; i < 4; ++i) r.end_state[i] = in.get<double>();
   if (r.label < 0) return r;
   Attractor& a = r.attractor;
   a.periodic = in.get<std::uint8_t>() != 0;
@@ -56,17 +60,20 @@ PixelResult PixelCodec::decode(ByteReader& in) const {
   return r;
 }
 
-PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0) {
+PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, long budget) {
   PixelResult r;
   try {
-    const CensusFollower::Outcome out = follower.follow(x0);
+    const CensusFollower::Outcome out = budget > 0 ? follower.follow(x0, budget) : follower.follow(x0);
     r.label = out.label;
     r.periods = out.periods;
     r.early = out.early;
     r.budget = out.budget;
+    r.failed = out.failed;
+    r.end_state = out.end_state;
     if (out.label >= 0) r.attractor = follower.attractor(static_cast<std::size_t>(out.label));
   } catch (const std::exception&) {
     r.label = kUnresolvedLabel;
+    r.failed = true;
   }
   return r;
 }

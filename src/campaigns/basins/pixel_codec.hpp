@@ -1,7 +1,8 @@
 #pragma once
 // Internal to the campaigns that follow initial states on MPI ranks (basins, the point census):
-// one state's result and its bytes (layout 2): the label, the periods integrated, whether it
-// was decided early or followed to the budget's end and, for a label >= 0, the attractor's
+// one state's result and its bytes (layout 3): the label, the periods integrated, whether it
+// was decided early or followed to the budget's end, whether its integration failed, the state
+// where it was left (the follow past the budget goes on from it) and, for a label >= 0, the attractor's
 // record (periodic, regime, T_con, k_con, F_max, z_ratio, z_max, v_in, impulse, hertz_valid,
 // max_floquet, stable, soft, transient, the stroboscopic states).
 
@@ -18,11 +19,14 @@ struct PixelResult {
   std::int64_t periods = 0;               // forcing periods integrated
   bool early = false;                     // decided by capture or recurrence
   bool budget = false;                    // followed to the end of analysis.max_periods undecided
+  bool failed = false;                    // the integration failed
+  Eigen::Vector4d end_state = Eigen::Vector4d::Zero();  // physical state where it was left
 };
 
 // The outcome of following x0 on the rank's follower. An exception is the state's label
 // (unresolved), never the run's.
-PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0);
+// budget > 0: follow for that many periods (a round of the follow past analysis.max_periods).
+PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, long budget = 0);
 
 // The census options the followers of a campaign use: `census`, never deciding by recurrence.
 // A state recurring on a non-periodic set a follower found earlier would be decided
@@ -36,7 +40,7 @@ CensusOptions follower_census(CensusOptions census);
 
 class PixelCodec : public ResultCodec<PixelResult> {
  public:
-  std::uint32_t version() const override { return 2; }
+  std::uint32_t version() const override { return 3; }
   void encode(const PixelResult& r, ByteWriter& out) const override;
   PixelResult decode(ByteReader& in) const override;
 };

@@ -18,7 +18,7 @@ namespace {
 class CensusSink final : public ResultSink<detail::PixelResult> {
  public:
   CensusSink(const detail::PixelCodec& codec, const Scene& scene, std::size_t K)
-      : ResultSink<detail::PixelResult>(codec), scene_(scene), labels_(K, kUnresolvedLabel), done_(K, 0) {}
+      : ResultSink<detail::PixelResult>(codec), scene_(scene), labels_(K, kUnresolvedLabel), done_(K, 0), left_(K) {}
 
   std::uint64_t items() const override { return labels_.size(); }
   std::uint64_t items_done() const override { return stored_; }
@@ -34,11 +34,11 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
             match_attractor(scene_.params, scene_.options, found_, first_, r.attractor, static_cast<std::int64_t>(i)));
       }
       labels_[i] = label;
+      left_[static_cast<std::size_t>(i)] = r;
       if (!done_[i]) ++stored_;
       done_[i] = 1;
       periods_ += r.periods;
       early_ += r.early ? 1 : 0;
-      budget_states_ += r.budget ? 1 : 0;
       budget_periods_ += r.budget ? r.periods : 0;
     }
   }
@@ -53,13 +53,21 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
     CensusSummary s;
     s.T = scene_.params.period();
     s.K = static_cast<int>(labels_.size());
+    const CensusOptions followers = detail::follower_census(census);
+    follow_on(followers, s);
     s.periods = periods_;
     s.decided_early = early_;
-    s.budget_states = budget_states_;
+    s.budget_states = 0;
+    for (const detail::PixelResult& r : left_) s.budget_states += r.budget ? 1 : 0;
     s.budget_periods = budget_periods_;
-    const CensusOptions followers = detail::follower_census(census);
-    for (std::size_t g = 0; g < found_.size(); ++g)
+    std::vector<Attractor> escapes = found_;  // canonical_record keeps count and transient only
+    for (std::size_t g = 0; g < found_.size(); ++g) {
       found_[g] = canonical_record(scene_.params, scene_.options, followers, ics[static_cast<std::size_t>(first_[g])], found_[g]);
+      found_[g].escape_exposure = escapes[g].escape_exposure;
+      found_[g].escapes = escapes[g].escapes;
+      if (escapes[g].escape_exposure > 0)
+        found_[g].escape_rate = static_cast<double>(escapes[g].escapes) / static_cast<double>(escapes[g].escape_exposure);
+    }
     std::vector<int> labels = labels_;
     list_attractors(s, found_, labels, census.max_attractors);
     if (census.labels) {
@@ -70,14 +78,67 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
   }
 
  private:
+  // On a non-periodic set at the end of its budget; with `leaked`, one states left in the
+  // rounds past the budget (census.cpp's on_set).
+  bool on_set(std::size_t k, const std::vector<bool>* leaked) const {
+    const int l = labels_[k];
+    if (!left_[k].budget || l < 0 || found_[static_cast<std::size_t>(l)].periodic) return false;
+    return leaked == nullptr || (static_cast<std::size_t>(l) < leaked->size() && (*leaked)[static_cast<std::size_t>(l)]);
+  }
+  bool settling(std::size_t k) const {
+    return left_[k].budget && !left_[k].failed && labels_[k] == kUnresolvedLabel;
+  }
+
+  // The follow past the budget (census.cpp, transient chaos), on rank 0 once every rank is
+  // done: the states left on a leaking set or still settling go on from where their rank left
+  // them, in rounds of analysis.max_periods, by the rule of states_to_follow_on.
+  void follow_on(const CensusOptions& followers, CensusSummary& s) {
+    const long round = scene_.options.analysis.max_periods;
+    std::optional<CensusFollower> follower;
+    std::vector<long> spent(labels_.size());
+    for (std::size_t k = 0; k < spent.size(); ++k) spent[k] = left_[k].periods;
+    std::vector<bool> leaked;
+    for (bool first = true;; first = false) {
+      std::vector<std::size_t> pending;
+      for (std::size_t k = 0; k < labels_.size(); ++k)
+        if ((on_set(k, first ? nullptr : &leaked) || settling(k)) && spent[k] + round <= followers.max_transient_periods)
+          pending.push_back(k);
+      pending = states_to_follow_on(std::move(pending), labels_.size());
+      if (pending.empty()) break;
+      if (!follower) follower.emplace(scene_.params, scene_.options, followers);
+      for (const std::size_t k : pending) {
+        const int from = labels_[k];
+        const detail::PixelResult r = detail::follow_state(*follower, left_[k].end_state, round);
+        int label = r.label;
+        if (label >= 0)
+          label = static_cast<int>(match_attractor(scene_.params, scene_.options, found_, first_, r.attractor,
+                                                   static_cast<std::int64_t>(k)));
+        if (leaked.size() < found_.size()) leaked.resize(found_.size(), false);
+        if (from >= 0) {
+          found_[static_cast<std::size_t>(from)].escape_exposure += r.periods;
+          found_[static_cast<std::size_t>(from)].escapes += label != from ? 1 : 0;
+          if (label != from) leaked[static_cast<std::size_t>(from)] = found_[static_cast<std::size_t>(from)].transient = true;
+        }
+        labels_[k] = label;
+        left_[k] = r;
+        spent[k] += r.periods;
+        periods_ += r.periods;
+        s.transient_periods += r.periods;
+        budget_periods_ += r.budget ? r.periods : 0;
+      }
+    }
+    for (std::size_t k = 0; k < labels_.size(); ++k) s.transient_states += on_set(k, &leaked) || settling(k) ? 1 : 0;
+  }
+
   const Scene& scene_;
   std::vector<int> labels_;
   std::vector<std::uint8_t> done_;
+  std::vector<detail::PixelResult> left_;  // per state: its last result (budget, failed, where it was left)
   std::vector<Attractor> found_;       // the global list, in the order found
   std::vector<std::int64_t> first_;    // per attractor of found_: the first initial state reaching it
   std::uint64_t stored_ = 0;
   long periods_ = 0, budget_periods_ = 0;
-  int early_ = 0, budget_states_ = 0;
+  int early_ = 0;
 };
 
 }  // namespace

@@ -228,46 +228,53 @@ struct Escape {
   int exits = 0;      // of those states, how many left it
 };
 
-bool on_leaking_set(const CensusFollower& follower, const CensusFollower::Outcome& f) {
+// On a non-periodic set at the end of its budget; `leaked`: only a set states were seen to leave
+// in the follow past the budget (by index; a set beyond it has not leaked).
+bool on_set(const CensusFollower& follower, const CensusFollower::Outcome& f, const std::vector<bool>* leaked) {
   if (!f.budget || f.label < 0) return false;
-  const Attractor& a = follower.attractor(static_cast<std::size_t>(f.label));
-  return !a.periodic && a.transient;
+  const auto set = static_cast<std::size_t>(f.label);
+  if (follower.attractor(set).periodic) return false;
+  return leaked == nullptr || (set < leaked->size() && (*leaked)[set]);
 }
 
 // Still settling at the end of its budget (unresolved, not failed): a later round decides it.
 bool settling(const CensusFollower::Outcome& f) { return f.budget && !f.failed && f.label == kUnresolvedLabel; }
 
-// Transient chaos (census.hpp): a state the budget left on a non-periodic set that states were
-// seen to leave (a chaotic saddle), or still settling (often a state that left such a set late),
-// is followed on in rounds of analysis.max_periods, until at most sqrt(K)/4 such states remain:
-// their share is then at most 1/(4 sqrt K), a quarter of the largest standard error
-// sqrt(p(1-p)/K) of any fraction, so they move no fraction by more than that. The rest state is
-// followed on while it is one of them (its label is the map's answer).
-// census.max_transient_periods caps a state's periods in all. Each round's survival gives a
-// set's escape rate: exits over the periods followed from it (the maximum-likelihood rate of
-// an exponential lifetime with censoring; memoryless, so timed from the round's start).
+// Transient chaos (census.hpp): the states the budget left on a non-periodic set, or still
+// settling, are followed on for one round of analysis.max_periods; after it, those on a set
+// that a state left in these rounds (a chaotic saddle), or still settling, go on in further
+// rounds, until at most sqrt(K)/4 of them remain (states_to_follow_on): their share is then at
+// most 1/(4 sqrt K), a quarter of the largest standard error sqrt(p(1-p)/K) of any fraction, so
+// they move no fraction by more than that. The rest state is followed on while it is one of
+// them (its label is the map's answer). census.max_transient_periods caps a state's periods in
+// all. Whether a set leaks is judged by these rounds alone, which run from the states' own end
+// points, so the answer does not depend on the order states were followed in (or on MPI ranks).
+// Each round's survival gives a set's escape rate: exits over the periods followed from it (the
+// maximum-likelihood rate of an exponential lifetime with censoring; memoryless, so timed from
+// the round's start).
 void follow_leaking_states(CensusFollower& follower, const CensusOptions& census, long round,
                            std::vector<CensusFollower::Outcome>& outcomes, std::vector<Escape>& escapes,
                            CensusSummary& s) {
-  const double allowed = std::sqrt(static_cast<double>(outcomes.size())) / 4.0;
   std::vector<long> spent(outcomes.size());
   for (std::size_t k = 0; k < outcomes.size(); ++k) spent[k] = outcomes[k].periods;
-  for (;;) {
+  std::vector<bool> leaked;
+  for (bool first = true;; first = false) {
     std::vector<std::size_t> pending;
     for (std::size_t k = 0; k < outcomes.size(); ++k)
-      if ((on_leaking_set(follower, outcomes[k]) || settling(outcomes[k])) &&
+      if ((on_set(follower, outcomes[k], first ? nullptr : &leaked) || settling(outcomes[k])) &&
           spent[k] + round <= census.max_transient_periods)
         pending.push_back(k);
-    const bool rest = !pending.empty() && pending.front() == 0;
-    if (pending.empty() || (static_cast<double>(pending.size()) <= allowed && !rest)) break;
-    if (static_cast<double>(pending.size()) <= allowed) pending.erase(pending.begin() + 1, pending.end());  // rest alone
+    pending = states_to_follow_on(std::move(pending), outcomes.size());
+    if (pending.empty()) break;
     for (const std::size_t k : pending) {
       const int from = outcomes[k].label;
       const CensusFollower::Outcome f = follower.follow(outcomes[k].end_state, round);
       if (escapes.size() < follower.size()) escapes.resize(follower.size());
+      if (leaked.size() < follower.size()) leaked.resize(follower.size(), false);
       if (from >= 0) {
         escapes[static_cast<std::size_t>(from)].exposure += f.periods;
         escapes[static_cast<std::size_t>(from)].exits += f.label != from ? 1 : 0;
+        if (f.label != from) leaked[static_cast<std::size_t>(from)] = true;
       }
       spent[k] += f.periods;
       s.periods += f.periods;
@@ -277,13 +284,21 @@ void follow_leaking_states(CensusFollower& follower, const CensusOptions& census
     }
   }
   s.transient_states = 0;
-  for (const CensusFollower::Outcome& f : outcomes)
-    s.transient_states += on_leaking_set(follower, f) || settling(f) ? 1 : 0;
+  for (const CensusFollower::Outcome& f : outcomes) s.transient_states += on_set(follower, f, &leaked) || settling(f) ? 1 : 0;
   s.budget_states = 0;
   for (const CensusFollower::Outcome& f : outcomes) s.budget_states += f.budget ? 1 : 0;
 }
 
 }  // namespace
+
+std::vector<std::size_t> states_to_follow_on(std::vector<std::size_t> pending, std::size_t K) {
+  const double allowed = std::sqrt(static_cast<double>(K)) / 4.0;
+  if (static_cast<double>(pending.size()) <= allowed) {
+    const bool rest = !pending.empty() && pending.front() == 0;
+    pending.erase(pending.begin() + (rest ? 1 : 0), pending.end());
+  }
+  return pending;
+}
 
 std::string census_input_error(const Parameters& p, const PointOptions& o, const CensusOptions& c) {
   std::string msg;
@@ -331,6 +346,7 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
       found.back().escape_rate = static_cast<double>(escapes[i].exits) / static_cast<double>(escapes[i].exposure);
       found.back().escape_exposure = escapes[i].exposure;
       found.back().escapes = escapes[i].exits;
+      found.back().transient = found.back().transient || escapes[i].exits > 0;  // seen to leak past the budget
     }
   }
   std::vector<int> labels;

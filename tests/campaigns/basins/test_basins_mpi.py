@@ -176,6 +176,33 @@ def test_point_census_on_ranks_equals_one_process(ranks):
             assert b[key] == pytest.approx(a[key], rel=1e-6), key
 
 
+# A point where states wander on a chaotic saddle past analysis.max_periods (Table 2's moduli,
+# m2 275.2 kg, omega2 4.2607 rad/s): the follow past the budget runs on rank 0 from where the
+# ranks left the states, and gives the one-process census's labels, periods and escape rate.
+SADDLE = ["--set", "system.m2=275.2", "--set", "system.omega2=4.2607"]
+
+
+def test_the_follow_past_the_budget_is_the_same_on_ranks():
+    def census(ranks):
+        cmd = [EXE, "run", SCENE, "--census", "--labels", "--format", "json", *SADDLE]
+        if ranks > 1:
+            cmd = [MPIEXEC, "-n", str(ranks), *cmd]
+        proc = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=600)
+        assert proc.returncode == 0, proc.stderr
+        return json.loads(proc.stdout)
+    one, two = census(1), census(2)
+    assert one["transient_periods"] > 0, "the saddle's states are followed past the budget"
+    assert two["labels"] == one["labels"]
+    assert (two["periods"], two["transient_periods"], two["transient_states"]) == \
+        (one["periods"], one["transient_periods"], one["transient_states"])
+    saddle = [a for a in one["attractors"] if not a["periodic"]]
+    assert saddle and saddle[0]["escapes"] >= 1 and saddle[0]["transient"]
+    assert saddle[0]["escape_rate"] == pytest.approx(saddle[0]["escapes"] / saddle[0]["escape_exposure_periods"])
+    for a, b in zip(one["attractors"], two["attractors"], strict=True):
+        assert (a["regime"], a["count"], a["escapes"], a["escape_exposure_periods"]) == \
+            (b["regime"], b["count"], b["escapes"], b["escape_exposure_periods"])
+
+
 def test_plain_run_prints_once_under_mpiexec():
     proc = subprocess.run([MPIEXEC, "-n", "2", EXE, "run", SCENE, "--format", "json"], env=ENV, capture_output=True,
                           text=True, timeout=300)

@@ -163,6 +163,13 @@ class CensusFollower {
   std::unique_ptr<Impl> impl_;
 };
 
+// The follow past the budget (transient chaos, census.cpp): which of a census's K states go on
+// for another round of analysis.max_periods. pending: the states the last round left on a
+// leaking non-periodic set or still settling whose periods so far leave room for a round under
+// census.max_transient_periods, in state order (state 0 is rest). They all go on while more than
+// sqrt(K)/4 remain; then rest alone while it is among them; then none (an empty list).
+std::vector<std::size_t> states_to_follow_on(std::vector<std::size_t> pending, std::size_t K);
+
 // Whether two attractors of the point (p, options) found apart (other ranks, other runs) are the
 // same one: periodic ones of the same period whose stroboscopic states agree up to a cyclic shift
 // within the census's orbit tolerance (scaled distance max(1e-6, 1000 Newton tolerances)); two
