@@ -349,5 +349,16 @@ TEST(Census, TransientChaosIsFollowedPastTheBudgetAsBruteForceWithALongerOne) {
   }
 }
 
+// The stop rule of the follow past the budget: go on while more than sqrt(K)/4 states remain.
+TEST(Census, StatesFollowOnWhileMoreThanAQuarterOfRootKRemain) {
+  using List = std::vector<std::size_t>;
+  EXPECT_EQ(states_to_follow_on({3, 5, 9}, 64), (List{3, 5, 9}));  // sqrt(64)/4 = 2: three go on
+  EXPECT_EQ(states_to_follow_on({3, 5}, 64), List{});                // two are few enough
+  EXPECT_EQ(states_to_follow_on({4, 7}, 16), (List{4, 7}));          // sqrt(16)/4 = 1
+  EXPECT_EQ(states_to_follow_on({4}, 16), List{});
+  EXPECT_EQ(states_to_follow_on({0}, 1), List{0});                   // K = 1: any state left goes on
+  EXPECT_EQ(states_to_follow_on({}, 256), List{});
+}
+
 }  // namespace
 }  // namespace vibromap

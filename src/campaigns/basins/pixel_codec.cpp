@@ -60,10 +60,10 @@ PixelResult PixelCodec::decode(ByteReader& in) const {
   return r;
 }
 
-PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, long budget) {
+PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, long budget, bool exact) {
   PixelResult r;
   try {
-    const CensusFollower::Outcome out = budget > 0 ? follower.follow(x0, budget) : follower.follow(x0);
+    const CensusFollower::Outcome out = budget > 0 ? follower.follow(x0, budget, exact) : follower.follow(x0);
     r.label = out.label;
     r.periods = out.periods;
     r.early = out.early;

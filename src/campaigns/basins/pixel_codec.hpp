@@ -25,8 +25,9 @@ struct PixelResult {
 
 // The outcome of following x0 on the rank's follower. An exception is the state's label
 // (unresolved), never the run's.
-// budget > 0: follow for that many periods (a round of the follow past analysis.max_periods).
-PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, long budget = 0);
+// budget > 0: follow for that many periods (a round of the follow past analysis.max_periods);
+// exact: at the scene's tolerance (CensusFollower::follow).
+PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, long budget = 0, bool exact = false);
 
 // The census options the followers of a campaign use: `census`, never deciding by recurrence.
 // A state recurring on a non-periodic set a follower found earlier would be decided

@@ -54,7 +54,7 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
     s.T = scene_.params.period();
     s.K = static_cast<int>(labels_.size());
     const CensusOptions followers = detail::follower_census(census);
-    follow_on(followers, s);
+    follow_on(followers, ics.front(), s);
     s.periods = periods_;
     s.decided_early = early_;
     s.budget_states = 0;
@@ -78,6 +78,17 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
   }
 
  private:
+  // State k's new result r: its label in the global list, kept.
+  int store_follow_on(std::size_t k, const detail::PixelResult& r) {
+    int label = r.label;
+    if (label >= 0)
+      label = static_cast<int>(
+          match_attractor(scene_.params, scene_.options, found_, first_, r.attractor, static_cast<std::int64_t>(k)));
+    labels_[k] = label;
+    left_[k] = r;
+    return label;
+  }
+
   // On a non-periodic set at the end of its budget; with `leaked`, one states left in the
   // rounds past the budget (census.cpp's on_set).
   bool on_set(std::size_t k, const std::vector<bool>* leaked) const {
@@ -92,11 +103,21 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
   // The follow past the budget (census.cpp, transient chaos), on rank 0 once every rank is
   // done: the states left on a leaking set or still settling go on from where their rank left
   // them, in rounds of analysis.max_periods, by the rule of states_to_follow_on.
-  void follow_on(const CensusOptions& followers, CensusSummary& s) {
+  void follow_on(const CensusOptions& followers, const Eigen::Vector4d& rest, CensusSummary& s) {
     const long round = scene_.options.analysis.max_periods;
     std::optional<CensusFollower> follower;
+    if (!labels_.empty() && (on_set(0, nullptr) || settling(0)) && followers.max_transient_periods > left_[0].periods) {
+      // Rest again, at the scene's tolerance, to the cap in one go (census.cpp's rest_to_the_cap).
+      follower.emplace(scene_.params, scene_.options, followers);
+      const detail::PixelResult r = detail::follow_state(*follower, rest, followers.max_transient_periods, true);
+      store_follow_on(0, r);
+      periods_ += r.periods;  // the work done: rest's first periods again, at the scene's tolerance
+      s.transient_periods += std::max(0L, r.periods - round);
+      budget_periods_ += r.budget ? r.periods : 0;
+    }
     std::vector<long> spent(labels_.size());
     for (std::size_t k = 0; k < spent.size(); ++k) spent[k] = left_[k].periods;
+    if (!spent.empty()) spent[0] = std::max(spent[0], followers.max_transient_periods);  // rest: done above
     std::vector<bool> leaked;
     for (bool first = true;; first = false) {
       std::vector<std::size_t> pending;
@@ -109,18 +130,13 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
       for (const std::size_t k : pending) {
         const int from = labels_[k];
         const detail::PixelResult r = detail::follow_state(*follower, left_[k].end_state, round);
-        int label = r.label;
-        if (label >= 0)
-          label = static_cast<int>(match_attractor(scene_.params, scene_.options, found_, first_, r.attractor,
-                                                   static_cast<std::int64_t>(k)));
+        const int label = store_follow_on(k, r);
         if (leaked.size() < found_.size()) leaked.resize(found_.size(), false);
         if (from >= 0) {
           found_[static_cast<std::size_t>(from)].escape_exposure += r.periods;
           found_[static_cast<std::size_t>(from)].escapes += label != from ? 1 : 0;
           if (label != from) leaked[static_cast<std::size_t>(from)] = found_[static_cast<std::size_t>(from)].transient = true;
         }
-        labels_[k] = label;
-        left_[k] = r;
         spent[k] += r.periods;
         periods_ += r.periods;
         s.transient_periods += r.periods;

@@ -107,11 +107,12 @@ class PhaseSampler final : public Observer {
 using Followed = CensusFollower::Outcome;
 
 // One initial state followed to its attractor (census.hpp says how it is decided), for at most
-// `budget` forcing periods (analysis.max_periods, or a round of the follow past it).
+// `budget` forcing periods (analysis.max_periods, or a round of the follow past it); `exact`:
+// integrated at the scene's tolerance (brute force's path) rather than census.rtol.
 Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
-                long budget, IntegrationCounters& work) {
+                long budget, bool exact, IntegrationCounters& work) {
   const Model& model = set.model();
-  const PointOptions& follow_options = set.follow_options();
+  const PointOptions& follow_options = exact ? o : set.follow_options();
   const auto integ = make_integrator(model, follow_options.integrator);
   State u = Model::to_internal(x0);
   integ->reset(u);
@@ -240,23 +241,40 @@ bool on_set(const CensusFollower& follower, const CensusFollower::Outcome& f, co
 // Still settling at the end of its budget (unresolved, not failed): a later round decides it.
 bool settling(const CensusFollower::Outcome& f) { return f.budget && !f.failed && f.label == kUnresolvedLabel; }
 
+// The rest state's label is a map's answer and the single-start map's: where the budget left it
+// on a non-periodic set or still settling, it is followed again from rest, at the scene's
+// tolerance (brute force's own path, which a restart from where it was left would not keep on
+// a chaotic set) for census.max_transient_periods in one go. The early decisions still apply.
+CensusFollower::Outcome rest_to_the_cap(CensusFollower& follower, const CensusOptions& census,
+                                        const Eigen::Vector4d& rest) {
+  return follower.follow(rest, census.max_transient_periods, true);
+}
+
 // Transient chaos (census.hpp): the states the budget left on a non-periodic set, or still
 // settling, are followed on for one round of analysis.max_periods; after it, those on a set
 // that a state left in these rounds (a chaotic saddle), or still settling, go on in further
 // rounds, until at most sqrt(K)/4 of them remain (states_to_follow_on): their share is then at
 // most 1/(4 sqrt K), a quarter of the largest standard error sqrt(p(1-p)/K) of any fraction, so
-// they move no fraction by more than that. The rest state is followed on while it is one of
-// them (its label is the map's answer). census.max_transient_periods caps a state's periods in
-// all. Whether a set leaks is judged by these rounds alone, which run from the states' own end
+// they move no fraction by more than that. The rest state is followed again instead
+// (rest_to_the_cap). census.max_transient_periods caps a state's periods in all. Whether a set leaks is judged by these rounds alone, which run from the states' own end
 // points, so the answer does not depend on the order states were followed in (or on MPI ranks).
 // Each round's survival gives a set's escape rate: exits over the periods followed from it (the
 // maximum-likelihood rate of an exponential lifetime with censoring; memoryless, so timed from
 // the round's start).
 void follow_leaking_states(CensusFollower& follower, const CensusOptions& census, long round,
-                           std::vector<CensusFollower::Outcome>& outcomes, std::vector<Escape>& escapes,
-                           CensusSummary& s) {
+                           const Eigen::Vector4d& rest, std::vector<CensusFollower::Outcome>& outcomes,
+                           std::vector<Escape>& escapes, CensusSummary& s) {
+  if (!outcomes.empty() && (on_set(follower, outcomes[0], nullptr) || settling(outcomes[0])) &&
+      census.max_transient_periods > outcomes[0].periods) {
+    const CensusFollower::Outcome f = rest_to_the_cap(follower, census, rest);
+    s.periods += f.periods;  // the work done: rest's first periods again, at the scene's tolerance
+    s.transient_periods += std::max(0L, f.periods - round);
+    s.budget_periods += f.budget ? f.periods : 0;
+    outcomes[0] = f;
+  }
   std::vector<long> spent(outcomes.size());
   for (std::size_t k = 0; k < outcomes.size(); ++k) spent[k] = outcomes[k].periods;
+  spent[0] = std::max(spent[0], census.max_transient_periods);  // rest: done (rest_to_the_cap)
   std::vector<bool> leaked;
   for (bool first = true;; first = false) {
     std::vector<std::size_t> pending;
@@ -292,11 +310,7 @@ void follow_leaking_states(CensusFollower& follower, const CensusOptions& census
 }  // namespace
 
 std::vector<std::size_t> states_to_follow_on(std::vector<std::size_t> pending, std::size_t K) {
-  const double allowed = std::sqrt(static_cast<double>(K)) / 4.0;
-  if (static_cast<double>(pending.size()) <= allowed) {
-    const bool rest = !pending.empty() && pending.front() == 0;
-    pending.erase(pending.begin() + (rest ? 1 : 0), pending.end());
-  }
+  if (static_cast<double>(pending.size()) <= std::sqrt(static_cast<double>(K)) / 4.0) pending.clear();
   return pending;
 }
 
@@ -337,7 +351,7 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
     outcomes.push_back(f);
   }
   std::vector<Escape> escapes;
-  follow_leaking_states(follower, census, options.analysis.max_periods, outcomes, escapes, s);
+  follow_leaking_states(follower, census, options.analysis.max_periods, ics.front(), outcomes, escapes, s);
   s.counters = follower.counters();
   std::vector<Attractor> found;
   for (std::size_t i = 0; i < follower.size(); ++i) {
@@ -451,8 +465,8 @@ CensusFollower& CensusFollower::operator=(CensusFollower&&) noexcept = default;
 CensusFollower::Outcome CensusFollower::follow(const Eigen::Vector4d& x0) {
   return follow(x0, impl_->options.analysis.max_periods);
 }
-CensusFollower::Outcome CensusFollower::follow(const Eigen::Vector4d& x0, long budget) {
-  return vibromap::follow(impl_->set, impl_->options, impl_->census, x0, budget, impl_->counters);
+CensusFollower::Outcome CensusFollower::follow(const Eigen::Vector4d& x0, long budget, bool exact) {
+  return vibromap::follow(impl_->set, impl_->options, impl_->census, x0, budget, exact, impl_->counters);
 }
 std::size_t CensusFollower::size() const { return impl_->set.size(); }
 const Attractor& CensusFollower::attractor(std::size_t i) const { return impl_->set.record(i); }

@@ -152,8 +152,9 @@ class CensusFollower {
   // x0: physical state (x1, x2, v1, v2). Unlisted here means no room for another attractor
   // (4 max_attractors kept); count, fraction, from_rest of the attractors are not filled in.
   Outcome follow(const Eigen::Vector4d& x0);
-  // As follow, for `budget` periods (a later round of a state left on a leaking set).
-  Outcome follow(const Eigen::Vector4d& x0, long budget);
+  // As follow, for `budget` periods (a later round of a state left on a leaking set); `exact`:
+  // at the scene's tolerance ([solver] rtol, brute force's path) rather than census.rtol.
+  Outcome follow(const Eigen::Vector4d& x0, long budget, bool exact = false);
   std::size_t size() const;
   const Attractor& attractor(std::size_t i) const;
   const IntegrationCounters& counters() const;
@@ -166,8 +167,8 @@ class CensusFollower {
 // The follow past the budget (transient chaos, census.cpp): which of a census's K states go on
 // for another round of analysis.max_periods. pending: the states the last round left on a
 // leaking non-periodic set or still settling whose periods so far leave room for a round under
-// census.max_transient_periods, in state order (state 0 is rest). They all go on while more than
-// sqrt(K)/4 remain; then rest alone while it is among them; then none (an empty list).
+// census.max_transient_periods (rest is followed apart). They all go on while more than
+// sqrt(K)/4 remain; then none (an empty list).
 std::vector<std::size_t> states_to_follow_on(std::vector<std::size_t> pending, std::size_t K);
 
 // Whether two attractors of the point (p, options) found apart (other ranks, other runs) are the
