@@ -223,91 +223,89 @@ Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c
 
 namespace {
 
-// The survival of states on one non-periodic set past analysis.max_periods.
-struct Escape {
-  long exposure = 0;  // periods states were followed on from the set (censored at the end of a round)
-  int exits = 0;      // of those states, how many left it
-};
-
 // On a non-periodic set at the end of its budget; `leaked`: only a set states were seen to leave
-// in the follow past the budget (by index; a set beyond it has not leaked).
-bool on_set(const CensusFollower& follower, const CensusFollower::Outcome& f, const std::vector<bool>* leaked) {
-  if (!f.budget || f.label < 0) return false;
+// in the follow past the budget (by label; a set beyond it has not leaked).
+bool on_set(const CensusFollower::Outcome& f, const std::function<bool(int)>& periodic,
+            const std::vector<bool>* leaked) {
+  if (!f.budget || f.label < 0 || periodic(f.label)) return false;
   const auto set = static_cast<std::size_t>(f.label);
-  if (follower.attractor(set).periodic) return false;
   return leaked == nullptr || (set < leaked->size() && (*leaked)[set]);
 }
 
 // Still settling at the end of its budget (unresolved, not failed): a later round decides it.
 bool settling(const CensusFollower::Outcome& f) { return f.budget && !f.failed && f.label == kUnresolvedLabel; }
 
-// The rest state's label is a map's answer and the single-start map's: where the budget left it
-// on a non-periodic set or still settling, it is followed again from rest, at the scene's
-// tolerance (brute force's own path, which a restart from where it was left would not keep on
-// a chaotic set) for census.max_transient_periods in one go. The early decisions still apply.
-CensusFollower::Outcome rest_to_the_cap(CensusFollower& follower, const CensusOptions& census,
-                                        const Eigen::Vector4d& rest) {
-  return follower.follow(rest, census.max_transient_periods, true);
-}
+}  // namespace
 
 // Transient chaos (census.hpp): the states the budget left on a non-periodic set, or still
 // settling, are followed on for one round of analysis.max_periods; after it, those on a set
 // that a state left in these rounds (a chaotic saddle), or still settling, go on in further
 // rounds, until at most sqrt(K)/4 of them remain (states_to_follow_on): their share is then at
 // most 1/(4 sqrt K), a quarter of the largest standard error sqrt(p(1-p)/K) of any fraction, so
-// they move no fraction by more than that. The rest state is followed again instead
-// (rest_to_the_cap). census.max_transient_periods caps a state's periods in all. Whether a set leaks is judged by these rounds alone, which run from the states' own end
-// points, so the answer does not depend on the order states were followed in (or on MPI ranks).
-// Each round's survival gives a set's escape rate: exits over the periods followed from it (the
-// maximum-likelihood rate of an exponential lifetime with censoring; memoryless, so timed from
-// the round's start).
-void follow_leaking_states(CensusFollower& follower, const CensusOptions& census, long round,
-                           const Eigen::Vector4d& rest, std::vector<CensusFollower::Outcome>& outcomes,
-                           std::vector<Escape>& escapes, CensusSummary& s) {
-  if (!outcomes.empty() && (on_set(follower, outcomes[0], nullptr) || settling(outcomes[0])) &&
-      census.max_transient_periods > outcomes[0].periods) {
-    const CensusFollower::Outcome f = rest_to_the_cap(follower, census, rest);
-    s.periods += f.periods;  // the work done: rest's first periods again, at the scene's tolerance
-    s.transient_periods += std::max(0L, f.periods - round);
-    s.budget_periods += f.budget ? f.periods : 0;
-    outcomes[0] = f;
+// they move no fraction by more than that. census.max_transient_periods (cap) bounds a state's
+// periods in all. Whether a set leaks is judged by these rounds alone, which run from the
+// states' own end points, so the answer does not depend on the order states were followed in
+// (or on MPI ranks). Each round's survival gives a set's escape rate: exits over the periods
+// followed from it (the maximum-likelihood rate of an exponential lifetime with censoring;
+// memoryless, so timed from the round's start).
+// The rest state's label is a map's answer and the single-start map's: where the budget left it
+// on a non-periodic set or still settling, it is followed again from rest, at the scene's
+// tolerance (brute force's own path, which a restart from where it was left would not keep on
+// a chaotic set), to the cap in one go. The early decisions still apply.
+PastBudget follow_past_budget(std::vector<CensusFollower::Outcome>& states, const Eigen::Vector4d& rest, long round,
+                              long cap, const std::function<bool(int)>& periodic, const FollowOn& follow) {
+  PastBudget out;
+  const auto account = [&](const CensusFollower::Outcome& f, long past) {
+    out.periods += f.periods;
+    out.transient_periods += past;
+    out.budget_periods += f.budget ? f.periods : 0;
+  };
+  if (!states.empty() && (on_set(states[0], periodic, nullptr) || settling(states[0])) && cap > states[0].periods) {
+    states[0] = follow(0, rest, cap, true);
+    account(states[0], std::max(0L, states[0].periods - round));
   }
-  std::vector<long> spent(outcomes.size());
-  for (std::size_t k = 0; k < outcomes.size(); ++k) spent[k] = outcomes[k].periods;
-  spent[0] = std::max(spent[0], census.max_transient_periods);  // rest: done (rest_to_the_cap)
+  std::vector<long> spent(states.size());
+  for (std::size_t k = 0; k < states.size(); ++k) spent[k] = states[k].periods;
+  if (!spent.empty()) spent[0] = std::max(spent[0], cap);  // rest: done above
   std::vector<bool> leaked;
   for (bool first = true;; first = false) {
     std::vector<std::size_t> pending;
-    for (std::size_t k = 0; k < outcomes.size(); ++k)
-      if ((on_set(follower, outcomes[k], first ? nullptr : &leaked) || settling(outcomes[k])) &&
-          spent[k] + round <= census.max_transient_periods)
+    for (std::size_t k = 0; k < states.size(); ++k)
+      if ((on_set(states[k], periodic, first ? nullptr : &leaked) || settling(states[k])) && spent[k] + round <= cap)
         pending.push_back(k);
-    pending = states_to_follow_on(std::move(pending), outcomes.size());
+    pending = states_to_follow_on(std::move(pending), states.size());
     if (pending.empty()) break;
     for (const std::size_t k : pending) {
-      const int from = outcomes[k].label;
-      const CensusFollower::Outcome f = follower.follow(outcomes[k].end_state, round);
-      if (escapes.size() < follower.size()) escapes.resize(follower.size());
-      if (leaked.size() < follower.size()) leaked.resize(follower.size(), false);
+      const int from = states[k].label;
+      states[k] = follow(k, states[k].end_state, round, false);
+      const CensusFollower::Outcome& f = states[k];
       if (from >= 0) {
-        escapes[static_cast<std::size_t>(from)].exposure += f.periods;
-        escapes[static_cast<std::size_t>(from)].exits += f.label != from ? 1 : 0;
-        if (f.label != from) leaked[static_cast<std::size_t>(from)] = true;
+        const auto set = static_cast<std::size_t>(from);
+        if (out.exposure.size() <= set) {
+          out.exposure.resize(set + 1, 0);
+          out.exits.resize(set + 1, 0);
+        }
+        if (leaked.size() <= set) leaked.resize(set + 1, false);
+        out.exposure[set] += f.periods;
+        out.exits[set] += f.label != from ? 1 : 0;
+        if (f.label != from) leaked[set] = true;
       }
       spent[k] += f.periods;
-      s.periods += f.periods;
-      s.transient_periods += f.periods;
-      s.budget_periods += f.budget ? f.periods : 0;
-      outcomes[k] = f;
+      account(f, f.periods);
     }
   }
-  s.transient_states = 0;
-  for (const CensusFollower::Outcome& f : outcomes) s.transient_states += on_set(follower, f, &leaked) || settling(f) ? 1 : 0;
-  s.budget_states = 0;
-  for (const CensusFollower::Outcome& f : outcomes) s.budget_states += f.budget ? 1 : 0;
+  for (const CensusFollower::Outcome& f : states)
+    out.transient_states += on_set(f, periodic, &leaked) || settling(f) ? 1 : 0;
+  return out;
 }
 
-}  // namespace
+void record_escape(Attractor& a, const PastBudget& p, std::size_t label) {
+  if (label >= p.exposure.size() || p.exposure[label] == 0) return;
+  a.escape_exposure = p.exposure[label];
+  a.escapes = p.exits[label];
+  a.escape_rate = static_cast<double>(a.escapes) / static_cast<double>(a.escape_exposure);
+  a.transient = a.transient || a.escapes > 0;  // seen to leak past the budget
+}
 
 std::vector<std::size_t> states_to_follow_on(std::vector<std::size_t> pending, std::size_t K) {
   if (static_cast<double>(pending.size()) <= std::sqrt(static_cast<double>(K)) / 4.0) pending.clear();
@@ -350,18 +348,20 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
     s.budget_periods += f.budget ? f.periods : 0;
     outcomes.push_back(f);
   }
-  std::vector<Escape> escapes;
-  follow_leaking_states(follower, census, options.analysis.max_periods, ics.front(), outcomes, escapes, s);
+  const PastBudget past = follow_past_budget(
+      outcomes, ics.front(), options.analysis.max_periods, census.max_transient_periods,
+      [&](int label) { return follower.attractor(static_cast<std::size_t>(label)).periodic; },
+      [&](std::size_t, const Eigen::Vector4d& x0, long budget, bool exact) { return follower.follow(x0, budget, exact); });
+  s.periods += past.periods;
+  s.transient_periods = past.transient_periods;
+  s.budget_periods += past.budget_periods;
+  s.transient_states = past.transient_states;
+  s.budget_states = static_cast<int>(std::count_if(outcomes.begin(), outcomes.end(), [](const auto& f) { return f.budget; }));
   s.counters = follower.counters();
   std::vector<Attractor> found;
   for (std::size_t i = 0; i < follower.size(); ++i) {
     found.push_back(follower.attractor(i));
-    if (i < escapes.size() && escapes[i].exposure > 0) {
-      found.back().escape_rate = static_cast<double>(escapes[i].exits) / static_cast<double>(escapes[i].exposure);
-      found.back().escape_exposure = escapes[i].exposure;
-      found.back().escapes = escapes[i].exits;
-      found.back().transient = found.back().transient || escapes[i].exits > 0;  // seen to leak past the budget
-    }
+    record_escape(found.back(), past, i);
   }
   std::vector<int> labels;
   for (const CensusFollower::Outcome& f : outcomes) labels.push_back(f.label);

@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -163,6 +164,25 @@ class CensusFollower {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The follow past the budget (transient chaos; census.cpp says the rule), shared by the census of
+// one process and the census on MPI ranks (rank 0, once every rank is done). states: per initial
+// state (rest first) its last outcome, label indexing the caller's attractor list; updated in
+// place. periodic(label): whether that attractor is periodic. follow(k, x0, budget, exact): state
+// k followed from x0 (exact: at the scene's tolerance), its label in the caller's list.
+struct PastBudget {
+  long periods = 0;            // forcing periods integrated (rest's repeated ones included)
+  long transient_periods = 0;  // of those, past analysis.max_periods
+  long budget_periods = 0;     // periods of the follows that ended at their budget undecided
+  int transient_states = 0;    // states still on a leaking set, or settling, at the end
+  std::vector<long> exposure;  // by label: periods followed on from that set
+  std::vector<int> exits;      // by label: states that left it then
+};
+using FollowOn = std::function<CensusFollower::Outcome(std::size_t k, const Eigen::Vector4d& x0, long budget, bool exact)>;
+PastBudget follow_past_budget(std::vector<CensusFollower::Outcome>& states, const Eigen::Vector4d& rest, long round,
+                              long cap, const std::function<bool(int)>& periodic, const FollowOn& follow);
+// Attractor `label`'s escape figures from p (rate, exposure, exits; transient when a state left it).
+void record_escape(Attractor& a, const PastBudget& p, std::size_t label);
 
 // The follow past the budget (transient chaos, census.cpp): which of a census's K states go on
 // for another round of analysis.max_periods. pending: the states the last round left on a
