@@ -58,9 +58,15 @@ def test_a_full_disk_while_the_map_is_made_ends_every_rank_with_exit_4(tmp_path)
     path = scene(tmp_path, CHEAP.format(n1=400, n2=400))
     for cmd in ([EXE, "sweep", str(path), "-o", str(tmp_path / "one.h5"), "-q"],
                 [MPIEXEC, "-n", "2", EXE, "sweep", str(path), "-o", str(tmp_path / "two.h5"), "-q"]):
-        proc = run(cmd, limit_bytes=8 << 20, timeout=60)
-        assert proc.returncode == 4, proc.stderr
-        line = one_error_line(proc.stderr)
+        for _ in range(3):
+            proc = run(cmd, limit_bytes=8 << 20, timeout=60)
+            assert proc.returncode == 4, proc.stderr
+            line = one_error_line(proc.stderr)
+            # Seen once in a CI run under load (2026-11-25): the limit also applies to Open MPI,
+            # whose own failure then came back as the message (an Open MPI banner of dashes)
+            # before the map's write failed. That is the library, not the map: try again.
+            if not line.startswith("vibromap: error: ---"):
+                break
         assert line.startswith("vibromap: error: ") and "File too large" in line
     assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"], "no map and no lock left behind"
 
