@@ -10,12 +10,15 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
 #include "vibromap/core/analysis/accuracy.hpp"
+#include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
@@ -185,37 +188,11 @@ std::string csv_line(const AccuracyRow& r) {
   return line;
 }
 
-// The CSV file: header, the reference row (method "reference"), then the cases.
-void write_csv(const std::string& path, const AccuracyReport& report) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (f) {
-    f << kCsvHeader << "\n" << csv_line(report.reference) << "\n";
-    for (const AccuracyRow& r : report.rows) f << csv_line(r) << "\n";
-    f.flush();
-  }
-  if (!f) {
-    std::string msg = path;
-    msg += ": cannot write the accuracy CSV";
-    throw IoError(msg);
-  }
-}
-
-// Fails before the (long) study when the CSV cannot be created: missing directory or no access.
-void check_csv_writable(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::path(path).parent_path();
-  std::error_code ec;
-  std::string msg = path;
-  if (!dir.empty() && !fs::is_directory(dir, ec)) {
-    msg += ": cannot write the accuracy CSV: directory '";
-    msg += dir.string();
-    msg += "' does not exist";
-    throw IoError(msg);
-  }
-  if (fs::is_directory(path, ec)) {
-    msg += ": cannot write the accuracy CSV: is a directory";
-    throw IoError(msg);
-  }
+// The CSV text: header, the reference row (method "reference"), then the cases.
+std::string csv_text(const AccuracyReport& report) {
+  std::string text = cat(kCsvHeader, "\n", csv_line(report.reference), "\n");
+  for (const AccuracyRow& r : report.rows) text += csv_line(r) + "\n";
+  return text;
 }
 
 // ---- the study ------------------------------------------------------------------------
@@ -247,7 +224,13 @@ void print_progress(const AccuracyRow& r, std::size_t done, std::size_t total) {
 
 int accuracy_command(const AccuracyArgs& args, std::ostream& out) {
   const Scene scene = load_scene(args.scene, args.sets);
-  if (!args.csv.empty()) check_csv_writable(args.csv);
+  // The CSV's new file is made before the (long) study, so that a bad --csv is known at once;
+  // it replaces the named file only when the study is done.
+  std::optional<NewFile> csv;
+  if (!args.csv.empty()) {
+    check_output(args.csv, {.option = "--csv", .overwrite = args.overwrite});
+    csv.emplace(args.csv);
+  }
   const std::vector<AccuracyCase> cases = default_accuracy_cases(scene.options);
   const AccuracyCase reference = default_accuracy_reference(scene.options);
   check_cases(scene, cases);
@@ -264,7 +247,10 @@ int accuracy_command(const AccuracyArgs& args, std::ostream& out) {
     write_table(out, report, scene);
   }
   out.flush();
-  if (!args.csv.empty()) write_csv(args.csv, report);
+  if (csv) {
+    csv->write(csv_text(report));
+    csv->commit();
+  }
   return code(ExitCode::ok);
 }
 

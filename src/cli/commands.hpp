@@ -60,6 +60,7 @@ struct AccuracyArgs {
   std::string scene;
   std::vector<std::string> sets;
   std::string csv;               // CSV file of the rows; empty: none
+  bool overwrite = false;        // replace an existing CSV file
   std::string format = "table";  // stdout: "table" or "json"
   bool quiet = false;            // no progress lines on stderr
 };

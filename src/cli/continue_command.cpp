@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "vibromap/core/analysis/continuation.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene/keys.hpp"
@@ -81,6 +82,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
                                          cat("{values=[", exact_number(std::min(args.from, args.to)), ",",
                                              exact_number(std::max(args.from, args.to)), "]}"));
   const Scene& scene = ps.scene;
+  if (!args.output.empty()) check_output(args.output, {.overwrite = args.overwrite});
   const std::string& key = ps.axis.key;
   const PointSetter set = point_setter(key);
   const PointAt at = [&](double lambda) {
@@ -111,8 +113,6 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   co.ds = std::min(co.ds, co.ds_max);
   co.max_points = args.max_points;
   if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
-  if (!args.output.empty() && std::filesystem::exists(args.output) && !args.overwrite)
-    throw SceneError(cat(args.output, ": already exists; use --overwrite to replace it"));
   co.pd_depth = args.pd_depth;
   const std::vector<Branch> branches = continue_branches(at, args.from, args.to, start.final_state, co);
   std::vector<std::vector<Measured>> measured;

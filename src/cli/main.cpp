@@ -28,6 +28,12 @@ using namespace vibromap;
 // The longest error line: messages clip the input they echo themselves; this is the backstop.
 constexpr std::size_t kMaxErrorLine = 1000;
 
+// An output option's value: a file name. An empty one is refused here; the rest (a link, a
+// device, a name too long, an existing file without --overwrite) when the command checks it.
+const CLI::Validator kOutputName(
+    [](const std::string& s) { return s.empty() ? std::string("empty; name the file to write") : std::string(); }, "",
+    "OUTPUT");
+
 int report(std::string_view message, ExitCode exit) {
   std::string what = clip(message, kMaxErrorLine);
   for (char& c : what) {
@@ -39,7 +45,10 @@ int report(std::string_view message, ExitCode exit) {
 
 std::string main_footer() {
   return exit_code_summary() +
-         "\n'vibromap run --help' explains a run, 'vibromap sweep --help' a sweep, 'vibromap accuracy\n"
+         "\nOutputs are written as a new file beside the name given, synced and renamed into place: an\n"
+         "existing file is replaced only with --overwrite, and a name that is a symbolic link, a directory,\n"
+         "a device or a FIFO is refused (name the link's target itself).\n"
+         "'vibromap run --help' explains a run, 'vibromap sweep --help' a sweep, 'vibromap accuracy\n"
          "--help' the accuracy study, 'vibromap optimise --help' the optimisation, 'vibromap basins\n"
          "--help' the basin pictures, 'vibromap orbit-diagram --help' the bifurcation diagram;\n"
          "'vibromap restitution' the contact laws' effective restitution; 'vibromap keys' lists\n"
@@ -84,6 +93,7 @@ CLI::App* add_run(CLI::App& app, cli::RunArgs& args) {
       ->type_name("table|json")
       ->capture_default_str();
   run->add_option("-t,--trajectory", args.trajectory, "Also write the steady motion's trajectory to FILE.h5")
+      ->check(kOutputName)
       ->type_name("FILE.h5");
   run->add_flag("--overwrite", args.overwrite, "Replace an existing trajectory file");
   run->add_flag("--census", args.census, "Find every attractor of the point with its basin fraction ([census])");
@@ -121,6 +131,7 @@ CLI::App* add_sweep(CLI::App& app, cli::SweepArgs& args) {
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   sweep->add_option("-o,--output", args.output, "Map file to write (default: the scene's name with .h5)")
+      ->check(kOutputName)
       ->type_name("FILE.h5");
   auto* resume = sweep->add_flag("--resume", args.resume, "Continue an existing map of the same scene");
   sweep->add_flag("--overwrite", args.overwrite, "Replace an existing map")->excludes(resume);
@@ -166,7 +177,9 @@ CLI::App* add_accuracy(CLI::App& app, cli::AccuracyArgs& args) {
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   acc->add_option("--csv", args.csv, "Also write the rows to FILE.csv (one line per case, reference first)")
+      ->check(kOutputName)
       ->type_name("FILE.csv");
+  acc->add_flag("--overwrite", args.overwrite, "Replace an existing CSV file");
   acc->add_option("-f,--format", args.format, "Output on stdout: a table for people or JSON for scripts")
       ->check(CLI::IsMember({"table", "json"}))
       ->type_name("table|json")
@@ -207,6 +220,7 @@ CLI::App* add_optimise(CLI::App& app, cli::OptimiseArgs& args) {
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   opt->add_option("-o,--output", args.output, "Result file to write (default: the scene's name with _optimise.h5)")
+      ->check(kOutputName)
       ->type_name("FILE.h5");
   auto* resume = opt->add_flag("--resume", args.resume, "Finish a stopped or killed run from its journal (FILE.h5.journal)");
   opt->add_flag("--overwrite", args.overwrite, "Replace an existing result file and recompute the seeding sweep")
@@ -240,6 +254,7 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       ->check(CLI::Range(0, 8))
       ->capture_default_str();
   c->add_option("-o,--output", args.output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)")
+      ->check(kOutputName)
       ->type_name("FILE.h5");
   c->add_flag("--overwrite", args.overwrite, "Replace an existing branch file");
   c->add_option("-f,--format", args.format, "Output on stdout: table or json")
@@ -282,7 +297,8 @@ CLI::App* add_orbit_diagram(CLI::App& app, cli::OrbitDiagramArgs& args) {
   od->add_option("--transient", args.transient, "Forcing periods integrated at each point before states are kept")
       ->capture_default_str();
   od->add_option("--keep", args.keep, "Stroboscopic states kept at each point")->capture_default_str();
-  od->add_option("-o,--output", args.output, "HDF5 file of the kept states (none by default)")->type_name("FILE.h5");
+  od->add_option("-o,--output", args.output, "HDF5 file of the kept states (none by default)")
+      ->check(kOutputName)->type_name("FILE.h5");
   od->add_flag("--overwrite", args.overwrite, "Replace an existing file");
   od->add_flag("-q,--quiet", args.quiet, "No progress lines");
   od->add_option("-f,--format", args.format, "Output on stdout: table or json")
@@ -342,6 +358,7 @@ CLI::App* add_basins(CLI::App& app, cli::BasinsArgs& args) {
       ->allow_extra_args(false)
       ->type_name("VAR=VALUE");
   b->add_option("-o,--output", args.output, "File to write (default: the scene's name with _basins.h5)")
+      ->check(kOutputName)
       ->type_name("FILE.h5");
   auto* resume = b->add_flag("--resume", args.resume, "Continue an existing file of the same run");
   b->add_flag("--overwrite", args.overwrite, "Replace an existing file")->excludes(resume);

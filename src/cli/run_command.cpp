@@ -14,6 +14,7 @@
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/census_output.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
@@ -66,14 +67,8 @@ std::string gigabytes(double bytes) {
 void check_trajectory(const std::string& path, bool overwrite, const Scene& scene) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  check_output(path, {.option = "--trajectory", .overwrite = overwrite});
   const fs::path dir = fs::path(path).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw IoError(path + ": cannot write trajectory: directory '" + dir.string() + "' does not exist");
-  if (fs::exists(fs::symlink_status(path, ec)) || fs::exists(path, ec)) {
-    if (!fs::is_regular_file(path, ec))
-      throw SceneError(path + ": --trajectory: not a regular file (a device, directory or pipe); name a new FILE.h5");
-    if (!overwrite) throw SceneError(path + ": --trajectory: already exists; use --overwrite to replace it");
-  }
   const AnalysisOptions& a = scene.options.analysis;
   const double samples = static_cast<double>(a.trajectory_periods) * static_cast<double>(a.trajectory_samples);
   // The samples (7 float64 each) are kept once by the solver and once, column by column, by the
@@ -84,11 +79,11 @@ void check_trajectory(const std::string& path, bool overwrite, const Scene& scen
                            std::to_string(a.trajectory_samples) + " samples ([analysis] trajectory_periods, "
                            "trajectory_samples)";
   if (const std::uint64_t avail = available_memory(); avail > 0 && memory > 0.5 * static_cast<double>(avail))
-    throw SceneError(path + ": " + what + " need about " + gigabytes(memory) + " of memory, more than half the " +
+    throw IoError(path + ": " + what + " need about " + gigabytes(memory) + " of memory, more than half the " +
                      gigabytes(static_cast<double>(avail)) + " available; keep fewer periods or samples");
   const fs::space_info space = fs::space(dir.empty() ? fs::path(".") : dir, ec);
   if (!ec && file > static_cast<double>(space.available))
-    throw SceneError(path + ": " + what + " make a " + gigabytes(file) + " file; its file system has " +
+    throw IoError(path + ": " + what + " make a " + gigabytes(file) + " file; its file system has " +
                      gigabytes(static_cast<double>(space.available)) + " free");
 }
 

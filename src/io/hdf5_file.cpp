@@ -1,4 +1,5 @@
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_file.hpp"
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -159,20 +160,6 @@ void write_attribute(Hid loc, std::string_view name, std::string_view file, hid_
   check(H5Awrite(attr.get(), mem_type, value), file, "write " + what);
 }
 
-namespace {
-
-// Writes a file's data through to the disk before it is renamed into place, so that a crash
-// right after the rename cannot leave an empty file under the final name.
-void sync_to_disk(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) fail(path, std::string("cannot open for fsync (") + std::strerror(errno) + ")");
-  const int rc = ::fsync(fd);
-  const int err = errno;
-  ::close(fd);
-  if (rc != 0 && err != EINVAL) fail(path, std::string("cannot fsync (") + std::strerror(err) + ")");
-}
-
-}  // namespace
 
 std::int64_t check(std::int64_t ret, std::string_view file, std::string_view operation) {
   if (ret >= 0) return ret;
@@ -398,20 +385,15 @@ void Hdf5File::close() {
 // ---- atomic writing ---------------------------------------------------------------------
 
 void write_hdf5_atomically(const std::string& path, const std::function<void(Hdf5File&)>& fill) {
-  const std::string tmp = path + ".tmp";
-  try {
-    {
-      Hdf5File file(tmp, FileMode::truncate);
-      fill(file);
-      file.close();
-    }
-    detail::sync_to_disk(tmp);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      fail(path, cat("cannot rename ", detail::describe("file", tmp), " to it (", std::strerror(errno), ")"));
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
+  NewFile out(path);
+  out.close_descriptor();
+  {
+    Hdf5File file(out.path(), FileMode::truncate);
+    out.check_same(file.descriptor());
+    fill(file);
+    file.close();
   }
+  out.commit();
 }
 
 }  // namespace vibromap

@@ -11,6 +11,7 @@
 
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_file.hpp"
 
 namespace vibromap {
 namespace {
@@ -91,11 +92,13 @@ Journal Journal::create(const std::string& path, std::string_view identity) {
   Journal j;
   j.path_ = path;
   j.identity_ = std::string(identity);
-  errno = 0;
-  j.fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (j.fd_ < 0) io_fail(path, "cannot create the journal");
-  j.buffer_ = header(identity);
-  j.sync();
+  // A new file with the header, synced and renamed over `path` (never a write through a link
+  // or into an existing file); its descriptor then appends to the journal at `path`.
+  NewFile out(path);
+  const std::vector<char> h = header(identity);
+  out.write(std::string_view(h.data(), h.size()));
+  out.commit();
+  j.fd_ = out.release_descriptor();
   return j;
 }
 
@@ -103,8 +106,13 @@ Journal Journal::open(const std::string& path) {
   Journal j;
   j.path_ = path;
   errno = 0;
-  j.fd_ = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+  j.fd_ = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (j.fd_ < 0) io_fail(path, "cannot open the journal");
+  struct stat st {};
+  if (::fstat(j.fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    errno = 0;
+    io_fail(path, "the journal is not a regular file");
+  }
   const std::vector<char> data = read_all(path, j.fd_);
   errno = 0;
   std::size_t pos = 4;

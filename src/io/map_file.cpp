@@ -11,6 +11,7 @@
 #include "map_layout.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_file.hpp"
 
 // MapWriter and the whole-map readers; the layout itself (making, reading, one chunk of every
 // dataset) is map_layout.cpp's.
@@ -69,34 +70,63 @@ std::uint64_t MapWriter::file_bytes(const MapLayout& layout) {
          layout.identity.size();
 }
 
+namespace {
+
+// The map's skeleton (axes, every dataset allocated with its fill values, the root attributes)
+// written into the new file `out` and closed (not committed).
+void make_skeleton(NewFile& out, const MapLayout& layout, int ranks) {
+  out.close_descriptor();
+  Hdf5File file(out.path(), FileMode::truncate, detail::writer_options());
+  out.check_same(file.descriptor());
+  const Shape shape = layout.grid.shape();
+  const Shape chunk = detail::map_chunk_shape(shape);
+  std::vector<Dataset> scales = detail::write_axes(file, layout.grid);
+  if (layout.attractors > 0) scales.push_back(detail::write_attractor_scale(file, layout.attractors));
+  detail::make_field(file, detail::done_field(), shape, chunk, scales);
+  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors))
+    detail::make_field(file, f, shape, chunk, scales);
+  detail::write_root_attributes(file, layout, ranks);
+  scales.clear();
+  file.close();
+}
+
+}  // namespace
+
+// The map at `path` opened again to be written: a regular file, the very one named.
+std::unique_ptr<MapWriter::Impl> MapWriter::open_for_writing(const std::string& path) {
+  check_output(path, {.option = "map", .resume = true});
+  auto impl = std::make_unique<Impl>(path, Hdf5File(path, FileMode::read_write, detail::writer_options()));
+  check_opened_output(path, impl->file.descriptor());
+  return impl;
+}
+
 MapWriter MapWriter::create(const std::string& path, const MapLayout& layout, int ranks) {
   detail::check_layout(path, layout);
-  try {
-    auto impl = std::make_unique<Impl>(path, Hdf5File(path, FileMode::truncate, detail::writer_options()));
-    impl->layout = layout;
-    const Shape shape = layout.grid.shape();
-    impl->chunk = detail::map_chunk_shape(shape);
-    impl->chunks = detail::chunk_spans(shape, impl->chunk);
-    std::vector<Dataset> scales = detail::write_axes(impl->file, layout.grid);
-    if (layout.attractors > 0) scales.push_back(detail::write_attractor_scale(impl->file, layout.attractors));
-    detail::MapField done_field = detail::done_field();
-    impl->ds.fields = detail::map_fields(layout.stored, layout.attractors);
-    impl->ds.done = detail::make_field(impl->file, done_field, shape, impl->chunk, scales);
-    for (const detail::MapField& f : impl->ds.fields)
-      impl->ds.data.push_back(detail::make_field(impl->file, f, shape, impl->chunk, scales));
-    impl->ds.reals.resize(impl->ds.fields.size());
-    impl->ds.ints.resize(impl->ds.fields.size());
-    detail::write_root_attributes(impl->file, layout, ranks);
-    impl->file.sync();
-    return MapWriter(std::move(impl));
-  } catch (...) {
-    std::remove(path.c_str());
-    throw;
+  {
+    NewFile out(path);
+    make_skeleton(out, layout, ranks);
+    out.commit();
   }
+  return open_new(path, layout);
+}
+
+MapWriter MapWriter::create_in(NewFile& out, const MapLayout& layout, int ranks) {
+  detail::check_layout(out.target(), layout);
+  make_skeleton(out, layout, ranks);
+  return open_new(out.path(), layout);
+}
+
+MapWriter MapWriter::open_new(const std::string& path, const MapLayout& layout) {
+  auto impl = open_for_writing(path);
+  impl->layout = layout;
+  impl->chunk = detail::map_chunk_shape(layout.grid.shape());
+  impl->chunks = detail::chunk_spans(layout.grid.shape(), impl->chunk);
+  impl->ds.open(impl->file, layout);
+  return MapWriter(std::move(impl));
 }
 
 MapWriter MapWriter::resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done) {
-  auto impl = std::make_unique<Impl>(path, Hdf5File(path, FileMode::read_write, detail::writer_options()));
+  auto impl = open_for_writing(path);
   impl->layout = detail::read_layout(impl->file);
   const Shape shape = impl->layout.grid.shape();
   impl->chunk = detail::map_chunk_shape(shape);
@@ -284,9 +314,11 @@ void write_map(const std::string& path, const SweepMap& map) {
   if (map.cells.size() != map.grid.size()) refuse(cat(std::to_string(map.cells.size()), " cell records for ", cells, " cells"));
   if (map.done.size() != map.grid.size()) refuse(cat(std::to_string(map.done.size()), " done flags for ", cells, " cells"));
   detail::check_layout(path, {map.grid, map.stored, map.scene_text, map.identity, map.attractors});
-  const std::string tmp = path + ".tmp";
-  try {
-    MapWriter w = MapWriter::create(tmp, {map.grid, map.stored, map.scene_text, map.identity, map.attractors}, map.ranks);
+  // Written whole into a new file, renamed over `path` when finished.
+  NewFile out(path);
+  const MapLayout layout{map.grid, map.stored, map.scene_text, map.identity, map.attractors};
+  {
+    MapWriter w = MapWriter::create_in(out, layout, map.ranks);
     for (std::uint64_t i = 0; i < map.cells.size();) {
       if (!map.done[i]) {
         ++i;
@@ -298,12 +330,8 @@ void write_map(const std::string& path, const SweepMap& map) {
       i = j;
     }
     w.finish(map.ranks);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      fail(path, cat("cannot rename file '", tmp, "' to it (", std::strerror(errno), ")"));
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
   }
+  out.commit();
 }
 
 }  // namespace vibromap

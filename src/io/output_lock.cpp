@@ -49,8 +49,15 @@ OutputLock::OutputLock(const std::string& output) : path_(output + ".lock") {
   if (!dir.empty() && !fs::is_directory(dir, ec))
     throw IoError(cat(output, ": cannot write here: directory '", dir.string(), "' does not exist"));
   for (;;) {
-    const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // Never through a link, never blocking on a FIFO; anything but a regular file is refused.
+    const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+    if (fd < 0 && errno == ELOOP)
+      throw SceneError(cat(path_, ": is a symbolic link; vibromap never writes through a link: remove it"));
     if (fd < 0) throw IoError(cat(output, ": cannot write here: cannot create ", path_, " (", std::strerror(errno), ")"));
+    if (struct stat st {}; ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+      ::close(fd);
+      throw SceneError(cat(path_, ": is not a regular file; vibromap keeps its lock there: remove it"));
+    }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;
       if (err == EWOULDBLOCK) {

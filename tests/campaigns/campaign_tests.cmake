@@ -29,7 +29,7 @@ vibromap_cli_test(optimise_soft_check_without_states RC 2
                   ERR "--set optimise\\.soft_check_initial_conditions=0: must be an integer in \\[1, 1e\\+06\\]")
 vibromap_cli_test(optimise_output_directory_missing RC 4
                   ARGS optimise jobs/paper/optimise_box.toml -o no_such_dir/o.h5
-                  ERR "no_such_dir/o\\.h5: cannot write the optimisation: directory 'no_such_dir' does not exist")
+                  ERR "no_such_dir/o\\.h5: cannot write here: directory 'no_such_dir' does not exist")
 
 # `vibromap basins`: command-line checks. Bad options are refused before any MPI or file work
 # (no file, no lock file is left behind), with one line naming the option and what it allows.
@@ -70,3 +70,4 @@ endfunction()
 vibromap_campaign_pytest(sweep_mpi sweep)
 vibromap_campaign_pytest(optimise_mpi multistart)
 vibromap_campaign_pytest(basins_mpi basins)
+vibromap_campaign_pytest(outputs outputs)

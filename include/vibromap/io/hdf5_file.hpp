@@ -297,10 +297,11 @@ class Hdf5File : public Group {
   void close();
 };
 
-// Writes the HDF5 file `path` atomically: `fill` writes into a new file `path + ".tmp"`, which
-// is closed, flushed to disk (fsync) and renamed over `path` only when fill returns. On any
-// exception (from fill, HDF5, the close or the rename) the temporary file is removed, an
-// existing `path` is left untouched, and the exception propagates.
+// Writes the HDF5 file `path` atomically: `fill` writes into a new file beside it (NewFile,
+// io/output_file.hpp: created exclusively, never through a link), which is closed, synced to
+// the disk and renamed over `path` only when fill returns. On any exception (from fill, HDF5,
+// the close or the rename) the new file is removed, an existing `path` is left untouched, and
+// the exception propagates. An existing `path` that is not a regular file is refused.
 void write_hdf5_atomically(const std::string& path, const std::function<void(Hdf5File&)>& fill);
 
 }  // namespace vibromap

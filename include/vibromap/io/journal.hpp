@@ -24,7 +24,8 @@ class Journal {
     std::vector<char> bytes;
   };
 
-  // Creates `path` (replacing it) with `identity` in its header, synced. Throws IoError.
+  // Creates `path` (a new file renamed over it: see io/output_file.hpp) with `identity` in its
+  // header, synced. Throws IoError (SceneError when `path` is a link or not a regular file).
   static Journal create(const std::string& path, std::string_view identity);
   // Opens an existing journal for appending: reads its identity and records. Throws IoError
   // naming the path when it cannot be read or is damaged before its tail.

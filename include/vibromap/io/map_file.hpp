@@ -100,13 +100,20 @@ struct MapRepair {
   std::vector<std::string> datasets;     // the datasets where damage was found
 };
 
+class NewFile;  // io/output_file.hpp
+
 class MapWriter {
  public:
   // The bytes a new map of `layout` takes on disk, about (every chunk is allocated up front).
   static std::uint64_t file_bytes(const MapLayout& layout);
-  // Makes a new map file at `path` (replacing one): every dataset, allocated and filled; synced.
-  // Throws IoError naming the path; a partly made file is removed.
+  // Makes a new map file at `path`: every dataset, allocated and filled, in a new file beside
+  // it (io/output_file.hpp) that is synced and renamed over `path` (replacing a regular file
+  // only), then opened to be filled. Throws IoError naming the path; a partly made new file is
+  // removed and an existing `path` left untouched.
   static MapWriter create(const std::string& path, const MapLayout& layout, int ranks);
+  // Makes a new map in the new file `out` and opens it to be filled; the caller commits `out`
+  // once the map is finished (a map written whole: write_map).
+  static MapWriter create_in(NewFile& out, const MapLayout& layout, int ranks);
   // Opens a map to go on filling it: checks its layout, reads every chunk of every dataset to
   // verify its checksum, wipes damaged chunks (repair()), counts the cells done and calls
   // visit_done(cell) for each (resume's counts of regimes). Throws IoError naming the path and
@@ -135,6 +142,8 @@ class MapWriter {
  private:
   struct Impl;
   explicit MapWriter(std::unique_ptr<Impl> impl);
+  static std::unique_ptr<Impl> open_for_writing(const std::string& path);
+  static MapWriter open_new(const std::string& path, const MapLayout& layout);
   void verify_and_repair(const std::function<void(const CellResult&)>& visit_done);
   std::unique_ptr<Impl> impl_;
 };

@@ -15,6 +15,7 @@
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
@@ -88,18 +89,11 @@ BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, cons
 std::unique_ptr<detail::BasinsSink> prepare_sink(const Scene& scene, const BasinsPlane& plane,
                                                  const BasinsRunConfig& config, const detail::PixelCodec& codec,
                                                  std::unique_ptr<OutputLock>& lock) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path dir = fs::path(config.output).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw IoError(cat(config.output, ": cannot write the basins: directory '", dir.string(), "' does not exist"));
+  const bool exists = check_output(config.output, {.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
   lock = std::make_unique<OutputLock>(config.output);
-  const bool exists = fs::exists(config.output, ec);
   if (config.resume && exists)
     return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
                                                 resumed_content(scene, plane, config.output));
-  if (exists && !config.overwrite)
-    throw SceneError(cat(config.output, ": already exists; use --resume to continue it or --overwrite to replace it"));
   return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
                                               new_content(scene, plane));
 }

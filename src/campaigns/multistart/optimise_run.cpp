@@ -19,6 +19,7 @@
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/optimise_file.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/io/scene/keys.hpp"
@@ -36,16 +37,13 @@ constexpr double kDistinct = 0.01;  // best points closer than this in every sca
 
 // ---- Output, journal ------------------------------------------------------------------------
 
+// The result file and the journal beside it, checked under the output's lock (so that a
+// second run on the same output is told who holds it, not about the first run's journal).
 void check_outputs(const OptimiseRunConfig& config) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path dir = fs::path(config.output).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw IoError(cat(config.output, ": cannot write the optimisation: directory '", dir.string(), "' does not exist"));
-  if (fs::exists(config.output, ec) && !config.overwrite)
+  if (check_output(config.output, {.overwrite = true}) && !config.overwrite)
     throw SceneError(cat(config.output, config.resume ? ": already exists: the optimisation is complete" : ": already exists",
                          "; use --overwrite to replace it"));
-  if (fs::exists(config.journal, ec) && !config.resume && !config.overwrite)
+  if (check_output(config.journal, {.option = "journal", .overwrite = true}) && !config.resume && !config.overwrite)
     throw SceneError(cat(config.journal, ": an unfinished run of this output left its journal; --resume finishes it, "
                          "--overwrite starts again"));
 }
@@ -66,7 +64,7 @@ std::string run_identity(const Scene& scene, const std::vector<Seed>& seeds) {
 
 Journal open_journal(const Scene& scene, const OptimiseRunConfig& config, const std::vector<Seed>& seeds) {
   const std::string identity = run_identity(scene, seeds);
-  if (config.resume && std::filesystem::exists(config.journal)) {
+  if (config.resume && check_output(config.journal, {.option = "journal", .resume = true})) {
     Journal j = Journal::open(config.journal);
     if (const auto diff = canonical_differences(j.identity(), identity); !diff.empty()) {
       std::string keys;
@@ -250,8 +248,9 @@ OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const Optimi
   std::unique_ptr<OutputLock> lock;  // rank 0, for the whole run: one optimisation per output
   mpi.agree([&] {
     if (!scene.optimise) throw SceneError(scene.path + ": no [optimise] section: nothing to optimise (see 'vibromap keys')");
-    check_outputs(config);
+    check_output(config.output, {.overwrite = true});  // its name and directory, before the lock file is made
     lock = std::make_unique<OutputLock>(config.output);
+    check_outputs(config);
   }, exit_status_of);
   std::vector<Seed> seeds;
   if ((run.stop_signal = make_seeds(mpi, scene, config, run, seeds)) != 0) return run;

@@ -9,6 +9,7 @@
 
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/parallel/campaign.hpp"
@@ -94,8 +95,7 @@ OrbitDiagramReport run_orbit_diagram(const MpiSession& mpi, const Scene& scene, 
   mpi.agree(
       [&] {
         if (!config.output.empty()) {
-          if (std::filesystem::exists(config.output) && !config.overwrite)
-            throw SceneError(cat(config.output, ": already exists; use --overwrite to replace it"));
+          check_output(config.output, {.overwrite = config.overwrite});
           lock = std::make_unique<OutputLock>(config.output);
         }
         sink = std::make_unique<DiagramSink>(codec, report.data, config.output);

@@ -12,6 +12,7 @@
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/io/scene/identity.hpp"
@@ -46,7 +47,7 @@ void check_space(const std::string& output, const MapLayout& layout) {
   const fs::space_info space = fs::space(dir, ec);
   const std::uint64_t need = MapWriter::file_bytes(layout);
   if (!ec && need > space.available)
-    throw SceneError(cat(output, ": the map of ", std::to_string(layout.grid.size()), " cells needs ", gigabytes(need),
+    throw IoError(cat(output, ": the map of ", std::to_string(layout.grid.size()), " cells needs ", gigabytes(need),
                          " GB, and its file system has ", gigabytes(space.available),
                          " GB free; store fewer quantities, sweep fewer cells or write elsewhere"));
 }
@@ -81,6 +82,7 @@ void check_same_run(const MapWriter& w, const MapLayout& wanted, const Scene& sc
 std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRunConfig& config, int ranks,
                                               const detail::CellCodec& codec, std::unique_ptr<OutputLock>& lock) {
   if (!scene.sweep) throw SceneError(scene.path + ": no [sweep] section: nothing to sweep (see 'vibromap keys')");
+  const bool exists = check_output(config.output, {.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
   lock = std::make_unique<OutputLock>(config.output);
   const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
   MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
@@ -88,7 +90,6 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   layout.steady = to_string(analysis.steady);
   layout.hertz_limit = analysis.hertz_limit;
   layout.soft_kcon = analysis.soft_kcon;
-  const bool exists = std::filesystem::exists(config.output);
   detail::MapTally tally;
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;
   if (config.resume && exists) {
@@ -97,8 +98,6 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
     report_repair(w);
     return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(tally), ranks);
   }
-  if (exists && !config.overwrite)
-    throw SceneError(cat(config.output, ": already exists; use --resume to continue it or --overwrite to replace it"));
   check_space(config.output, layout);
   return std::make_unique<detail::MapSink>(codec, MapWriter::create(config.output, layout, ranks), std::move(tally),
                                            ranks);
