@@ -26,6 +26,7 @@ import concurrent.futures
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -76,6 +77,9 @@ def parse_args(argv):
     p.add_argument("--minimise", action="store_true",
                    help="shrink each failing case: drop its mutations one at a time while the failure stays")
     p.add_argument("--quiet", "-q", action="store_true", help="no line per failing case while running")
+    p.add_argument("--expect-tags", default="",
+                   help="self-test: succeed only when every one of these comma-separated tags is reported "
+                        "(the run on tests/fuzz/fake_vibromap.py)")
     args = p.parse_args(argv)
     args.classes = list(CLASSES) if args.classes == "all" else [c.strip() for c in args.classes.split(",") if c.strip()]
     unknown = [c for c in args.classes if c not in CLASSES]
@@ -102,13 +106,16 @@ def child_env(workdir):
 def probe_help(exe, env):
     """The options each command's --help lists: value options the binary lacks are dropped
     from the mutations, and flags (--overwrite) are used where the command has them."""
+    def help_of(command):
+        return subprocess.run([exe, command, "--help"], env=env, capture_output=True, text=True, timeout=60).stdout
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        texts = dict(zip(fuzz_cases.ALL_COMMANDS, pool.map(help_of, fuzz_cases.ALL_COMMANDS)))
     flags = {}
-    for command in fuzz_cases.ALL_COMMANDS:
-        out = subprocess.run([exe, command, "--help"], env=env, capture_output=True, text=True, timeout=30).stdout
+    for command, out in texts.items():
         options = set(re.findall(r"(?:^|[\s,])(--?[A-Za-z][\w-]*)", out))
         flags[command] = options
-        kept = tuple(o for o in fuzz_cases.VALUE_OPTIONS[command] if o in options)
-        fuzz_cases.VALUE_OPTIONS[command] = kept
+        fuzz_cases.VALUE_OPTIONS[command] = tuple(o for o in fuzz_cases.VALUE_OPTIONS[command] if o in options)
     return flags
 
 
@@ -255,7 +262,17 @@ def main(argv=None):
             shutil.rmtree(workdir, ignore_errors=True)
 
 
+def default_signals():
+    """SIGINT and SIGTERM as a terminal gives them to the runs: a shell starts a background job
+    (`fuzz_cli.py &`, nohup) with SIGINT ignored, and a run inherits an ignored signal."""
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    if signal.getsignal(signal.SIGTERM) == signal.SIG_IGN:
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 def fuzz(args, workdir):
+    default_signals()
     env = child_env(workdir)
     limits = Limits(args.timeout, args.memory_mb, args.signal_bound, args.quick_bound)
     scenes = fuzz_cases.load_scenes(os.path.join(REPO, "jobs"))
@@ -302,6 +319,10 @@ def fuzz(args, workdir):
             if o.problems:
                 save_case(o, os.path.join(failures_dir, f"case-{o.case.index:05d}"), limits, shared)
         print(f"failing cases' files and repro.sh: {failures_dir}")
+    if args.expect_tags:
+        missing = [tag for tag in args.expect_tags.split(",") if tag not in by_tag]
+        print(f"self-test: {'every expected tag reported' if not missing else 'not reported: ' + ', '.join(missing)}")
+        return 1 if missing else 0
     return 1 if by_tag else 0
 
 

@@ -33,6 +33,15 @@ foreach(_entry IN ITEMS scene:60 scene-path:20 options:60 output:40 signal:10 da
     RUN_SERIAL TRUE
     ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
 endforeach()
+# The fuzzer's self-test: run on tests/fuzz/fake_vibromap.py, a stand-in with one fault per
+# check, it must report every one of these tags (so a check that stopped working fails here).
+add_test(NAME fuzz.selftest
+         COMMAND "${VibromapPython_EXECUTABLE}" tests/fuzz/fuzz_cli.py --exe tests/fuzz/fake_vibromap.py
+                 --seed 28 --classes output --cases 16 --jobs 2 --timeout 5 --signal-bound 1 --memory-mb 100 --quiet
+                 --expect-tags canary,expected-exit,exit-1,stderr,nonfinite-json,leak,memory,hang,crash,wrote-on-exit-2
+         WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
+set_tests_properties(fuzz.selftest PROPERTIES LABELS fuzz TIMEOUT 300 RUN_SERIAL TRUE
+                     ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
 unset(_entry)
 unset(_pair)
 unset(_class)
