@@ -58,7 +58,7 @@ std::string main_footer() {
 std::string run_footer() {
   std::ostringstream os;
   os << "Scene: a TOML file with the sections and keys below, in SI units. Every key is\n"
-        "optional and defaults to Table 1 of SPEC.md. 'vibromap keys' lists each key's\n"
+        "optional and defaults to Table 1 of docs/model.md. 'vibromap keys' lists each key's\n"
         "default, unit, allowed values and meaning; jobs/reference.toml gives every key\n"
         "with its default and a comment. Unknown sections and keys are errors.\n";
   write_scene_key_summary(os);
@@ -386,7 +386,7 @@ CLI::App* add_restitution(CLI::App& app, cli::RestitutionArgs& args) {
       ->check(CLI::IsMember({"table", "json"}))
       ->type_name("table|json")
       ->capture_default_str();
-  r->footer("Each law's force is K z^1.5 (1 + chi w / v_in), chi calibrated from e (SPEC.md, 'Dissipative\n"
+  r->footer("Each law's force is K z^1.5 (1 + chi w / v_in), chi calibrated from e (docs/model.md, 'Dissipative\n"
             "contact laws'). For two free bodies one impact depends on chi alone, so the effective\n"
             "restitution |v_out / v_in| is a property of the law and e: this command integrates that\n"
             "impact at rtol 1e-12. postprocess/vmpy plot_restitution draws the JSON output.\n\n" +

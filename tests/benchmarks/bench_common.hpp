@@ -5,7 +5,7 @@
 //
 // Clocks. A driver's own clock restarts at 0 at every contact event (it is re-initialised
 // there anyway), so the exit time of an impact *is* its duration T_con: no digits are lost to
-// absolute time (SPEC.md "Absolute time loses digits"). The Tracker keeps the in-period time
+// absolute time (docs/numerics.md, "Time"). The Tracker keeps the in-period time
 // of the driver's origin, tau0, so the forcing is F(tau0 + t) and the next period end is at
 // driver time T - tau0; at a period end tau0 drops by T (the driver's clock runs on).
 //

@@ -9,7 +9,7 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
            OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
-# Table 2 of SPEC.md with E1 x E2 axes. Brute-force integration (not the default shooting)
+# The paper's Table 2 (docs/model.md) with E1 x E2 axes. Brute-force integration (not the default shooting)
 # makes cells cost ~0.02-0.05 s each, so a sweep runs long enough to be stopped or killed mid-way.
 SLOW_SCENE = """
 [system]

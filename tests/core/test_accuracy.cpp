@@ -1,5 +1,5 @@
 // The accuracy study (analysis/accuracy.hpp): the relative-error function and the rows on
-// hand-made summaries, the default cases, and a small study on Table 2 of SPEC.md.
+// hand-made summaries, the default cases, and a small study on the paper's Table 2 (docs/model.md).
 
 #include <cmath>
 #include <limits>
@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Table 2 of SPEC.md (the softened system): a cheap point, ~0.1 s per solve.
+// The paper's Table 2 (the softened system): a cheap point, ~0.1 s per solve.
 Parameters table2() {
   Parameters p;
   p.m2 = 310.0;
@@ -205,7 +205,7 @@ TEST(AccuracyStudy, LooserToleranceGivesALargerErrorOnTable2) {
   EXPECT_EQ(r.reference.rel_err_T_con, 0.0);
   EXPECT_EQ(r.reference.rel_err_F_max, 0.0);
   EXPECT_EQ(r.reference.rel_err_k_con, 0.0);
-  // SPEC.md's Table 2: T_con ~ 0.098 s (ours 0.0970 with its calibration).
+  // The paper's Table 2: T_con ~ 0.098 s (ours 0.0970 with the calibration of docs/model.md).
   EXPECT_NEAR(r.reference.T_con, 0.09696, 0.0005);
   const AccuracyRow& loose = r.rows[0];
   const AccuracyRow& tight = r.rows[1];

@@ -128,7 +128,7 @@ TEST(FreeFlightClosedForm, FlyIsFindEntryThenPropagateBitForBit) {
 }
 
 TEST(FreeFlightClosedForm, HybridAgreesWithDopri5ToSteadyState) {
-  Parameters table2;  // SPEC.md's Table 2
+  Parameters table2;  // the paper's Table 2 (docs/model.md)
   table2.m2 = 310.0;
   table2.spring2 = {Spring::Form::frequency, 3.606};
   table2.E1 = 1.4e10;

@@ -10,7 +10,7 @@
 using namespace vibromap;
 
 TEST(HertzContact, StiffnessMatchesSpecCheckValue) {
-  // SPEC.md: E1 = E2 = 2.099e11 Pa, nu = 0.3, R1 = R2 = 2 m give K = 1.541e11 N/m^1.5.
+  // docs/model.md: E1 = E2 = 2.099e11 Pa, nu = 0.3, R1 = R2 = 2 m give K = 1.541e11 N/m^1.5.
   const HertzContact c(2.099e11, 2.099e11, 0.3, 0.3, 2.0, 2.0, 0.319);
   EXPECT_NEAR(c.stiffness(), 1.541e11, 0.0005e11);
   EXPECT_DOUBLE_EQ(c.effective_radius(), 1.0);

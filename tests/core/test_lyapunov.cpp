@@ -34,7 +34,7 @@ TEST(Lyapunov, LinearSystemGivesItsSlowestDecayRate) {
 }
 
 TEST(Lyapunov, StableOrbitGivesItsLeadingFloquetMultiplier) {
-  Parameters p;  // SPEC.md's Table 2
+  Parameters p;  // the paper's Table 2 (docs/model.md)
   p.m2 = 310.0;
   p.spring2 = {Spring::Form::frequency, 3.606};
   p.E1 = 1.4e10;

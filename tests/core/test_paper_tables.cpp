@@ -1,4 +1,4 @@
-// The source paper's Tables 1 and 2 (SPEC.md), solved from the shipped scenes
+// The source paper's Tables 1 and 2 (docs/model.md), solved from the shipped scenes
 // jobs/paper/table{1,2}.toml: regime (1,1) and T_con within 3 % of the paper; the default
 // tolerance within 1e-6 of a tight run; the paper's RK4 agrees on the soft contact.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@ using namespace vibromap;
 namespace {
 struct Table {
   const char* name;
-  double paper_T_con, paper_k_con;  // the paper's values (SPEC.md)
+  double paper_T_con, paper_k_con;  // the paper's values (docs/model.md)
 };
 const Table kTable1{"table1", 7.81e-4, 1113.3};
 const Table kTable2{"table2", 0.098, 8.868};

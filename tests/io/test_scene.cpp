@@ -384,7 +384,7 @@ TEST(Scene, PaperTable1HasTheSpecValues) {
   EXPECT_EQ(p.R2, 2.0);
   EXPECT_EQ(p.F0, 500.0);
   EXPECT_EQ(p.omega, 7.23);
-  // SPEC.md's calibration of what the paper does not state.
+  // The calibration of what the paper does not state (docs/model.md).
   EXPECT_EQ(get_parameter(p, "xi1"), 0.01);
   EXPECT_EQ(get_parameter(p, "xi2"), 0.01);
   EXPECT_EQ(p.D, 0.05);

@@ -14,7 +14,7 @@ namespace vibromap::test {
 // 2 (5/4)^(2/5) * integral_0^1 ds / sqrt(1 - s^(5/2)); the integral is (2/5) B(2/5, 1/2).
 inline double hertz_duration_constant() {
   const double integral = 0.4 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9);
-  return 2.0 * std::pow(1.25, 0.4) * integral;  // = 3.2180655 (SPEC.md)
+  return 2.0 * std::pow(1.25, 0.4) * integral;  // = 3.2180655 (docs/numerics.md)
 }
 inline double hertz_duration(double m_star, double K, double v) {
   return hertz_duration_constant() * std::pow(m_star * m_star / (K * K * v), 0.2);

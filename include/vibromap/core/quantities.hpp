@@ -2,7 +2,7 @@
 // What a sweep keeps of one solved cell, and the optional quantities a scene may ask a map to
 // store.
 //
-// Always kept (SPEC.md, issues #3, #4): status, regime with n and k, stability, wall time
+// Always kept (issues #3, #4): status, regime with n and k, stability, wall time
 // and the steady-state residual. Stored on request only: the Quantity values. A sweep whose
 // scene has [census] (issue #11) also keeps the cell's census: every attractor listed, with
 // its basin fraction, and the fractions that are soft, unresolved and unlisted; its ordinary

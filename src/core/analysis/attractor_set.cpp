@@ -24,7 +24,7 @@ void set_longest(Attractor& a, It first, It last) {
 
 // Two orbits are one attractor when their cycles agree to this scaled distance (or 1000 Newton
 // tolerances, when larger): Newton solutions from different starts differ by about
-// tol / (1 - |mu|), distinct orbits by far more (two (1,1) orbits 3 % apart in T_con, SPEC.md).
+// tol / (1 - |mu|), distinct orbits by far more (two (1,1) orbits 3 % apart in T_con at one point of the paper's box).
 constexpr double kSameOrbit = 1e-6;
 constexpr double kShorterPeriod = 100.0;   // P^d(y) = y within this many Newton tolerances
 // The capture test (captured()): it applies from this scaled offset down, where the
@@ -238,7 +238,7 @@ std::optional<State> AttractorSet::shoot_from(const State& u, int n, const std::
 // tolerance, where a period costs several times less than at the scene's. A landing point
 // within kKnownCandidate of a known orbit's point is that orbit: the loose solution is
 // within its residual / (1 - |mu|) of the orbit (1e-3 scaled at |mu| = 0.99), distinct orbits
-// lie farther apart (SPEC.md: two (1,1) orbits 3 % apart in T_con). A wrong match could only
+// lie farther apart (one point of the paper's box has two (1,1) orbits 3 % apart in T_con). A wrong match could only
 // defer a new orbit's discovery to a later search or to the state's settling, never change a
 // label: labels come from capture (a verified region of the orbit itself) or settling.
 std::optional<std::size_t> AttractorSet::discover(const State& u, int n, const std::deque<Impact>& impacts,

@@ -2,7 +2,7 @@
 // Hertz force K max(z, 0)^(3/2) always in the right-hand side. Contact entries and exits
 // are located after each step on a cubic Hermite interpolant (end values and slopes), only
 // for measurement: the steps themselves run through the kink of z^(3/2), which is why the
-// method's order collapses at contact (SPEC.md).
+// method's order collapses at contact (docs/numerics.md).
 
 #include <cmath>
 

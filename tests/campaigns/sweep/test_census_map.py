@@ -21,7 +21,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from campaign_helpers import ENV, EXE, MPIEXEC, kill_all, wait_for_cells_done  # noqa: E402
 from test_sweep_mpi import assert_same_map, sweep  # noqa: E402
 
-# Table 2 (SPEC.md) over E1 x E2 where (1,1) and (3,3) coexist in places; K initial states.
+# Table 2 (docs/model.md) over E1 x E2 where (1,1) and (3,3) coexist in places; K initial states.
 CENSUS_SCENE = """
 [system]
 m2 = 310.0

@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy study (SPEC.md: "reports numerical error against run time"): one parameter
+// The accuracy study (docs/guide-accuracy.md: numerical error against run time): one parameter
 // point solved by several methods and tolerances, each compared with a reference solve of
 // the same point, so that a user can choose a tolerance for a big sweep knowing what it
 // costs (solve time, RHS evaluations, periods) and what it buys (relative error of T_con,
@@ -77,7 +77,7 @@ AccuracyRow accuracy_row(const AccuracyCase& c, const PointSummary& s, const Poi
 
 // The default study, built on `base` (the scene's options: budgets, n_max, hertz_limit, ...
 // are kept; trajectory and Lyapunov exponent are switched off, and steady_tol and newton_tol
-// are set to auto so that each follows its own tolerance, as SPEC.md asks):
+// are set to auto so that each follows its own tolerance, as docs/numerics.md explains):
 //   rk4 (the paper's method), steady = integrate, 2^11, 2^12, 2^13, 2^14, 2^15 steps per period;
 //   dopri5 brute force, steady = integrate, rtol 1e-6, 1e-8, 1e-10, 1e-12;
 //   hybrid with shooting, rtol 1e-6, 1e-8, 1e-10, 1e-12.

@@ -5,7 +5,7 @@
 // Contract: axes[0] holds the first plane variable's values (N0 of them), axes[1] the second's
 // (N1); pixel p = j N0 + i (row-major, the first variable fastest) is the state `fixed` with
 // variable vars[0] set to axes[0][i] and vars[1] to axes[1][j]. Units: m for x1, x2 and m/s
-// for v1, v2 (SPEC.md's physical state). A pixel whose bodies overlap (x1 - x2 > 0) is not an
+// for v1, v2 (the model's physical state, docs/model.md). A pixel whose bodies overlap (x1 - x2 > 0) is not an
 // initial state the census draws either; `vibromap basins` labels it kOverlapLabel.
 
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// One impact: a maximal time interval with approach z > 0 (SPEC.md), and the observer that
+// One impact: a maximal time interval with approach z > 0 (docs/model.md), and the observer that
 // measures impacts from an integrator's steps and events.
 //
 // Peak penetration is found where w = z' changes sign inside a contact step (a root of w on

@@ -7,7 +7,7 @@
 // (positions over D + |x|, velocities over omega (D + |x|)); the regime's period is the least
 // n for which ||y_i - y_{i-n}|| <= steady_tol holds for n consecutive samples. steady_tol
 // defaults to 100 * rtol: an adaptive integrator's step-size jitter shows in the samples, so
-// the test must not be tighter than the integration (SPEC.md).
+// the test must not be tighter than the integration (docs/numerics.md).
 
 #include <complex>
 #include <limits>

@@ -1,5 +1,5 @@
 #pragma once
-// The motion regimes of SPEC.md; every solved point gets exactly one.
+// The motion regimes of docs/model.md; every solved point gets exactly one.
 
 #include <string>
 #include <string_view>

@@ -4,7 +4,7 @@
 //
 // Contract: advance_period() takes the state u at the start of a forcing period (local time
 // tau = 0) and returns it at tau = T exactly, so stroboscopic samples need no interpolation
-// and time is always measured from the start of the current period (SPEC.md: absolute time
+// and time is always measured from the start of the current period (docs/numerics.md: absolute time
 // loses digits). Every accepted step is shown to the Observer with its dense output; every
 // contact entry and exit is shown as a ContactEvent at its located time. The integrator
 // stops early only on a numerical failure or the step budget, reported as a status, never
@@ -23,7 +23,7 @@
 //  - rk4: the source paper's classical fixed-step RK4 with the contact force always in the
 //    right-hand side; events are located afterwards on a cubic Hermite interpolant. Kept as
 //    the reference method: its order collapses at contact and it is unstable on a rigid
-//    contact for h > ~T/2^11 (SPEC.md).
+//    contact for h > ~T/2^11 (docs/numerics.md).
 
 #include <memory>
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 // Contact laws: elastic Hertz and Hertz with nonlinear (Hunt-Crossley form) damping,
 //   Fc = max(0, K z^(3/2) (1 + chi w / v_in))  for approach z > 0, else 0,
-// w = z' the approach rate, v_in > 0 the approach rate at the contact's entry (SPEC.md,
+// w = z' the approach rate, v_in > 0 the approach rate at the contact's entry (docs/model.md,
 // "Dissipative contact laws"). The laws share this force; they differ in how the damping
 // factor chi (dimensionless) is calibrated from a coefficient of restitution e in (0, 1]:
 //   hertz                chi = 0                         (elastic, e = 1 whatever is asked)

@@ -1,5 +1,5 @@
 #pragma once
-// Hertz contact law between two elastic bodies with curved surfaces (SPEC.md), with the
+// Hertz contact law between two elastic bodies with curved surfaces (docs/model.md), with the
 // optional nonlinear damping of the dissipative laws (contact_law.hpp):
 //   Fc(z) = K z^(3/2) for approach z > 0, else 0                          (elastic, chi = 0)
 //   Fc(z, w; v_in) = max(0, K z^(3/2) (1 + chi w / v_in)) for z > 0, else 0  (damped)

@@ -1,5 +1,5 @@
 #pragma once
-// Physical parameters of one point of the two-body vibro-impact system of SPEC.md.
+// Physical parameters of one point of the two-body vibro-impact system of docs/model.md.
 //
 // Parameters holds the values *as the user gave them*: a spring is given either by its
 // stiffness k (N/m) or by its partial natural frequency omega = sqrt(k/m) (rad/s), a damper
@@ -7,7 +7,7 @@
 // when another parameter changes (a sweep over m2 with xi2 given keeps xi2, not c2).
 // The Model (system.hpp) turns these into the coefficients of the equations of motion.
 //
-// Defaults: Table 1 of the source paper with the calibration of SPEC.md (xi = 0.01,
+// Defaults: Table 1 of the source paper with the calibration of docs/model.md (xi = 0.01,
 // D = 0.05 m, nu = 0.3, lambda = 1, phi0 = 0).
 
 #include <array>

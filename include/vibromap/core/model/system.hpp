@@ -1,5 +1,5 @@
 #pragma once
-// The equations of motion of SPEC.md as a vector field, in relative coordinates.
+// The equations of motion of docs/model.md as a vector field, in relative coordinates.
 //
 // Physical state (x1, x2, v1, v2). Internally the integrators use
 //   u = (x1, z, v1, w),  z = x1 - x2 (approach), w = v1 - v2 (approach rate),
@@ -11,12 +11,12 @@
 //   m2 v2' =  c2 w + k2 (z + D) + Fc(z)
 //   F(t) = lambda F0 cos(omega t + phi0)
 //
-// SPEC.md notes that the source paper prints the attached spring's coupling factor in the
+// docs/model.md notes that the source paper prints the attached spring's coupling factor in the
 // main body's equation as chi = m1/m2; Newton's third law requires m2/m1 in its
 // dimensionless form, which is what the physical equations above contain.
 //
 // Time: the forcing is T-periodic, so callers pass the time since the start of the
-// current forcing period (this keeps digits: see SPEC.md "Numerics that matter").
+// current forcing period (this keeps digits: see docs/numerics.md, "Time").
 
 #include <array>
 #include <cmath>

@@ -3,7 +3,7 @@
 //
 // A scene has the sections [system], [contact], [forcing], [solver], [analysis] and
 // [initial]; every key is optional and defaults to the struct defaults of Parameters,
-// IntegratorOptions and AnalysisOptions (Table 1 of SPEC.md with its calibration). All
+// IntegratorOptions and AnalysisOptions (the paper's Table 1 calibrated as docs/model.md says). All
 // values are in SI units. One schema table (keys.hpp) lists every key with its type,
 // allowed range, unit and meaning; it drives parsing, validation, `vibromap keys`,
 // `vibromap run --help` and the reference scene (docs.hpp, jobs/reference.toml), so a key
