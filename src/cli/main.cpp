@@ -60,7 +60,9 @@ std::string run_footer() {
   os << "Scene: a TOML file with the sections and keys below, in SI units. Every key is\n"
         "optional and defaults to Table 1 of docs/model.md. 'vibromap keys' lists each key's\n"
         "default, unit, allowed values and meaning; jobs/reference.toml gives every key\n"
-        "with its default and a comment. Unknown sections and keys are errors.\n";
+        "with its default and a comment. Unknown sections and keys are errors. A scene is a\n"
+        "regular file of at most " << kMaxSceneText << ": anything else (a directory, a\n"
+        "FIFO, a device) is refused at once, the same for every command that reads a scene.\n";
   write_scene_key_summary(os);
   os << "\n--set section.key=value overrides one key after the file is read, with the same\n"
         "checks. The value is read as TOML (310, 1e-8, \"rk4\") or else as a string (rk4).\n"

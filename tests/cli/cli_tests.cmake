@@ -96,6 +96,45 @@ unset(_vibromap_long_key)
 vibromap_cli_test(long_key_is_cut_in_the_error_line RC 2 ARGS run ${VIBROMAP_CLI_LONG_KEY_SCENE}
                   ERR "cli_long_key\\.toml:2: unknown key 'xxxx.*1048576 characters" MAX_ERR 400)
 
+# A scene must be a regular file of at most 4 MiB (issue #28): a device that never ends, a FIFO
+# with no writer, a directory or a bigger file is refused at once (before this, /dev/zero was read
+# until memory ran out and a FIFO blocked), by every command that reads a scene.
+set(VIBROMAP_CLI_FIFO ${CMAKE_CURRENT_BINARY_DIR}/cli_fifo.toml)
+file(REMOVE ${VIBROMAP_CLI_FIFO})
+execute_process(COMMAND mkfifo ${VIBROMAP_CLI_FIFO} RESULT_VARIABLE _vibromap_rc)
+if(NOT _vibromap_rc EQUAL 0)
+  message(FATAL_ERROR "mkfifo ${VIBROMAP_CLI_FIFO} failed")
+endif()
+set(VIBROMAP_CLI_BIG_SCENE ${CMAKE_CURRENT_BINARY_DIR}/cli_big.toml)
+execute_process(COMMAND truncate -s 4194305 ${VIBROMAP_CLI_BIG_SCENE})
+set(_vibromap_chr "cannot read scene: it is a character device, not a regular file")
+set(_vibromap_fifo_tail "cli_fifo\\.toml: it is a FIFO \\(named pipe\\), not a regular file")
+set(_vibromap_fifo "cli_fifo\\.toml: cannot read scene: it is a FIFO \\(named pipe\\), not a regular file")
+vibromap_cli_test(scene_dev_zero RC 2 ARGS run /dev/zero ERR "^vibromap: error: /dev/zero: ${_vibromap_chr}")
+vibromap_cli_test(scene_fifo RC 2 ARGS run ${VIBROMAP_CLI_FIFO} ERR "${_vibromap_fifo}")
+vibromap_cli_test(scene_directory RC 2 ARGS run jobs ERR "jobs: cannot read scene: it is a directory, not a regular file")
+vibromap_cli_test(scene_too_big RC 2 ARGS run ${VIBROMAP_CLI_BIG_SCENE}
+                  ERR "cli_big\\.toml: cannot read scene: 4194305 bytes, more than the 4 MiB \\(4194304 bytes\\) a scene may have")
+vibromap_cli_test(sweep_scene_dev_urandom RC 2 ARGS sweep /dev/urandom ERR "/dev/urandom: ${_vibromap_chr}")
+vibromap_cli_test(sweep_scene_fifo RC 2 ARGS sweep ${VIBROMAP_CLI_FIFO} ERR "${_vibromap_fifo}")
+vibromap_cli_test(optimise_scene_fifo RC 2 ARGS optimise ${VIBROMAP_CLI_FIFO} ERR "${_vibromap_fifo}")
+vibromap_cli_test(optimise_scene_dev_zero RC 2 ARGS optimise /dev/zero ERR "/dev/zero: ${_vibromap_chr}")
+vibromap_cli_test(accuracy_scene_fifo RC 2 ARGS accuracy ${VIBROMAP_CLI_FIFO} ERR "${_vibromap_fifo}")
+vibromap_cli_test(continue_scene_dev_zero RC 2 ARGS continue /dev/zero -p omega --from 7 --to 8
+                  ERR "/dev/zero: ${_vibromap_chr}")
+vibromap_cli_test(orbit_diagram_scene_fifo RC 2 ARGS orbit-diagram ${VIBROMAP_CLI_FIFO} -p omega --from 7 --to 8
+                  ERR "${_vibromap_fifo}")
+vibromap_cli_test(basins_scene_dev_urandom RC 2 ARGS basins /dev/urandom ERR "/dev/urandom: ${_vibromap_chr}")
+# The one other file a scene names, [optimise] map (HDF5 would block on a FIFO for ever).
+vibromap_cli_test(optimise_map_fifo RC 2 ARGS optimise jobs/demo/optimise_law.toml --set optimise.map=${VIBROMAP_CLI_FIFO}
+                  ERR "optimise_law\\.toml: \\[optimise\\] map .*${_vibromap_fifo_tail}")
+vibromap_cli_test(optimise_map_dev_zero RC 2 ARGS optimise jobs/demo/optimise_law.toml --set optimise.map=/dev/zero
+                  ERR "optimise_law\\.toml: \\[optimise\\] map /dev/zero: it is a character device, not a regular file")
+unset(_vibromap_chr)
+unset(_vibromap_fifo)
+unset(_vibromap_fifo_tail)
+unset(_vibromap_rc)
+
 # The trajectory file: an existing file is kept without --overwrite, a device is never written,
 # and a trajectory that cannot fit in memory is refused with its size, all before the solve.
 set(VIBROMAP_CLI_EXISTING ${CMAKE_CURRENT_BINARY_DIR}/cli_existing_trajectory.h5)

@@ -2,8 +2,11 @@
 // scenes and the reference scene. Also the JSON writer and the summary output, which have
 // no test file of their own yet.
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
@@ -16,6 +19,7 @@
 
 #include "vibromap/io/json_writer.hpp"
 #include "support/scene_testing.hpp"
+#include "support/temp_dir.hpp"
 #include "vibromap/io/scene/docs.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/scene/scene.hpp"
@@ -330,6 +334,43 @@ TEST(Scene, MissingFileIsASceneError) {
   } catch (const SceneError& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/scene.toml: cannot read scene: no such file");
   }
+}
+
+// The SceneError message load_scene gives for `path`, or "" when it loads.
+std::string load_error(const std::string& path) {
+  try {
+    load_scene(path);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// A scene path that is not a regular file is refused at once, naming what it is: a device that
+// never ends, a FIFO without a writer (which a blocking open would wait on forever), a directory.
+using SceneFile = test::TempDir;
+
+TEST_F(SceneFile, OnlyARegularFileIsReadAsAScene) {
+  EXPECT_EQ(load_error("/dev/zero"), "/dev/zero: cannot read scene: it is a character device, not a regular file");
+  EXPECT_EQ(load_error("/dev/urandom"), "/dev/urandom: cannot read scene: it is a character device, not a regular file");
+  EXPECT_EQ(load_error(dir_.string()), dir_.string() + ": cannot read scene: it is a directory, not a regular file");
+  const std::string fifo = file("scene.toml");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(load_error(fifo), fifo + ": cannot read scene: it is a FIFO (named pipe), not a regular file");
+}
+
+// The cap is kMaxSceneBytes: a file of exactly that size is read (a comment, so it parses), one
+// byte more is refused with the cap in the message.
+TEST_F(SceneFile, IsReadUpToItsCap) {
+  const std::string path = file("scene.toml");
+  const std::string head = "[system]\nm2 = 123.0\n#";
+  std::string text = head + std::string(kMaxSceneBytes - head.size() - 1, 'x') + "\n";
+  ASSERT_EQ(text.size(), kMaxSceneBytes);
+  std::ofstream(path, std::ios::binary) << text;
+  EXPECT_EQ(load_scene(path).params.m2, 123.0);
+  std::ofstream(path, std::ios::binary) << text << "\n";
+  EXPECT_EQ(load_error(path), path + ": cannot read scene: 4194305 bytes, more than the 4 MiB (4194304 bytes) a "
+                                     "scene may have");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -97,8 +97,28 @@ Scene sweep_scene(const Scene& scene) {
   return s;
 }
 
+// What a seeding map path that exists but is not a regular file is (empty for a regular or
+// missing file: a missing one is the I/O error of opening it): HDF5 would block for ever opening
+// a FIFO (deaf to the stop signals meanwhile) and read a device's bytes.
+std::string_view not_a_regular_file(const std::filesystem::file_status& st) {
+  switch (st.type()) {
+    case std::filesystem::file_type::regular:
+    case std::filesystem::file_type::not_found:
+    case std::filesystem::file_type::none: return {};
+    case std::filesystem::file_type::directory: return "it is a directory, not a regular file";
+    case std::filesystem::file_type::fifo: return "it is a FIFO (named pipe), not a regular file";
+    case std::filesystem::file_type::character: return "it is a character device, not a regular file";
+    case std::filesystem::file_type::block: return "it is a block device, not a regular file";
+    case std::filesystem::file_type::socket: return "it is a socket, not a regular file";
+    default: return "it is not a regular file";
+  }
+}
+
 // Rank 0: the best cells of a map file as seeds, read a chunk at a time (any map size).
 std::vector<Seed> seeds_from_map(const Scene& scene, const std::string& path, bool made_here) {
+  std::error_code ec;
+  if (const std::string_view what = not_a_regular_file(std::filesystem::status(path, ec)); !what.empty())
+    throw SceneError(cat(scene.path, ": [optimise] map ", path, ": ", what));
   const MapLayout layout = read_map_layout(path);
   try {
     SeedSelector selector(layout.grid, layout.stored, scene.params, *scene.optimise, scene.options.analysis.hertz_limit);

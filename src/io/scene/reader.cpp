@@ -1,9 +1,14 @@
 #include "vibromap/io/scene/scene.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include "scene_internal.hpp"
@@ -284,16 +289,62 @@ Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
   return scene;
 }
 
+// What a path that is not a regular file is, for the one-line refusal.
+std::string_view file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+struct FdCloser {
+  int fd;
+  ~FdCloser() { ::close(fd); }
+};
+
+// The one-line refusal of what is not a regular file of at most kMaxSceneBytes.
+void check_scene_file(const std::string& path, const struct stat& st) {
+  if (!S_ISREG(st.st_mode)) fail(cat(path, ": cannot read scene: it is ", file_kind(st.st_mode), ", not a regular file"));
+  if (static_cast<std::uintmax_t>(st.st_size) > kMaxSceneBytes)
+    fail(cat(path, ": cannot read scene: ", std::to_string(st.st_size), " bytes, more than the ", kMaxSceneText,
+             " a scene may have"));
+}
+
+// The scene's bytes, bounded (scene.hpp): the path must be a regular file of at most
+// kMaxSceneBytes; it is opened without blocking (a FIFO with no writer would otherwise wait
+// forever), and no more than kMaxSceneBytes + 1 bytes are ever read, so a file that grows
+// while it is read is refused too.
 std::string read_file(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path + ": cannot read scene: no such file");
-  if (fs::is_directory(path, ec)) fail(path + ": cannot read scene: is a directory");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  if (!in) fail(path + ": cannot read scene file");
-  return os.str();
+  struct stat st {};
+  // Looked at before it is opened, so a device is never opened; then again on the descriptor.
+  if (::stat(path.c_str(), &st) == 0) check_scene_file(path, st);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    const int err = errno;
+    if (err == ENOENT) fail(path + ": cannot read scene: no such file");
+    fail(cat(path, ": cannot read scene: ", std::strerror(err)));
+  }
+  const FdCloser closer{fd};
+  if (::fstat(fd, &st) != 0) fail(cat(path, ": cannot read scene: ", std::strerror(errno)));
+  check_scene_file(path, st);
+  std::string text;
+  text.reserve(static_cast<std::size_t>(st.st_size) + 1);
+  char buf[65536];
+  while (text.size() <= kMaxSceneBytes) {
+    const std::size_t want = std::min(sizeof buf, kMaxSceneBytes + 1 - text.size());
+    const ssize_t got = ::read(fd, buf, want);
+    if (got == 0) break;
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      fail(cat(path, ": cannot read scene: ", std::strerror(errno)));
+    }
+    text.append(buf, static_cast<std::size_t>(got));
+  }
+  if (text.size() > kMaxSceneBytes)
+    fail(cat(path, ": cannot read scene: it grew past the ", kMaxSceneText, " a scene may have while it was read"));
+  return text;
 }
 
 }  // namespace

@@ -16,6 +16,11 @@
 // Unknown sections and keys are errors (with a "did you mean" hint), so a typo never
 // silently falls back to a default.
 //
+// A scene file must be a regular file of at most kMaxSceneBytes (4 MiB): a directory, a FIFO,
+// a device (/dev/zero, /dev/urandom) or a bigger file is refused at once, before anything is
+// read, and no more than the cap is ever read (the file is opened without blocking, so a FIFO
+// never stalls the reader).
+//
 // Overrides ("section.key=value", from `--set`) are applied to the parsed file before the
 // checks, with the value read as a TOML value (or, when it is not one, as a string). An
 // override of one key of an either-or pair (k1 | omega1, k2 | omega2, xi1 | c1, xi2 | c2)
@@ -76,6 +81,7 @@
 //   recurrences, cell, rtol       # the census's numerics (vibromap keys)
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -89,6 +95,12 @@
 #include "vibromap/io/scene/sweep_section.hpp"
 
 namespace vibromap {
+
+// The largest scene file load_scene reads, bytes. A scene is a few kB (jobs/reference.toml, every
+// key with a comment, is about 14 kB); the cap only keeps a wrong path from being read without end.
+inline constexpr std::size_t kMaxSceneBytes = std::size_t{4} << 20;
+inline constexpr std::string_view kMaxSceneText = "4 MiB (4194304 bytes)";  // kMaxSceneBytes in messages
+static_assert(kMaxSceneBytes == 4194304);
 
 // A bad scene: malformed TOML, unknown section or key, wrong type, value out of range,
 // both keys of a pair, unreadable file or malformed override. what() is one line.
