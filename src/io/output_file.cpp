@@ -21,17 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What a path that is not a regular file is, for the one line that refuses it.
-std::string_view kind_of(mode_t mode) {
-  if (S_ISLNK(mode)) return "a symbolic link";
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 std::string shown(const std::string& path) { return clip(path, 120); }
 
 // `limit`: the longest file name allowed, bytes.
@@ -68,7 +57,7 @@ bool look_up(const std::string& path, struct stat& st) {
 
 void refuse_non_regular(const std::string& path, std::string_view option, const struct stat& st) {
   if (S_ISREG(st.st_mode)) return;
-  std::string what(kind_of(st.st_mode));
+  std::string what(file_kind(st.st_mode));
   if (S_ISLNK(st.st_mode)) {
     std::error_code ec;
     const fs::path to = fs::read_symlink(path, ec);
@@ -88,6 +77,16 @@ void sync_directory_of(const std::string& path) {
 }
 
 }  // namespace
+
+std::string_view file_kind(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
 
 bool check_output(const std::string& path, const OutputPolicy& policy) {
   check_name(path, policy.option);

@@ -36,6 +36,10 @@ struct OutputPolicy {
   bool resume = false;     // --resume: an existing regular file is opened again to be continued, -
 };
 
+// What a path that is not a regular file is ("a symbolic link", "a directory", "a FIFO (named
+// pipe)", ...), for the one line that refuses it (outputs here, scenes in the scene reader).
+std::string_view file_kind(mode_t mode);
+
 // Checks `path` as an output before any work (see the header comment). Returns true when it
 // exists (then it is a regular file that `policy` allows to replace or resume). Throws
 // SceneError (exit 2) for a bad name, an existing output that is not a regular file, or one

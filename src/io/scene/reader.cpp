@@ -13,6 +13,7 @@
 
 #include "scene_internal.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/output_file.hpp"
 
 // Reading a scene: parse the TOML, apply the overrides, check the structure (sections and
 // keys), read and check each key's value, then the [sweep] and [optimise] sections, and
@@ -287,16 +288,6 @@ Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
   scene.path = ctx.path;
   scene.text = scene_text(table, ctx);
   return scene;
-}
-
-// What a path that is not a regular file is, for the one-line refusal.
-std::string_view file_kind(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
 }
 
 struct FdCloser {
