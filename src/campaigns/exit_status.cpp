@@ -2,8 +2,10 @@
 
 #include <new>
 
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
+#include "vibromap/parallel/farm.hpp"
 
 namespace vibromap {
 
@@ -12,6 +14,10 @@ ExitCode exit_code_of(std::exception_ptr error) {
     std::rethrow_exception(error);
   } catch (const QuietExit& e) {
     return static_cast<ExitCode>(e.code);
+  } catch (const Cancelled&) {  // a stop signal ended a computation (core/cancel.hpp)
+    return ExitCode::stopped;
+  } catch (const ItemStopped&) {
+    return ExitCode::stopped;
   } catch (const SceneError&) {
     return ExitCode::bad_input;
   } catch (const IoError&) {

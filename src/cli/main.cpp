@@ -16,8 +16,10 @@
 #include "vibromap/io/scene/docs.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/exit_code.hpp"
+#include "vibromap/parallel/farm.hpp"
 #include "vibromap/parallel/mpi_session.hpp"
 #include "vibromap/parallel/signals.hpp"
 
@@ -41,6 +43,13 @@ int report(std::string_view message, ExitCode exit) {
   }
   std::cerr << "vibromap: error: " << what << "\n";
   return code(exit);
+}
+
+// A stop signal that cancelled a computation outside the farm's items (none does: the campaigns
+// open their cancellation scopes around items only).
+int stopped_outside_a_farm() {
+  std::cerr << "vibromap: stopped by " << signal_name(stop_signal()) << "\n";
+  return code(ExitCode::stopped);
 }
 
 std::string main_footer() {
@@ -499,6 +508,10 @@ int main(int argc, char** argv) {
     return dispatch(argc, argv);
   } catch (const QuietExit& e) {
     return e.code;
+  } catch (const Cancelled&) {  // the farm turns these into a stopped run; this is the backstop
+    return stopped_outside_a_farm();
+  } catch (const ItemStopped&) {
+    return stopped_outside_a_farm();
   } catch (const std::exception& e) {
     return report(e.what(), exit_code_of(std::current_exception()));
   } catch (...) {

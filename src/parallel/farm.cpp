@@ -26,7 +26,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 // ---- Wire format ---------------------------------------------------------------------------
 // Request, worker -> 0: header, kind, the worker's stop signal (0: none), compute seconds of the
-// chunk, its ranges, then the results (kind results) or an error message (kind failed).
+// chunk, the ranges solved (the chunk, or its items before one a stop abandoned), then their
+// results (kind results) or an error message (kind failed).
 // Reply, 0 -> worker: header, kind, exit code (abort), ranges (work).
 
 constexpr int kTagRequest = 101;
@@ -76,12 +77,37 @@ std::uint64_t count_items(const std::vector<ItemRange>& ranges) {
   return n;
 }
 
-// Solves every item of `ranges` into `out`; returns the compute time, s.
-double solve_ranges(const ItemSolver& solve, const std::vector<ItemRange>& ranges, ByteWriter& out) {
+// What a rank made of a chunk: the items it solved (all of the chunk, or those before the one a
+// stop abandoned), and their compute time.
+struct Solved {
+  std::vector<ItemRange> done;
+  double seconds = 0.0;  // s
+};
+
+// Solves the items of `ranges` in order into `out`, until a solver abandons its item for a stop
+// signal (ItemStopped): that item's bytes are dropped, the items before it are kept.
+Solved solve_ranges(const ItemSolver& solve, const std::vector<ItemRange>& ranges, ByteWriter& out) {
   const auto t0 = Clock::now();
-  for (const ItemRange& r : ranges)
-    for (std::uint64_t i = r.begin; i < r.end; ++i) solve(i, out);
-  return seconds_since(t0);
+  Solved s;
+  for (const ItemRange& r : ranges) {
+    for (std::uint64_t i = r.begin; i < r.end; ++i) {
+      const std::size_t mark = out.size();
+      try {
+        solve(i, out);
+      } catch (const ItemStopped&) {
+        out.bytes().resize(mark);
+        s.seconds = seconds_since(t0);
+        return s;
+      }
+      if (!s.done.empty() && s.done.back().end == i) {
+        ++s.done.back().end;
+      } else {
+        s.done.push_back({i, i + 1});
+      }
+    }
+  }
+  s.seconds = seconds_since(t0);
+  return s;
 }
 
 // VIBROMAP_MAX_CHUNK=n caps a chunk at n items (a benchmark knob: one item per request measures
@@ -114,11 +140,11 @@ void worker_loop(const FarmOptions& o, const ItemSolver& solve, FarmReport& repo
     request.clear();
     put_header(request, o.codec_version);
     ByteWriter results;
-    double compute_s = 0.0;
+    Solved solved;
     RequestKind outcome = RequestKind::results;
     try {
-      compute_s = solve_ranges(solve, chunk, results);
-      report.items_computed += count_items(chunk);
+      solved = solve_ranges(solve, chunk, results);
+      report.items_computed += count_items(solved.done);
     } catch (const std::exception& e) {
       outcome = RequestKind::failed;
       results.clear();
@@ -126,8 +152,8 @@ void worker_loop(const FarmOptions& o, const ItemSolver& solve, FarmReport& repo
     }
     request.put(static_cast<std::uint8_t>(outcome));
     request.put(static_cast<std::int32_t>(stop_signal()));
-    request.put(compute_s);
-    put_ranges(request, outcome == RequestKind::results ? chunk : std::vector<ItemRange>{});
+    request.put(solved.seconds);
+    put_ranges(request, outcome == RequestKind::results ? solved.done : std::vector<ItemRange>{});
     request.put_bytes(results.bytes().data(), results.size());
   }
 }
@@ -165,9 +191,9 @@ class Coordinator {
     ByteWriter results;
     for (std::vector<ItemRange> chunk = take_chunk(); !chunk.empty(); chunk = take_chunk()) {
       results.clear();
-      const double compute_s = solve_ranges(solve_, chunk, results);
+      const Solved solved = solve_ranges(solve_, chunk, results);  // a stop: the next take_chunk() sees it
       ByteReader r(results.bytes());
-      if (!store(chunk, r, compute_s)) return;
+      if (!store(solved.done, r, solved.seconds)) return;
     }
   }
 

@@ -28,6 +28,8 @@ void install_stop_handlers() {
 
 int stop_signal() { return g_stop_signal.load(); }
 
+const std::atomic<int>& stop_flag() { return g_stop_signal; }
+
 void request_stop(int signal) { on_stop_signal(signal); }
 
 std::string signal_name(int signal) {

@@ -2,7 +2,7 @@
 // whose result is a known function of the item, an in-memory sink that records what it got, and
 // the farm's contracts: every pending item stored exactly once with its own result whatever the
 // rank count, resume skips what is done, a stop signal on any rank ends the run with a final
-// checkpoint, and a failing sink or solver ends every rank (no rank left waiting: a hang fails
+// checkpoint (an item a stop abandoned is not stored), and a failing sink or solver ends every rank (no rank left waiting: a hang fails
 // the test by ctest's timeout).
 
 #include <gtest/gtest.h>
@@ -171,6 +171,40 @@ TEST(Farm, StopSignalOnAnyRankStopsEveryRankAfterAFinalCheckpoint) {
   EXPECT_EQ(stored, report.items_computed);
   EXPECT_GE(stored, 500u);
   EXPECT_LT(stored, kItems / 2) << "the farm stopped long before the end";
+}
+
+// A solver that abandons its item for a stop, as an integration polling the stop flag does
+// (campaigns/stoppable.hpp): that item is not stored, the items solved before it are, every
+// rank stops, and what was stored is checkpointed.
+TEST(Farm, AnItemAbandonedForAStopIsNotStored) {
+  constexpr std::uint64_t kItems = 200000;
+  constexpr std::uint64_t kAbandoned = 777;
+  const ValueCodec codec;
+  MemorySink sink(codec, kItems);
+  const auto solve = [&](std::uint64_t item) {
+    if (item == kAbandoned) {
+      request_stop(SIGTERM);
+      throw ItemStopped{};
+    }
+    return solve_value(item);
+  };
+  const FarmReport report = run_campaign<Value>(*g_mpi, quiet_options(), {solve, &codec, g_mpi->rank() == 0 ? &sink : nullptr});
+  if (g_mpi->rank() != 0) return;
+  EXPECT_EQ(report.stop_signal, SIGTERM);
+  EXPECT_FALSE(report.complete());
+  EXPECT_TRUE(sink.finished_);
+  EXPECT_EQ(sink.stored_[kAbandoned], 0);
+  std::uint64_t stored = 0;
+  for (std::uint64_t i = 0; i < kItems; ++i) {
+    stored += static_cast<std::uint64_t>(sink.stored_[i]);
+    EXPECT_EQ(sink.done_[i], sink.stored_[i]) << "whatever was stored is checkpointed";
+  }
+  EXPECT_EQ(stored, report.items_computed);
+  EXPECT_LT(stored, kItems / 2) << "the farm stopped long before the end";
+  if (g_mpi->size() == 1) {  // one rank solves in order: everything before the abandoned item, nothing after
+    EXPECT_EQ(stored, kAbandoned);
+    for (std::uint64_t i = 0; i < kAbandoned; ++i) EXPECT_EQ(sink.stored_[i], 1) << "item " << i;
+  }
 }
 
 // The sink fails on its third store: rank 0 throws the sink's error, every other rank ends

@@ -20,8 +20,11 @@
 // map flushes new cells, a journal fsyncs), so a checkpoint costs what is new.
 //
 // Signals (signals.hpp). A stop signal on any rank, at any instant of the run, stops the
-// farm: no new chunks, the chunks in flight are stored, the final checkpoint is written, and
-// the report names the signal (the command exits with ExitCode::stopped).
+// farm: no new chunks, the final checkpoint is written, and the report names the signal (the
+// command exits with ExitCode::stopped). An item in flight may be abandoned: a solver that
+// polls the stop flag throws ItemStopped, and that item is not stored (a resumed run computes
+// it), while the items of its chunk solved before it are. So a run whose one item takes hours
+// still stops within moments of the signal.
 //
 // Errors. A failing sink on rank 0 ends the run on every rank: the other ranks are answered
 // with the exit code `exit_code_of` gives and throw QuietExit, rank 0 rethrows the sink's
@@ -82,8 +85,13 @@ std::uint64_t scan_pending(std::uint64_t from, std::uint64_t max, std::uint64_t 
   return i;
 }
 
+// Thrown by a solver that abandons its item because a stop signal arrived (stop_flag() is set):
+// the item is not stored and the farm stops as for the signal. Not a std::exception, so that a
+// campaign's "an item's trouble is its result" handler lets it through.
+struct ItemStopped {};
+
 // Appends the result of `item` to `out`. Runs on every rank; must not throw for an item's own
-// trouble (a campaign turns that into a result with a status).
+// trouble (a campaign turns that into a result with a status); may throw ItemStopped.
 using ItemSolver = std::function<void(std::uint64_t item, ByteWriter& out)>;
 
 // Options of one farm run. The defaults are valid.

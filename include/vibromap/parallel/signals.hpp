@@ -1,7 +1,8 @@
 #pragma once
 // Stop signals of a campaign. SIGINT, SIGTERM and SIGUSR1 all mean the same: stop handing out
-// work, let the items in flight finish, write a final checkpoint, exit with ExitCode::stopped.
-// The handlers only record the signal (an async-signal-safe store); the farm polls it.
+// work, abandon the items in flight (their solvers poll stop_flag(): farm.hpp, ItemStopped),
+// write a final checkpoint, exit with ExitCode::stopped. The handlers only record the signal
+// (an async-signal-safe store); the farm and the solvers poll it.
 //
 // install_stop_handlers() is called first thing in main for the campaign commands, before MPI
 // starts or the scene is read, so a signal that arrives at any instant of a run is honoured
@@ -10,6 +11,7 @@
 // Later signals are ignored while the first is being honoured; kill -9 is always safe
 // (what was checkpointed is kept).
 
+#include <atomic>
 #include <string>
 
 namespace vibromap {
@@ -17,6 +19,9 @@ namespace vibromap {
 void install_stop_handlers();
 // The first stop signal received (SIGINT, SIGTERM or SIGUSR1), 0 when none.
 int stop_signal();
+// The flag stop_signal() reads, for a solver that polls it without knowing this layer (the
+// core's CancelScope, opened by the campaigns around each item).
+const std::atomic<int>& stop_flag();
 // Records `signal` as if it had arrived (the farm on rank 0, when another rank was signalled).
 void request_stop(int signal);
 // "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".

@@ -12,6 +12,7 @@
 #include "basins_sink.hpp"
 #include "pixel_codec.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
@@ -142,10 +143,10 @@ BasinsReport run_basins(const MpiSession& mpi, const Scene& scene, const BasinsP
   // One follower per rank for the whole run, made at its first pixel.
   std::optional<CensusFollower> follower;
   Campaign<detail::PixelResult> campaign;
-  campaign.solve = [&](std::uint64_t pixel) {
+  campaign.solve = stoppable([&](std::uint64_t pixel) {
     if (!follower) follower.emplace(scene.params, scene.options, follower_census(scene));
     return solve_pixel(*follower, plane, pixel);
-  };
+  });
   campaign.codec = &codec;
   campaign.sink = sink.get();
   BasinsReport report;

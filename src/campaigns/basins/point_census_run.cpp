@@ -8,6 +8,7 @@
 
 #include "pixel_codec.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
@@ -124,10 +125,10 @@ PointCensusReport run_point_census(const MpiSession& mpi, const Scene& scene, co
   if (mpi.rank() == 0) sink.emplace(codec, scene, ics.size());
   std::optional<CensusFollower> follower;  // one per rank for the whole run, made at its first state
   Campaign<detail::PixelResult> campaign;
-  campaign.solve = [&](std::uint64_t i) {
+  campaign.solve = stoppable([&](std::uint64_t i) {
     if (!follower) follower.emplace(scene.params, scene.options, followers);
     return detail::follow_state(*follower, ics[static_cast<std::size_t>(i)]);
-  };
+  });
   campaign.codec = &codec;
   campaign.sink = sink ? &*sink : nullptr;
   FarmOptions o;

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "vibromap/core/cancel.hpp"
+
 namespace vibromap {
 namespace {
 
@@ -46,6 +48,7 @@ struct Context {
   Algorithm algorithm;
   nlopt_opt opt = nullptr;
   std::string forced;  // why this layer stopped NLopt ("" while it runs)
+  bool cancelled = false;  // an evaluation was cancelled (core/cancel.hpp): rethrown after NLopt returns
 };
 
 // The number NLopt minimises at an evaluated point (see nlopt_adaptor.hpp).
@@ -82,18 +85,35 @@ double answer(Context& c, unsigned n, const double* u, double* grad, Pick pick, 
   return pick(*e);
 }
 
+// A callback's answer; a Cancelled evaluation stops NLopt (an exception must not cross its C
+// frames) and is rethrown by run_once once nlopt_optimize has returned.
+template <class Answer>
+double guarded(Context& c, unsigned n, double* grad, Answer answer_now) {
+  if (c.cancelled) return force_stop(c, n, grad, c.f.options().barrier, "CANCELLED");
+  try {
+    return answer_now();
+  } catch (const Cancelled&) {
+    c.cancelled = true;
+    return force_stop(c, n, grad, c.f.options().barrier, "CANCELLED");
+  }
+}
+
 double objective_callback(unsigned n, const double* u, double* grad, void* data) {
   Context& c = *static_cast<Context*>(data);
-  return answer(
-      c, n, u, grad, [&](const Evaluation& e) { return objective_value(e, c); },
-      [](const FdGradient& g) -> const std::vector<double>& { return g.value; });
+  return guarded(c, n, grad, [&] {
+    return answer(
+        c, n, u, grad, [&](const Evaluation& e) { return objective_value(e, c); },
+        [](const FdGradient& g) -> const std::vector<double>& { return g.value; });
+  });
 }
 
 double constraint_callback(unsigned n, const double* u, double* grad, void* data) {
   Context& c = *static_cast<Context*>(data);
-  return answer(
-      c, n, u, grad, [](const Evaluation& e) { return e.violation; },
-      [](const FdGradient& g) -> const std::vector<double>& { return g.violation; });
+  return guarded(c, n, grad, [&] {
+    return answer(
+        c, n, u, grad, [](const Evaluation& e) { return e.violation; },
+        [](const FdGradient& g) -> const std::vector<double>& { return g.violation; });
+  });
 }
 
 NloptHandle make_optimiser(Context& c, unsigned n) {
@@ -123,6 +143,7 @@ StopReason run_once(TrackedObjective& f, const std::vector<double>& u0, Algorith
   for (double& v : u) v = std::clamp(v, 0.0, 1.0);
   double minimum = 0.0;
   const nlopt_result r = nlopt_optimize(c.opt, u.data(), &minimum);
+  if (c.cancelled) throw Cancelled{};
   // u and minimum are NLopt's answer; the tracker's best feasible evaluation is ours.
   if (!c.forced.empty()) return {c.forced, static_cast<int>(r)};
   return {nlopt_result_to_string(r), static_cast<int>(r)};

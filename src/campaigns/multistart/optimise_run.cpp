@@ -14,6 +14,7 @@
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
+#include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
@@ -252,7 +253,8 @@ void run_starts(const MpiSession& mpi, const Scene& scene, const OptimiseRunConf
                 << "\n";
   }
   Campaign<StartRecord> campaign;
-  campaign.solve = [&](std::uint64_t i) { return run_one(scene, seeds, plan.at(static_cast<std::size_t>(i)), mpi.rank()); };
+  campaign.solve = stoppable(
+      [&](std::uint64_t i) { return run_one(scene, seeds, plan.at(static_cast<std::size_t>(i)), mpi.rank()); });
   campaign.codec = &codec;
   campaign.sink = sink.get();
   run.starts = run_campaign(mpi, farm_options(config), campaign);

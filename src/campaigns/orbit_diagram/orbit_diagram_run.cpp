@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/output_lock.hpp"
@@ -104,7 +105,8 @@ OrbitDiagramReport run_orbit_diagram(const MpiSession& mpi, const Scene& scene, 
   const Grid grid({config.axis});
   const CellMaker cells(scene, grid);
   Campaign<Steps> campaign;
-  campaign.solve = [&](std::uint64_t item) { return solve_direction(cells, grid.size(), config.options, item); };
+  campaign.solve =
+      stoppable([&](std::uint64_t item) { return solve_direction(cells, grid.size(), config.options, item); });
   campaign.codec = &codec;
   campaign.sink = sink.get();
   FarmOptions o;

@@ -10,6 +10,7 @@
 #include "cell_codec.hpp"
 #include "map_sink.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/output_file.hpp"
@@ -137,7 +138,7 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, lock); }, exit_status_of);
   const CellMaker cells(scene, Grid(scene.sweep->axes));
   Campaign<CellResult> campaign;
-  campaign.solve = [&](std::uint64_t flat) { return solve_cell(cells, scene.census, flat); };
+  campaign.solve = stoppable([&](std::uint64_t flat) { return solve_cell(cells, scene.census, flat); });
   campaign.codec = &codec;
   campaign.sink = sink.get();
   SweepReport report;

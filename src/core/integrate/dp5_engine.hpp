@@ -25,6 +25,7 @@
 #include <array>
 #include <cmath>
 
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/integrate/event_locator.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 
@@ -164,7 +165,9 @@ class Dp5Engine {
     }
     Y y_new;
     while (tau < tau_end) {
-      if (counters_.steps + counters_.rejected >= opt_.max_steps) return IntegrationStatus::step_limit;
+      const long taken = counters_.steps + counters_.rejected;
+      if (taken >= opt_.max_steps) return IntegrationStatus::step_limit;
+      poll_cancel(taken);
       const double remaining = tau_end - tau;
       double h = std::min(h_, h_max_);
       const bool last = h >= remaining * (1.0 - 1e-12);

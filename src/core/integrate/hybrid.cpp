@@ -2,6 +2,7 @@
 // and free_flight.hpp.
 
 #include "steppers.hpp"
+#include "vibromap/core/cancel.hpp"
 
 namespace vibromap::detail {
 
@@ -32,7 +33,9 @@ template <int Cols>
 IntegrationStatus Hybrid<Cols>::advance_period(State& u, Observer& obs) {
   double tau = 0.0;
   while (tau < T_) {
-    if (counters_.steps + counters_.rejected >= opt_.max_steps) return IntegrationStatus::step_limit;
+    const long taken = counters_.steps + counters_.rejected;
+    if (taken >= opt_.max_steps) return IntegrationStatus::step_limit;
+    poll_cancel(taken);
     const IntegrationStatus status =
         mode_ == ContactMode::free ? free_phase(u, tau, obs) : contact_phase(u, tau, obs);
     if (status != IntegrationStatus::ok) return status;

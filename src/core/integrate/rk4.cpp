@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "steppers.hpp"
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/integrate/event_locator.hpp"
 
 namespace vibromap::detail {
@@ -47,6 +48,7 @@ IntegrationStatus ClassicalRk4::advance_period(State& u, Observer& obs) {
   State k2, k3, k4, u_new, f_new;
   for (long i = 0; i < n; ++i) {
     if (counters_.steps >= opt_.max_steps) return IntegrationStatus::step_limit;
+    poll_cancel(counters_.steps);
     // tau from the step index, not by accumulation, so rounding does not drift.
     const double tau = T_ * static_cast<double>(i) / static_cast<double>(n);
     const double tau1 = i + 1 == n ? T_ : T_ * static_cast<double>(i + 1) / static_cast<double>(n);

@@ -8,7 +8,8 @@
 // loses digits). Every accepted step is shown to the Observer with its dense output; every
 // contact entry and exit is shown as a ContactEvent at its located time. The integrator
 // stops early only on a numerical failure or the step budget, reported as a status, never
-// by an exception.
+// by an exception; the one exception is a stop asked from outside: inside a CancelScope whose
+// flag is set (cancel.hpp) the step loops throw Cancelled within kCancelPollSteps steps.
 //
 // Methods:
 //  - hybrid (default): between impacts the system is linear with harmonic forcing, so the

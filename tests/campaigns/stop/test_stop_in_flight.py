@@ -1,0 +1,119 @@
+"""A stop signal ends a campaign even while one item runs for hours (issue #28): the core's
+integrators poll the stop flag inside an item, the item in flight is abandoned (not recorded),
+and the run checkpoints and exits 3 within moments, on 1 and 2 ranks.
+
+Every item here would run for hours: an undamped chatter from v2 = 5 m/s never settles, and
+its budgets (10^10 steps, 10^8 periods) are far beyond the test. Before the fix, sweep,
+optimise, basins and orbit-diagram went on with the item in flight and ignored SIGTERM (an
+optimise with omega1 = 2147483647 left its journal and lock after `kill`).
+
+Run by ctest (tests/campaigns/campaign_tests.cmake)."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from campaign_helpers import ENV, EXE, MPIEXEC  # noqa: E402
+
+FOREVER = """
+[system]
+xi1 = 0.0
+xi2 = 0.0
+
+[initial]
+v2 = 5.0
+
+[solver]
+max_steps = 10000000000
+
+[analysis]
+steady = "integrate"
+max_periods = 100000000
+"""
+
+SWEEP = FOREVER + """
+[sweep]
+m2 = { values = [100.0, 110.0] }
+progress_interval = 0.2
+"""
+
+OPTIMISE = FOREVER + """
+[optimise]
+m2 = { min = 100.0, max = 310.0 }
+seeds = 1
+max_evaluations = 5
+"""
+
+# The longest a stop may take here: the item in flight would take hours, so anything that ends
+# within this ends because the signal was seen (MPI start-up and the final checkpoint included).
+STOP_TIMEOUT = 60
+
+
+def write(tmp_path, text, name):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def stop(cmd, sig, started=3.0):
+    """Starts cmd, lets it compute for `started` s, sends `sig`; returns (exit code, stderr, s to stop)."""
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(started)
+    assert proc.poll() is None, proc.communicate()
+    t0 = time.time()
+    proc.send_signal(sig)
+    try:
+        _, err = proc.communicate(timeout=STOP_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        raise AssertionError(f"{cmd[0]} {cmd[1]} went on {STOP_TIMEOUT} s after the signal")
+    return proc.returncode, err, time.time() - t0
+
+
+def test_a_sweep_stops_in_its_first_cell(tmp_path):
+    scene = write(tmp_path, SWEEP, "sweep.toml")
+    for n, sig in ((1, signal.SIGTERM), (2, signal.SIGUSR1)):
+        out = tmp_path / f"map{n}.h5"
+        cmd = [EXE, "sweep", str(scene), "-o", str(out), "-q"]
+        if n > 1:
+            cmd = [MPIEXEC, "-n", str(n)] + cmd
+        rc, err, _ = stop(cmd, sig)
+        assert rc == 3, err
+        assert f"stopped by {signal.Signals(sig).name} after a checkpoint" in err
+        with h5py.File(out, "r") as f:  # the cells in flight were abandoned, not recorded
+            assert f["done"][()].sum() == 0
+        assert not (tmp_path / f"map{n}.h5.lock").exists()
+
+
+def test_an_optimise_start_stops_and_keeps_its_journal(tmp_path):
+    scene = write(tmp_path, OPTIMISE, "opt.toml")
+    out = tmp_path / "opt.h5"
+    rc, err, _ = stop([EXE, "optimise", str(scene), "-o", str(out), "-q"], signal.SIGTERM)
+    assert rc == 3, err
+    assert "stopped by SIGTERM" in err
+    assert (tmp_path / "opt.h5.journal").exists(), "the journal stays for --resume"
+    assert not (tmp_path / "opt.h5.lock").exists()
+    assert not out.exists()
+
+
+def test_basins_stop_in_their_first_pixels(tmp_path):
+    scene = write(tmp_path, FOREVER, "basins.toml")
+    out = tmp_path / "b.h5"
+    rc, err, _ = stop([EXE, "basins", str(scene), "--grid", "2x2", "-o", str(out), "-q"], signal.SIGTERM)
+    assert rc == 3, err
+    assert not (tmp_path / "b.h5.lock").exists()
+
+
+def test_an_orbit_diagram_stops_in_its_transient(tmp_path):
+    for n, sig in ((1, signal.SIGTERM), (2, signal.SIGUSR1)):
+        cmd = [EXE, "orbit-diagram", os.path.abspath("jobs/paper/table1.toml"), "-p", "omega", "--from", "7",
+               "--to", "7.5", "--steps", "2", "--transient", "100000000", "-q"]
+        if n > 1:
+            cmd = [MPIEXEC, "-n", str(n)] + cmd
+        rc, err, _ = stop(cmd, sig)
+        assert rc == 3, err
