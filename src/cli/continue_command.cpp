@@ -77,6 +77,9 @@ void bifurcations_table(std::ostream& out, const std::string& key, const std::ve
 int continue_command(const ContinueArgs& args, std::ostream& out) {
   if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from != args.to))
     throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite, different values"));
+  if (!std::isfinite(args.to - args.from))
+    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to),
+                         ": the span B - A must be finite (it scales the key)"));
   const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
                                          args.param,
                                          cat("{values=[", exact_number(std::min(args.from, args.to)), ",",

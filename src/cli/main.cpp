@@ -16,6 +16,7 @@
 #include "vibromap/io/scene/docs.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/core/analysis/restitution.hpp"
 #include "vibromap/core/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/exit_code.hpp"
@@ -35,6 +36,12 @@ constexpr std::size_t kMaxErrorLine = 1000;
 const CLI::Validator kOutputName(
     [](const std::string& s) { return s.empty() ? std::string("empty; name the file to write") : std::string(); }, "",
     "OUTPUT");
+
+// CLI11 reads an empty value as 0 for a number option (--e '' was restitution 0); an empty
+// number is bad input. Given to every number option.
+const CLI::Validator kNumber(
+    [](const std::string& s) { return s.empty() ? std::string("an empty value is not a number") : std::string(); },
+    "");
 
 int report(std::string_view message, ExitCode exit) {
   std::string what = clip(message, kMaxErrorLine);
@@ -255,14 +262,19 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       ->required()
       ->type_name("KEY");
   c->add_option("--from", args.from, "Start value of the key (SI units): the orbit from rest there is followed")
+      ->check(kNumber)
       ->required()
       ->type_name("A");
-  c->add_option("--to", args.to, "End value (either side of A)")->required()->type_name("B");
-  c->add_option("--ds-max", args.ds_max, "Largest step along the branch (scaled arclength)")->capture_default_str();
-  c->add_option("--max-points", args.max_points, "Points on each branch at most")->capture_default_str();
+  c->add_option("--to", args.to, "End value (either side of A)")->check(kNumber)->required()->type_name("B");
+  c->add_option("--ds-max", args.ds_max, "Largest step along the branch (scaled arclength)")
+      ->check(kNumber)
+      ->capture_default_str();
+  c->add_option("--max-points", args.max_points, "Points on each branch at most (2..1000000)")
+      ->check(kNumber)
+      ->capture_default_str();
   c->add_option("--pd-depth", args.pd_depth,
                 "Period-doubling generations to switch onto: 0 none, 1 the doubled branches of the first, 2 also theirs, ...")
-      ->check(CLI::Range(0, 8))
+      ->check(kNumber & CLI::Range(0, 8))
       ->capture_default_str();
   c->add_option("-o,--output", args.output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)")
       ->check(kOutputName)
@@ -298,16 +310,17 @@ CLI::App* add_orbit_diagram(CLI::App& app, cli::OrbitDiagramArgs& args) {
   od->add_option("-p,--param", args.param, "The scene key to step: forcing.omega, omega, contact.E2, m2, ...")
       ->required()
       ->type_name("KEY");
-  od->add_option("--from", args.from, "First value of the key (SI units)")->required()->type_name("A");
-  od->add_option("--to", args.to, "Last value (> A)")->required()->type_name("B");
-  od->add_option("-n,--steps", args.steps, "Points from A to B, both included")->capture_default_str();
+  od->add_option("--from", args.from, "First value of the key (SI units)")->check(kNumber)->required()->type_name("A");
+  od->add_option("--to", args.to, "Last value (> A)")->check(kNumber)->required()->type_name("B");
+  od->add_option("-n,--steps", args.steps, "Points from A to B, both included")->check(kNumber)->capture_default_str();
   od->add_option("--scale", args.scale, "Spacing of the points")
       ->check(CLI::IsMember({"lin", "log"}))
       ->type_name("lin|log")
       ->capture_default_str();
   od->add_option("--transient", args.transient, "Forcing periods integrated at each point before states are kept")
+      ->check(kNumber)
       ->capture_default_str();
-  od->add_option("--keep", args.keep, "Stroboscopic states kept at each point")->capture_default_str();
+  od->add_option("--keep", args.keep, "Stroboscopic states kept at each point")->check(kNumber)->capture_default_str();
   od->add_option("-o,--output", args.output, "HDF5 file of the kept states (none by default)")
       ->check(kOutputName)->type_name("FILE.h5");
   od->add_flag("--overwrite", args.overwrite, "Replace an existing file");
@@ -374,6 +387,7 @@ CLI::App* add_basins(CLI::App& app, cli::BasinsArgs& args) {
   auto* resume = b->add_flag("--resume", args.resume, "Continue an existing file of the same run");
   b->add_flag("--overwrite", args.overwrite, "Replace an existing file")->excludes(resume);
   b->add_option("--checkpoint", args.checkpoint, "Seconds between rewrites of the file")
+      ->check(kNumber)
       ->type_name("SECONDS")
       ->capture_default_str();
   b->add_flag("-q,--quiet", args.quiet, "No progress lines");
@@ -385,12 +399,26 @@ CLI::App* add_basins(CLI::App& app, cli::BasinsArgs& args) {
   return b;
 }
 
+// The lower limits of e (restitution.hpp), as the restitution footer states them.
+std::string restitution_limits() {
+  std::ostringstream os;
+  os << "Lower limit: the slow separation of a heavily damped impact lasts about chi^0.6 contact\n"
+        "times, so chi(e) must be at most "
+     << kMaxImpactDamping << ": e >= " << min_restitution(ContactLawKind::flores) << " for flores, e >= "
+     << min_restitution(ContactLawKind::gonthier) << " for gonthier,\nany e > 0 for hunt-crossley and "
+        "lankarani-nikravesh (chi <= 1.5). A smaller e is refused.\n\n";
+  return os.str();
+}
+
 CLI::App* add_restitution(CLI::App& app, cli::RestitutionArgs& args) {
   CLI::App* r = app.add_subcommand("restitution", "Effective restitution of each contact law for a target e");
   r->add_option("--law", args.laws, "Contact law (repeatable; default: every dissipative law)")
       ->allow_extra_args(false)
       ->type_name("hunt-crossley|lankarani-nikravesh|flores|gonthier|hertz");
-  r->add_option("--e", args.e, "Target restitution in (0, 1] (repeatable; default 0.1, 0.2, ..., 1)")
+  r->add_option("--e", args.e,
+                 "Target restitution in (0, 1] (repeatable; default 0.1, 0.2, ..., 1; flores and gonthier have a lower "
+                 "limit, below)")
+      ->check(kNumber)
       ->allow_extra_args(false)
       ->type_name("E");
   r->add_option("-f,--format", args.format, "Output on stdout: a table, or JSON (a list of {law, e, chi, e_effective})")
@@ -400,8 +428,8 @@ CLI::App* add_restitution(CLI::App& app, cli::RestitutionArgs& args) {
   r->footer("Each law's force is K z^1.5 (1 + chi w / v_in), chi calibrated from e (docs/model.md, 'Dissipative\n"
             "contact laws'). For two free bodies one impact depends on chi alone, so the effective\n"
             "restitution |v_out / v_in| is a property of the law and e: this command integrates that\n"
-            "impact at rtol 1e-12. postprocess/vmpy plot_restitution draws the JSON output.\n\n" +
-            main_footer());
+            "impact at rtol 1e-12, until the bodies part. postprocess/vmpy plot_restitution draws the\n"
+            "JSON output.\n\n" + restitution_limits() + main_footer());
   return r;
 }
 

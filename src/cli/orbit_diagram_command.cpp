@@ -79,8 +79,9 @@ void print_table(std::ostream& out, const OrbitDiagramReport& r, const OrbitDiag
 
 int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out) {
   const MpiSession mpi;
-  if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from < args.to))
-    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite values with from < to"));
+  if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from < args.to && std::isfinite(args.to - args.from)))
+    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to),
+                         ": need finite values with from < to and a finite to - from"));
   if (args.steps < 2 || args.steps > 1'000'000) throw SceneError("--steps must be in [2, 1000000]");
   OrbitDiagramConfig config;
   config.options.transient = args.transient;

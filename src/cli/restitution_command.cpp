@@ -47,6 +47,16 @@ std::string fixed(double x, const char* format) {
   return buf;
 }
 
+// Every (law, e) within the law's lower limit (min_restitution), checked before any impact.
+void check_limits(const std::vector<ContactLawKind>& laws, const std::vector<double>& targets) {
+  for (const ContactLawKind law : laws)
+    for (const double e : targets)
+      if (const double least = min_restitution(law); e < least)
+        throw SceneError(cat("--e ", short_number(e), ": below the lower limit of ", to_string(law), ", e >= ",
+                             short_number(least), " (its damping chi(e) = ", fixed(contact_law(law).chi(e), "%.3g"),
+                             " must be <= ", fixed(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
+}
+
 void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) {
   out << "law                  e      chi        e_effective  e_effective - e  clipped\n";
   for (const RestitutionResult& r : rows) {
@@ -78,6 +88,7 @@ void write_json(const std::vector<RestitutionResult>& rows, std::ostream& out) {
 int restitution_command(const RestitutionArgs& args, std::ostream& out) {
   const std::vector<ContactLawKind> laws = laws_of(args);
   const std::vector<double> targets = targets_of(args);
+  check_limits(laws, targets);
   std::vector<RestitutionResult> rows;
   for (const ContactLawKind law : laws)
     for (const double e : targets) {

@@ -3,7 +3,8 @@
 #
 # Each test runs check_cli.cmake (written below into the build tree) with cmake -P:
 #   EXE          the vibromap executable
-#   ARGS         its arguments, separated by '|'
+#   ARGS         its arguments, separated by '|' (<empty> stands for an empty argument, which a
+#                CMake list would drop)
 #   EXPECT_RC    the exact exit code
 #   EXPECT_ERR   a regex stderr must match (optional)
 #   EXPECT_OUT   a regex stdout must match (optional)
@@ -15,8 +16,16 @@
 set(VIBROMAP_CLI_CHECK ${CMAKE_CURRENT_BINARY_DIR}/check_cli.cmake)
 file(WRITE ${VIBROMAP_CLI_CHECK} [=[
 string(REPLACE "|" ";" args "${ARGS}")
-execute_process(COMMAND "${EXE}" ${args}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(call "")
+foreach(a IN LISTS args)
+  if(a STREQUAL "<empty>")
+    string(APPEND call " \"\"")
+  else()
+    string(APPEND call " [==[${a}]==]")
+  endif()
+endforeach()
+cmake_language(EVAL CODE "execute_process(COMMAND [==[${EXE}]==] ${call}
+                          RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)")
 set(context "vibromap ${args}\n--- exit code: ${rc}\n--- stdout:\n${out}\n--- stderr:\n${err}")
 if(NOT rc STREQUAL EXPECT_RC)
   message(FATAL_ERROR "exit code ${rc}, expected ${EXPECT_RC}\n${context}")
@@ -254,3 +263,36 @@ vibromap_cli_test(restitution_table RC 0 ARGS restitution --law flores --e 0.1
 vibromap_cli_test(restitution_bad_law RC 2 ARGS restitution --law kelvin
                   ERR "--law: unknown contact law 'kelvin' \\(one of hertz, hunt-crossley")
 vibromap_cli_test(restitution_bad_e RC 2 ARGS restitution --e 1.5 ERR "--e 1\\.5: a restitution must be in \\(0, 1\\]")
+
+# Extreme input (issue #28): a result or exit 2 with the allowed range, never exit 1 or a hang.
+# Before: run and continue never ended, optimise ignored SIGTERM, restitution exited 1 ("non-finite
+# state"), basins wrote an x1 coordinate of inf, and --e '' was e = 0.
+vibromap_cli_test(run_forcing_near_zero RC 2 ARGS run jobs/paper/table1.toml --set forcing.omega=1e-9
+                  ERR "jobs/paper/table1\\.toml: --set forcing\\.omega=1e-9: forcing\\.omega = 1e-09 rad/s is 1\\.43e-10 times omega_n = 6\\.98 rad/s, the fastest natural frequency of m1 and m2 on their springs \\(k1, k2\\): omega/omega_n must be in \\[0\\.0001, 1e\\+04\\], i\\.e\\. forcing\\.omega in \\[0\\.000698, 6\\.98e\\+04\\] rad/s")
+vibromap_cli_test(continue_from_1e-300_to_1e308 RC 2 ARGS continue jobs/paper/table1.toml -p forcing.omega --from 1e-300 --to 1e308
+                  ERR "jobs/paper/table1\\.toml: --param forcing\\.omega: at the cell forcing\\.omega = 1e-300: forcing\\.omega = 1e-300 rad/s is .* must be in \\[0\\.0001, 1e\\+04\\]")
+vibromap_cli_test(orbit_diagram_forcing_too_fast RC 2 ARGS orbit-diagram jobs/paper/table1.toml -p omega --from 7 --to 1e6
+                  ERR "--param omega: at the cell forcing\\.omega = 1e\\+06: forcing\\.omega = 1e\\+06 rad/s is 1\\.43e\\+05 times omega_n")
+vibromap_cli_test(sweep_forcing_too_slow_at_a_corner RC 2 ARGS sweep jobs/demo/frequency_response.toml
+                  --set "sweep.forcing.omega={from=1e-4,to=12,n=3}" -o no_file.h5
+                  ERR "--set sweep\\.forcing\\.omega=\\{from=1e-4,to=12,n=3\\}: at the cell forcing\\.F0 = 50, forcing\\.omega = 1e-04: forcing\\.omega = 0\\.0001 rad/s is 1\\.49e-05 times omega_n = 6\\.72 rad/s")
+vibromap_cli_test(optimise_main_spring_of_2147483647 RC 2 ARGS optimise jobs/demo/optimise_law.toml --set system.omega1=2147483647
+                  ERR "optimise_law\\.toml: --set system\\.omega1=2147483647: forcing\\.omega = 7\\.23 rad/s is 3\\.37e-09 times omega_n = 2\\.15e\\+09 rad/s")
+vibromap_cli_test(restitution_flores_1e-6 RC 0 ARGS restitution --law flores --e 1e-6 --format json
+                  OUT "\"law\": \"flores\",[^}]*\"e\": 1e-06,[^}]*\"e_effective\": 6\\.25000[0-9]*e-07")
+vibromap_cli_test(restitution_gonthier_1e-6 RC 0 ARGS restitution --law gonthier --e 1e-6 --format json
+                  OUT "\"law\": \"gonthier\",[^}]*\"e\": 1e-06,[^}]*\"e_effective\": 1\\.00000[0-9]*e-06")
+vibromap_cli_test(restitution_below_the_lower_limit RC 2 ARGS restitution --e 1e-9
+                  ERR "--e 1e-09: below the lower limit of flores, e >= 1\\.6e-08 \\(its damping chi\\(e\\) = 1\\.6e\\+09 must be <= 1e\\+08, the most a free impact is integrated for\\)")
+vibromap_cli_test(restitution_empty_e RC 2 ARGS restitution --e <empty> ERR "--e: an empty value is not a number")
+vibromap_cli_test(continue_empty_from RC 2 ARGS continue jobs/paper/table1.toml -p omega --from <empty> --to 8
+                  ERR "--from: an empty value is not a number")
+vibromap_cli_test(basins_box_of_every_double RC 2 ARGS basins jobs/paper/table1.toml --grid 3x3
+                  --set "census.x1=[-1e308,1e308]" -o no_file.h5
+                  ERR "--set census\\.x1=\\[-1e308,1e308\\]: must be an array \\[lo, hi\\] of two finite numbers with lo <= hi and a finite hi - lo")
+vibromap_cli_test(continue_span_overflows RC 2 ARGS continue jobs/paper/table1.toml -p phi0 --from -1e308 --to 1e308
+                  ERR "--from -1e\\+308 --to 1e\\+308: the span B - A must be finite")
+vibromap_cli_test(step_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set solver.max_steps=1e11
+                  ERR "--set solver\\.max_steps=1e11: must be an integer in \\[1, 1e\\+10\\]")
+vibromap_cli_test(period_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set analysis.max_periods=9e18
+                  ERR "--set analysis\\.max_periods=9e18: must be an integer in \\[1, 1e\\+08\\]")

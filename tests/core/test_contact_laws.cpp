@@ -154,6 +154,26 @@ TEST(ContactLaws, EffectiveRestitutionIsScaleFree) {
   }
 }
 
+// The lower limit of e (restitution.hpp): hunt-crossley and lankarani-nikravesh have none (chi
+// <= 1.5); flores and gonthier reach kMaxImpactDamping there. At the limit the impact is
+// integrated to its end (it outlasts the first forcing period) and e_effective is 1/chi to
+// 1e-3, the heavy-damping limit (the bodies part at w -> -v_in/chi, where the force vanishes);
+// just below the limit the law is refused, naming the limit.
+TEST(ContactLaws, RestitutionWorksDownToItsLowerLimitAndIsRefusedBelow) {
+  EXPECT_EQ(min_restitution(ContactLawKind::hunt_crossley), 0.0);
+  EXPECT_EQ(min_restitution(ContactLawKind::lankarani_nikravesh), 0.0);
+  for (ContactLawKind k : {ContactLawKind::flores, ContactLawKind::gonthier}) {
+    const double least = min_restitution(k);
+    EXPECT_LE(contact_law(k).chi(least), kMaxImpactDamping) << to_string(k);
+    EXPECT_GT(contact_law(k).chi(least * (1.0 - 1e-2)), kMaxImpactDamping) << to_string(k);
+    const RestitutionResult r = free_impact_restitution(k, least);
+    ASSERT_EQ(r.status, IntegrationStatus::ok) << to_string(k);
+    EXPECT_NEAR(r.e_effective * r.chi, 1.0, 1e-3) << to_string(k);
+    EXPECT_THROW(free_impact_restitution(k, least * 0.99), std::invalid_argument) << to_string(k);
+  }
+  EXPECT_THROW(free_impact_restitution_chi(ContactLawKind::flores, 2.0 * kMaxImpactDamping), std::invalid_argument);
+}
+
 TEST(ContactLaws, DissipatedEnergyIsTheKineticEnergyLost) {
   // The recorder integrates (Fc - K z^1.5) w over the impact; two free bodies lose exactly
   // that of their relative kinetic energy, mu (v_in^2 - v_out^2) / 2.

@@ -102,6 +102,18 @@ const std::string kFull =
 // ---------------------------------------------------------------------------------------
 // Reading a valid section
 
+// The forcing against the natural frequencies (parameters.hpp) is checked at the box's corners:
+// a coupling spring of up to 1e12 N/m on 100..310 kg puts omega_n at 1e5 rad/s and more, so
+// omega = 7.23 rad/s is below 1e-4 of it at the corner (m2 = 100, k2 = 1e12).
+TEST(OptimiseScene, TheFrequencyRuleIsCheckedAtTheBoxCorners) {
+  EXPECT_NO_THROW(parse("[optimise]\nm2 = { min = 100, max = 310 }\nk2 = { min = 1e3, max = 1e6 }\n"));
+  const std::string msg = error_of("[optimise]\nm2 = { min = 100, max = 310 }\nk2 = { min = 1e3, max = 1e12 }\n");
+  EXPECT_NE(msg.find("jobs/x.toml: [optimise] at the corner m2 = 100, k2 = 1e+12 of the box: forcing.omega = 7.23 rad/s "
+                     "is 6.89e-05 times omega_n = 1.05e+05 rad/s"),
+            std::string::npos)
+      << msg;
+}
+
 TEST(OptimiseScene, SceneWithoutOptimiseHasNone) {
   EXPECT_FALSE(parse("").optimise.has_value());
   EXPECT_FALSE(parse("[contact]\nE1 = 1e9\n").optimise.has_value());

@@ -294,8 +294,8 @@ const std::vector<BadScene>& bad_scenes() {
       {"newton iterations", "[analysis]\nnewton_max_iterations = 1001\n", {},
        {"newton_max_iterations = 1001", "must be an integer in [1, 1000]"}},
       {"newton tol", "[analysis]\nnewton_tol = -1e-9\n", {}, {"newton_tol = -1e-09", "must be >= 0"}},
-      {"no transient", "[analysis]\ntransient_periods = 0\n", {}, {"transient_periods = 0", "must be an integer >= 1"}},
-      {"short lyapunov", "[analysis]\nlyapunov_periods = 9\n", {}, {"lyapunov_periods = 9", "must be an integer >= 10"}},
+      {"no transient", "[analysis]\ntransient_periods = 0\n", {}, {"transient_periods = 0", "must be an integer in [1, 1e+06]"}},
+      {"short lyapunov", "[analysis]\nlyapunov_periods = 9\n", {}, {"lyapunov_periods = 9", "must be an integer in [10, 1e+07]"}},
       {"both of a pair", "[system]\nk1 = 4e4\nomega1 = 6.0\n", {}, {"jobs/x.toml:", "[system] both k1 and omega1 given",
                                                                   "give only one (k1 in N/m, or omega1 in rad/s)"}},
       {"unknown key", "[system]\nomgea1 = 6.0\n", {}, {"jobs/x.toml:2: unknown key 'omgea1' in [system]",
@@ -313,6 +313,16 @@ const std::vector<BadScene>& bad_scenes() {
       {"set unknown key", "", {"system.mass=5"}, {"--set system.mass=5: unknown key 'mass' in [system]"}},
       {"set unknown section", "", {"sytem.m2=5"}, {"--set sytem.m2=5: unknown section [sytem]"}},
       {"set bad choice", "", {"solver.method=euler"}, {"--set solver.method=euler", "must be one of"}},
+      // issue #28: budgets with a ceiling, a forcing the springs can follow, a census box of finite span
+      {"step budget", "[solver]\nmax_steps = 1e11\n", {}, {"max_steps = 1e+11", "must be an integer in [1, 1e+10]"}},
+      {"period budget", "", {"analysis.max_periods=1000000000"}, {"must be an integer in [1, 1e+08]"}},
+      {"forcing too slow", "", {"forcing.omega=1e-9"},
+       {"jobs/x.toml: --set forcing.omega=1e-9: forcing.omega = 1e-09 rad/s is 1.43e-10 times omega_n = 6.98 rad/s",
+        "omega/omega_n must be in [0.0001, 1e+04], i.e. forcing.omega in [0.000698, 6.98e+04] rad/s"}},
+      {"main spring too stiff", "[system]\nomega1 = 2147483647\n", {},
+       {"jobs/x.toml: forcing.omega = 7.23 rad/s is 3.37e-09 times omega_n = 2.15e+09 rad/s"}},
+      {"census span", "", {"census.x1=[-1e308,1e308]"}, {"--set census.x1=[-1e308,1e308]: must be an array [lo, hi]",
+                                                        "a finite hi - lo"}},
   };
   return cases;
 }

@@ -445,6 +445,27 @@ const std::vector<BadSweep>& bad_sweeps() {
   return cases;
 }
 
+// The forcing against the natural frequencies (parameters.hpp) holds at every cell: checked at
+// the grid's corners, where an axis of any key it reads is at its least or largest value.
+TEST(SweepScene, TheFrequencyRuleIsCheckedAtTheGridsCorners) {
+  // Table 1: omega_n = 6.98 rad/s, so forcing.omega must lie in [6.98e-4, 6.98e4] rad/s.
+  EXPECT_EQ(parse("[sweep]\nomega = { from = 0.001, to = 60000.0, n = 3 }\n").sweep->axes.size(), 1u);
+  const std::string low = error_of("[sweep]\nomega = { from = 1e-9, to = 7.0, n = 3 }\nm2 = { values = [50.0, 100.0] }\n");
+  EXPECT_NE(low.find("jobs/x.toml: [sweep]: at the cell system.m2 = 50, forcing.omega = 1e-09: "), std::string::npos) << low;
+  EXPECT_NE(low.find("forcing.omega = 1e-09 rad/s is "), std::string::npos) << low;
+  EXPECT_NE(low.find("omega/omega_n must be in [0.0001, 1e+04]"), std::string::npos) << low;
+  // The corner that breaks the rule need not be an omega end: a stiff main spring.
+  const std::string stiff = error_of("[sweep]\nomega1 = { values = [6.0, 2147483647.0] }\n");
+  EXPECT_NE(stiff.find("at the cell system.omega1 = 2147483647: forcing.omega = 7.23 rad/s is 3.37e-09 times"),
+            std::string::npos) << stiff;
+  // A base point that breaks the rule is fine when an axis replaces the key that broke it.
+  EXPECT_NO_THROW(parse("[forcing]\nomega = 1e-9\n[sweep]\nomega = { values = [5.0, 9.0] }\n"));
+  // Set as an axis (continue and orbit-diagram do so), the message names the --set.
+  const std::string set = error_of("", {"sweep.forcing.omega={values=[1e-300,1e308]}"});
+  EXPECT_NE(set.find("jobs/x.toml: --set sweep.forcing.omega={values=[1e-300,1e308]}: at the cell forcing.omega = 1e-300: "),
+            std::string::npos) << set;
+}
+
 TEST(SweepScene, EachBadInputGivesOneLineNamingFileKeyAndAllowed) {
   for (const BadSweep& c : bad_sweeps()) {
     const std::string message = error_of(c.text, c.sets);

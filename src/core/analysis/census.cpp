@@ -24,8 +24,8 @@ std::string validate(const CensusOptions& o) {
   const std::pair<const char*, const std::optional<std::array<double, 2>>*> sides[] = {
       {"x1", &o.x1}, {"x2", &o.x2}, {"v1", &o.v1}, {"v2", &o.v2}};
   for (const auto& [name, side] : sides)
-    if (*side && !((**side)[0] <= (**side)[1] && std::isfinite((**side)[0]) && std::isfinite((**side)[1])))
-      return std::string(name) + " must be [lo, hi] with finite lo <= hi";
+    if (*side && !((**side)[0] <= (**side)[1] && std::isfinite((**side)[1] - (**side)[0])))
+      return std::string(name) + " must be [lo, hi] with finite lo <= hi and a finite hi - lo";
   return {};
 }
 

@@ -18,7 +18,7 @@ std::string validate(const ContinuationOptions& o) {
   if (o.n < 1 || o.n > 1000) return "n must be in [1, 1000]";
   if (!(o.ds_min > 0.0 && o.ds_min <= o.ds && o.ds <= o.ds_max && o.ds_max <= 1.0))
     return "steps must satisfy 0 < ds_min <= ds <= ds_max <= 1";
-  if (o.max_points < 2) return "max_points must be >= 2";
+  if (o.max_points < 2 || o.max_points > 1'000'000) return "max_points must be in [2, 1000000]";
   if (o.max_corrections < 1) return "max_corrections must be >= 1";
   if (!(o.tol > 0.0 && o.tol < 1e-2)) return "tol must be in (0, 0.01)";
   if (!(o.locate_tol > 0.0 && o.locate_tol < 0.1)) return "locate_tol must be in (0, 0.1)";

@@ -1,6 +1,7 @@
 #include "vibromap/core/analysis/restitution.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace vibromap {
@@ -16,6 +17,12 @@ Parameters free_bodies(Parameters base, double v) {
   return base;
 }
 
+namespace {
+// Forcing periods (0.87 s each at the default omega) an impact may take: the approach of 1 mm
+// takes 2.5 ms; at kMaxImpactDamping the separation takes some 25 periods.
+constexpr long kMaxImpactPeriods = 64;
+}  // namespace
+
 IntegrationStatus free_impact(const Parameters& p, const RestitutionOptions& options, Impact& impact) {
   const Model model(p);
   IntegratorOptions o;
@@ -24,17 +31,35 @@ IntegrationStatus free_impact(const Parameters& p, const RestitutionOptions& opt
   auto integ = make_integrator(model, o);
   State u = Model::to_internal(p.initial_state());
   integ->reset(u);
-  ImpactRecorder rec(model, 2);
-  // One forcing period (0.87 s at the default omega) is far longer than a 1 mm approach and
-  // the contact.
-  const IntegrationStatus status = integ->advance_period(u, rec);
-  if (status != IntegrationStatus::ok) return status;
-  if (rec.impacts().size() != 1) return IntegrationStatus::non_finite;  // cannot happen for chi >= 0
+  ImpactRecorder rec(model, kMaxImpactPeriods + 1);
+  for (long k = 0; k < kMaxImpactPeriods; ++k) {
+    const IntegrationStatus status = integ->advance_period(u, rec);
+    if (status != IntegrationStatus::ok) return status;
+    rec.on_period_end(k, u);
+    if (!rec.impacts().empty() && !rec.open_impact()) break;
+  }
+  if (rec.impacts().size() != 1 || rec.open_impact()) return IntegrationStatus::step_limit;
   impact = rec.impacts().front();
   return IntegrationStatus::ok;
 }
 
+double min_restitution(ContactLawKind law) {
+  const ContactLaw& l = contact_law(law);
+  if (!(l.chi(1e-300) > kMaxImpactDamping)) return 0.0;
+  // chi(e) falls as e grows for every law: bisect on log e for chi(e) = kMaxImpactDamping.
+  double lo = 1e-300, hi = 1.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (l.chi(mid) > kMaxImpactDamping ? lo : hi) = mid;
+  }
+  const double scale = std::pow(10.0, std::floor(std::log10(hi)) - 2.0);  // 3 significant digits, up
+  return std::ceil(hi / scale) * scale;
+}
+
 RestitutionResult free_impact_restitution_chi(ContactLawKind law, double chi, const RestitutionOptions& options) {
+  if (!(chi >= 0.0 && chi <= kMaxImpactDamping))
+    throw std::invalid_argument("the damping factor chi = " + std::to_string(chi) + " must be in [0, " +
+                                std::to_string(kMaxImpactDamping) + "]");
   RestitutionResult r;
   r.law = law;
   r.chi = chi;
@@ -58,6 +83,13 @@ RestitutionResult free_impact_restitution_chi(ContactLawKind law, double chi, co
 
 RestitutionResult free_impact_restitution(ContactLawKind law, double e, const RestitutionOptions& options) {
   if (!(e > 0.0 && e <= 1.0)) throw std::invalid_argument("restitution e must be in (0, 1]");
+  if (const double least = min_restitution(law); e < least) {
+    std::ostringstream os;
+    os << "restitution e = " << e << " is below " << to_string(law) << "'s lower limit " << least
+       << ": its damping chi(e) = " << contact_law(law).chi(e) << " would pass " << kMaxImpactDamping
+       << ", the most a free impact is integrated for";
+    throw std::invalid_argument(os.str());
+  }
   RestitutionResult r = free_impact_restitution_chi(law, contact_law(law).chi(e), options);
   r.e = e;
   return r;

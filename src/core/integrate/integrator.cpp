@@ -32,7 +32,7 @@ std::string validate(const IntegratorOptions& o) {
   if (!(o.atol > 0.0 && std::isfinite(o.atol))) return "atol must be > 0";
   if (!(o.max_step > 0.0 && o.max_step <= 1.0)) return "max_step must be in (0, 1]";
   if (o.rk4_steps < 1) return "rk4_steps must be >= 1";
-  if (o.max_steps < 1) return "max_steps must be >= 1";
+  if (o.max_steps < 1 || o.max_steps > kMaxStepBudget) return "max_steps must be in [1, 1e10]";
   return {};
 }
 

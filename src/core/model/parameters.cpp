@@ -1,6 +1,8 @@
 #include "vibromap/core/model/parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -104,6 +106,28 @@ double get_parameter(const Parameters& p, std::string_view name) {
   return pf->first_form ? c : c / (2.0 * std::sqrt(m * k));
 }
 
+double fastest_natural_frequency(const Parameters& p) {
+  // The larger root lambda of lambda^2 - 2 h lambda + P = 0, in a form that does not square h.
+  const double k1 = p.spring1.stiffness(p.m1), k2 = p.spring2.stiffness(p.m2);
+  const double h = 0.5 * ((k1 + k2) / p.m1 + k2 / p.m2);
+  const double P = (k1 / p.m1) * (k2 / p.m2);
+  const double lambda = h * (1.0 + std::sqrt(std::max(0.0, 1.0 - (P / h) / h)));
+  return std::sqrt(lambda);
+}
+
+std::string frequency_ratio_error(const Parameters& p) {
+  const double wn = fastest_natural_frequency(p);
+  const double ratio = p.omega / wn;
+  if (ratio >= kMinFrequencyRatio && ratio <= kMaxFrequencyRatio) return {};
+  std::ostringstream os;
+  os << std::setprecision(3) << "forcing.omega = " << p.omega << " rad/s is " << ratio
+     << " times omega_n = " << wn << " rad/s, the fastest natural frequency of m1 and m2 on their springs "
+     << "(k1, k2): omega/omega_n must be in [" << kMinFrequencyRatio << ", " << kMaxFrequencyRatio
+     << "], i.e. forcing.omega in [" << kMinFrequencyRatio * wn << ", " << kMaxFrequencyRatio * wn
+     << "] rad/s with these masses and springs";
+  return os.str();
+}
+
 std::vector<std::string> validate(const Parameters& p) {
   std::vector<std::string> errors;
   auto need = [&](bool ok, const char* name, double v, const char* allowed) {
@@ -144,6 +168,8 @@ std::vector<std::string> validate(const Parameters& p) {
   if (p.initial) {
     for (int i = 0; i < 4; ++i) finite("initial state", (*p.initial)[i]);
   }
+  if (errors.empty())
+    if (std::string e = frequency_ratio_error(p); !e.empty()) errors.push_back(std::move(e));
   return errors;
 }
 

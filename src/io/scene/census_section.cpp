@@ -13,7 +13,7 @@ namespace {
 using C = CensusOptions;
 using Side = std::optional<std::array<double, 2>> CensusOptions::*;
 
-constexpr std::string_view kSideForm = "an array [lo, hi] of two finite numbers with lo <= hi";
+constexpr std::string_view kSideForm = "an array [lo, hi] of two finite numbers with lo <= hi and a finite hi - lo";
 
 template <Side Member>
 void read_side(C& o, const SceneKey&, const toml::node& node, const std::string& loc) {
@@ -23,7 +23,8 @@ void read_side(C& o, const SceneKey&, const toml::node& node, const std::string&
     lo = number_of(*a->get(0));
     hi = number_of(*a->get(1));
   }
-  if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) || *lo > *hi) fail(cat(loc, ": must be ", kSideForm));
+  if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi) || *lo > *hi || !std::isfinite(*hi - *lo))
+    fail(cat(loc, ": must be ", kSideForm));
   o.*Member = std::array<double, 2>{*lo, *hi};
 }
 
@@ -42,7 +43,7 @@ template <Side Member>
 CensusRow side_row(std::string_view key, std::string_view unit, std::string_view meaning) {
   CensusRow r = census_row(key, SceneKeyType::real, any_finite(), unit, meaning, "(scaled)",
                            {read_side<Member>, side_text<Member>});
-  r.allowed_text = "[lo, hi], lo <= hi";
+  r.allowed_text = "[lo, hi], lo <= hi, hi - lo finite";
   r.info.default_given = false;
   return r;
 }

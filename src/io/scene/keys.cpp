@@ -259,7 +259,9 @@ void add_solver_keys(std::vector<Binding>& rows) {
                       "hybrid, dopri5: largest step, as a fraction of the forcing period T",
                       field<integ, &O::max_step>()));
   rows.push_back(integer(s, "rk4_steps", ge(1), "rk4: steps per forcing period", field<integ, &O::rk4_steps>()));
-  rows.push_back(integer(s, "max_steps", ge(1), "budget of steps (accepted + rejected) for the whole run",
+  rows.push_back(integer(s, "max_steps", interval(1, kMaxStepBudget, false, false),
+                         "budget of steps (accepted + rejected) for the whole run (a step costs about 1-2 us: "
+                         "1e10 is some hours)",
                          field<integ, &O::max_steps>()));
 }
 
@@ -273,7 +275,8 @@ void add_analysis_keys(std::vector<Binding>& rows) {
                         "orbit found by Newton), shooting (faster: some stable orbit, not necessarily the motion "
                         "from the initial state; maps say so) or integrate (brute force, until samples repeat)",
                         enum_field<kSteadyValues, an, &A::steady>(), enum_names<kSteadyValues>()));
-  rows.push_back(integer(s, "transient_periods", ge(1), "follow, shooting: forcing periods integrated before Newton starts",
+  rows.push_back(integer(s, "transient_periods", interval(1, kMaxTransientPeriods, false, false),
+                         "follow, shooting: forcing periods integrated before Newton starts",
                          field<an, &A::transient_periods>()));
   rows.push_back(real(s, "newton_tol", ge(0), "-",
                       "shooting: scaled residual |P^n(y) - y| at which Newton stops; 0: auto, rtol",
@@ -285,11 +288,13 @@ void add_analysis_keys(std::vector<Binding>& rows) {
                          "estimate the largest Lyapunov exponent when no period is found (quasi-periodic "
                          "or chaotic); costs lyapunov_periods more periods",
                          field<an, &A::lyapunov>()));
-  rows.push_back(integer(s, "lyapunov_periods", ge(10), "forcing periods over which the Lyapunov exponent is averaged",
+  rows.push_back(integer(s, "lyapunov_periods", interval(10, kMaxLyapunovPeriods, false, false),
+                         "forcing periods over which the Lyapunov exponent is averaged",
                          field<an, &A::lyapunov_periods>()));
   rows.push_back(integer(s, "n_max", interval(1, SteadyStateDetector::kMaxN, false, false), "largest period looked for, in forcing periods",
                          field<an, &A::n_max>()));
-  rows.push_back(integer(s, "max_periods", ge(1), "budget of forcing periods to reach steady state",
+  rows.push_back(integer(s, "max_periods", interval(1, kMaxPeriodBudget, false, false),
+                         "budget of forcing periods to reach steady state",
                          field<an, &A::max_periods>()));
   rows.push_back(real(s, "steady_tol", ge(0), "-",
                       "steady-state tolerance (scaled max-norm); 0: auto, 100*rtol (rk4: 1e-9)",

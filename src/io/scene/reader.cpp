@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include "scene_internal.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/output_file.hpp"
+#include "vibromap/io/scene/cell_maker.hpp"
 
 // Reading a scene: parse the TOML, apply the overrides, check the structure (sections and
 // keys), read and check each key's value, then the [sweep] and [optimise] sections, and
@@ -282,9 +284,89 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
   return os.str();
 }
 
+// ---------------------------------------------------------------------------------------
+// The rule that combines keys: the forcing against the natural frequencies
+// (frequency_ratio_error, parameters.hpp). It moves one way with each key it reads, so over a
+// [sweep] grid or an [optimise] box its extremes are at the corners: those are checked.
+
+// The keys frequency_ratio_error reads, as --set names them.
+constexpr std::string_view kRatioKeys[] = {"forcing.omega", "system.m1", "system.m2",    "system.k1",
+                                           "system.omega1", "system.k2", "system.omega2"};
+
+// "file: --set forcing.omega=1e-9" when one of the rule's keys was overridden, else "file".
+std::string ratio_origin(const Context& ctx) {
+  for (std::string_view key : kRatioKeys)
+    if (const auto it = ctx.overrides.find(key); it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second, 200));
+  return ctx.path;
+}
+
+// "file: [sweep]", or "file: --set sweep.KEY=..." when one of the axes was set so.
+std::string sweep_origin(const Context& ctx, const std::vector<Axis>& axes) {
+  for (const Axis& a : axes)
+    for (const std::string& name : {a.key, a.name})
+      if (const auto it = ctx.overrides.find(cat(kSweep, ".", name)); it != ctx.overrides.end())
+        return cat(ctx.path, ": ", clip(it->second, 200));
+  return cat(ctx.path, ": [", kSweep, "]");
+}
+
+// Per axis: the indices of its least and largest value (a categorical axis: its first only).
+std::vector<std::array<std::size_t, 2>> axis_ends(const std::vector<Axis>& axes) {
+  std::vector<std::array<std::size_t, 2>> ends;
+  for (const Axis& a : axes) {
+    if (!a.categories.empty()) {
+      ends.push_back({0, 0});
+      continue;
+    }
+    const auto [lo, hi] = std::minmax_element(a.values.begin(), a.values.end());
+    ends.push_back({static_cast<std::size_t>(lo - a.values.begin()), static_cast<std::size_t>(hi - a.values.begin())});
+  }
+  return ends;
+}
+
+void check_grid_corners(const Scene& scene, const Context& ctx) {
+  if (!scene.sweep || scene.sweep->axes.empty()) return;
+  const std::vector<Axis>& axes = scene.sweep->axes;
+  const Grid grid(axes);
+  const CellMaker cells(scene, grid);
+  const auto ends = axis_ends(axes);
+  std::vector<std::size_t> index(axes.size());
+  for (std::size_t corner = 0; corner < (std::size_t{1} << axes.size()); ++corner) {
+    std::vector<std::string> at;
+    for (std::size_t d = 0; d < axes.size(); ++d) {
+      index[d] = ends[d][(corner >> d) & 1U];
+      at.push_back(cat(axes[d].key, " = ", shortest(axes[d].values[index[d]])));
+    }
+    const std::string err = frequency_ratio_error(cells(grid.ravel(index)).params);
+    if (!err.empty()) fail(cat(sweep_origin(ctx, axes), ": at the cell ", join(views(at), ", "), ": ", err));
+  }
+}
+
+void check_optimise_corners(const Scene& scene, const Context& ctx) {
+  if (!scene.optimise || scene.optimise->variables.empty()) return;
+  const std::vector<FreeVariable>& vars = scene.optimise->variables;
+  for (std::size_t corner = 0; corner < (std::size_t{1} << vars.size()); ++corner) {
+    Parameters p = scene.params;
+    std::vector<std::string> at;
+    for (std::size_t d = 0; d < vars.size(); ++d) {
+      const double v = ((corner >> d) & 1U) != 0 ? vars[d].max : vars[d].min;
+      set_parameter(p, vars[d].name, v);
+      at.push_back(cat(vars[d].name, " = ", shortest(v)));
+    }
+    if (const std::string err = frequency_ratio_error(p); !err.empty())
+      fail(cat(ctx.path, ": [", kOptimise, "] at the corner ", join(views(at), ", "), " of the box: ", err));
+  }
+}
+
 Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
-  // The schema's checks cover validate(); this keeps the two in step if the core adds one.
-  if (const auto errors = validate(scene.params); !errors.empty()) fail(ctx.path + ": " + errors.front());
+  // The schema's checks cover validate() but for the rule that combines keys; this keeps the
+  // two in step if the core adds one. A grid's base point need not obey that rule itself when
+  // every cell does (an axis replaces the key that broke it).
+  const auto errors = validate(scene.params);
+  const bool ratio_only = errors.size() == 1 && errors.front() == frequency_ratio_error(scene.params);
+  if (ratio_only && !scene.sweep) fail(cat(ratio_origin(ctx), ": ", errors.front()));
+  if (!errors.empty() && !ratio_only) fail(ctx.path + ": " + errors.front());
+  check_grid_corners(scene, ctx);
+  check_optimise_corners(scene, ctx);
   scene.path = ctx.path;
   scene.text = scene_text(table, ctx);
   return scene;

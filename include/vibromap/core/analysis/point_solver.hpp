@@ -57,6 +57,11 @@ struct AnalysisOptions {
   int trajectory_samples = 2000;  // uniform samples per forcing period in a kept trajectory, -
 };
 
+// The largest budgets AnalysisOptions takes (each of these periods costs tens of steps at least).
+inline constexpr long kMaxPeriodBudget = 100'000'000;   // max_periods
+inline constexpr int kMaxTransientPeriods = 1'000'000;  // transient_periods (tripled twice at most)
+inline constexpr int kMaxLyapunovPeriods = 10'000'000;  // lyapunov_periods
+
 std::string validate(const AnalysisOptions& o);
 
 enum class SolveStatus {

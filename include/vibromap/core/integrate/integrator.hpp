@@ -46,8 +46,11 @@ struct IntegratorOptions {
   double atol = 1e-13;             // hybrid, dopri5: absolute tolerance on x1 and z (m); on v1 and w: atol*omega (m/s)
   double max_step = 1.0 / 32.0;    // hybrid, dopri5: largest step, as a fraction of the forcing period T, -
   int rk4_steps = 16384;           // rk4: steps per forcing period, -
-  long max_steps = 20'000'000;     // budget of steps (accepted + rejected) for the whole run, -
+  long max_steps = 20'000'000;     // budget of steps (accepted + rejected) for the whole run, - (<= kMaxStepBudget)
 };
+
+// The largest step budget: a step costs about 1-2 us, so 1e10 steps are some hours of one core.
+inline constexpr long kMaxStepBudget = 10'000'000'000;
 
 // Returns an empty string when the options are valid, else what is wrong.
 std::string validate(const IntegratorOptions& o);

@@ -80,8 +80,29 @@ void set_parameter(Parameters& p, std::string_view name, double value);
 // Reads one variable parameter by name (k2 and omega2 are derived when given the other way).
 double get_parameter(const Parameters& p, std::string_view name);
 
+// The forcing frequency against the system's own: omega / omega_n, omega_n the fastest undamped
+// natural frequency of the two bodies on their springs without contact (the larger root of
+// det(K - omega^2 M) = 0, M = diag(m1, m2), K = [[k1 + k2, -k2], [-k2, k2]]), must lie in
+// [kMinFrequencyRatio, kMaxFrequencyRatio]. Below, one forcing period holds more than 10^4
+// oscillations of the fastest mode, and the closed-form free flight's search for contact
+// steps through each (omega = 1e-9 rad/s on Table 1: 10^10 of them, a run that never ends);
+// above, the forcing is 10^4 times faster than anything the springs can follow (omega = 1e308:
+// a period of 6e-308 s). The paper's tables sit at 1.04 and 1.08, jobs/ spans 7.2e-4
+// (jobs/study/extremes.toml) to 1.79; a ratio is the same whatever the units. Every one of m1,
+// m2, k1 (omega1), k2 (omega2) and omega moves omega / omega_n one way only (omega_n^2 is the
+// largest Rayleigh quotient of K against M), so over a grid or a box its extremes are at the
+// corners.
+inline constexpr double kMinFrequencyRatio = 1e-4;
+inline constexpr double kMaxFrequencyRatio = 1e4;
+// omega_n above, rad/s.
+double fastest_natural_frequency(const Parameters& p);
+// Empty when omega / omega_n lies in that range, else the one-line reason with the range of
+// omega it allows.
+std::string frequency_ratio_error(const Parameters& p);
+
 // Physical checks that do not depend on how the values were read; each message names the
-// parameter and the allowed range. Empty when the point is valid.
+// parameter and the allowed range (frequency_ratio_error's rule included, once the rest holds).
+// Empty when the point is valid.
 std::vector<std::string> validate(const Parameters& p);
 
 }  // namespace vibromap
