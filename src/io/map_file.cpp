@@ -97,7 +97,9 @@ MapWriter MapWriter::create(const std::string& path, const MapLayout& layout, in
 
 MapWriter MapWriter::resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done) {
   auto impl = std::make_unique<Impl>(path, Hdf5File(path, FileMode::read_write, detail::writer_options()));
-  impl->layout = detail::read_layout(impl->file);
+  detail::SealState seal = detail::SealState::verified;
+  impl->layout = detail::read_layout(impl->file, &seal);
+  impl->repair.unsealed = seal == detail::SealState::absent;
   const Shape shape = impl->layout.grid.shape();
   impl->chunk = detail::map_chunk_shape(shape);
   impl->chunks = detail::chunk_spans(shape, impl->chunk);
