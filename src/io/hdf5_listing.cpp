@@ -106,12 +106,15 @@ std::string Dataset::element_type_text() const {
   return cat(std::string(1, byte_order), std::string(1, kind), std::to_string(size));
 }
 
-bool Dataset::chunk_missing(const Shape& offset) const {
-  const std::string operation = cat("look up a chunk of ", detail::describe("dataset", name_));
+bool Dataset::allocated_early() const {
+  const std::string operation = cat("get the creation properties of ", detail::describe("dataset", name_));
   const Handle dcpl = detail::make_handle(H5Dget_create_plist(id()), HandleKind::property_list, file_path_, operation);
   H5D_alloc_time_t when = H5D_ALLOC_TIME_DEFAULT;
   check(H5Pget_alloc_time(dcpl.get(), &when), file_path_, operation);
-  if (when != H5D_ALLOC_TIME_EARLY) return false;
+  return when == H5D_ALLOC_TIME_EARLY;
+}
+
+bool Dataset::chunk_allocated(const Shape& offset) const {
   // The storage size looks the chunk up as a read does (H5Dget_chunk_info_by_coord does not
   // compare the whole key, and can find a chunk that reads then miss): it fails, or is 0, when
   // the chunk is not there.
@@ -119,9 +122,9 @@ bool Dataset::chunk_missing(const Shape& offset) const {
   hsize_t size = 0;
   if (H5Dget_chunk_storage_size(id(), at.data(), &size) < 0) {
     H5Eclear2(H5E_DEFAULT);
-    return true;
+    return false;
   }
-  return size == 0;
+  return size > 0;
 }
 
 std::vector<std::pair<std::string, LinkKind>> Group::links() const {

@@ -301,10 +301,15 @@ Shape field_offset(Shape offset, const MapField& f) {
 
 bool MapDatasets::chunk_missing(int i, const CellSpan& span) {
   if (grid_shape.empty()) grid_shape = done.shape();
+  if (early.empty()) {  // a map made before every chunk was allocated up front may lack some
+    early.push_back(done.allocated_early() ? 1 : 0);
+    for (const Dataset& d : data) early.push_back(d.allocated_early() ? 1 : 0);
+  }
+  if (!early[static_cast<std::size_t>(i + 1)]) return false;
   const Shape offset = cell_offset(span.begin, grid_shape);
-  if (i < 0) return done.chunk_missing(offset);
+  if (i < 0) return !done.chunk_allocated(offset);
   const auto u = static_cast<std::size_t>(i);
-  return data[u].chunk_missing(field_offset(offset, fields[u]));
+  return !data[u].chunk_allocated(field_offset(offset, fields[u]));
 }
 
 bool MapDatasets::read(int i, const CellSpan& span, std::string* why) {

@@ -56,6 +56,7 @@ struct MapDatasets {
   std::vector<std::vector<double>> reals;        // per field, float fields
   std::vector<std::vector<std::int64_t>> ints;   // per field, integer fields
   Shape grid_shape;                              // the grid's shape, read from /done by read()
+  std::vector<char> early;                       // per dataset, done first: allocated early (read())
 
   // Opens every dataset of `layout` in `file`, checking its shape.
   void open(const Hdf5File& file, const MapLayout& layout);

@@ -223,11 +223,13 @@ class Dataset : public Hdf5Object {
   // The element type as numpy spells it ("<f8", "|i1", "|u1", "<i4", ">f8"...; "other" for a
   // type that is not an integer or a float), for comparing a file with itself (hdf5_listing.cpp).
   std::string element_type_text() const;
-  // True when the dataset allocates every chunk when it is made (DatasetOptions::allocate_early)
-  // but the chunk that starts at `offset` (one index per dimension, a multiple of the chunk
-  // extent) is not in its chunk index (hdf5_listing.cpp): a damaged index, which HDF5 would read
-  // as fill values without any error.
-  bool chunk_missing(const Shape& offset) const;
+  // Whether every chunk was allocated when the dataset was made (DatasetOptions::allocate_early),
+  // and whether the chunk that starts at `offset` (one index per dimension, a multiple of the
+  // chunk extent) is in the chunk index, looked up as a read looks it up (hdf5_listing.cpp). In
+  // a dataset allocated early a chunk not there means a damaged index, which HDF5 would read as
+  // fill values without any error.
+  bool allocated_early() const;
+  bool chunk_allocated(const Shape& offset) const;
 
  private:
   friend class Group;
