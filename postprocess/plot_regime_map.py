@@ -216,8 +216,10 @@ def slice_title(what: str, sweep: SweepMap, sl: MapSlice) -> str:
     over = sl.x.name if sl.y is None else f"{sl.y.name} over {sl.x.name}"
     first = f"{what}: {over}  ({os.path.basename(sweep.path)})"
     second = f"fixed: {sl.fixed_text()}" if sl.fixed else "all axes shown"
-    done, total = sweep.attrs.get("cells_done"), sweep.attrs.get("cells_total")
-    if sweep.attrs.get("complete") == 0 and done is not None and total is not None:
+    # From /done, not the attributes cells_done and complete: those are brought up to date only
+    # when a run ends (a map still running, or killed, says 0).
+    done, total = int(np.count_nonzero(sweep.data["done"])), int(np.asarray(sweep.data["done"]).size)
+    if done < total:
         second += f";  partial run: {done} of {total} cells done"
     warning = sweep.answer_warning()
     return f"{first}\n{second}" + (f"\n{warning}" if warning else "")

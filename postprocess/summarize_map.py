@@ -9,7 +9,9 @@ the soft fraction, and the non-periodic attractors with the cells where states w
 leave them (transient chaos: their fractions depend on analysis.max_periods).
 
 Usage: postprocess/vmpy summarize_map MAP.h5 [--slowest N]
-Exit status: 0 printed, 2 unreadable file, 1 a computed cell holds a non-finite value.
+Exit status: 0 printed, 2 unreadable or damaged file (one line "summarize_map: error: MAP.h5: ..."
+on stderr: its attribute checksum fails, a chunk fails its checksum, or it is truncated), 1 a
+computed cell holds a non-finite value.
 """
 import argparse
 import sys
@@ -34,6 +36,8 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
     done = sweep.data["done"].astype(bool)
     lines = [f"map {sweep.path}: {int(done.sum())}/{done.size} cells done, axes "
              + ", ".join(f"{a.name} ({len(a.values)})" for a in sweep.axes.values())]
+    lines.append("attributes: verified by their checksum" if sweep.sealed
+                 else "attributes: not verified (a map made before vibromap gave maps an attribute checksum)")
     status = sweep.data["status"][done]
     lines.append("status: " + ", ".join(f"{sweep.status_meanings.get(int(c), c)} {int((status == c).sum())}"
                                          for c in sorted(set(status.tolist()))))

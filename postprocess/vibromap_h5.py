@@ -2,7 +2,11 @@
 
 Every reader returns numpy arrays and plain Python numbers and strings, and raises
 VibromapFileError with a one-line message (naming the file) when the file is missing,
-is not HDF5, or lacks what the reader needs. Scripts turn that into exit status 2.
+is not HDF5, lacks what the reader needs, or is damaged: open_h5 checks the attribute checksum
+vibromap writes into every file (vibromap_seal.py; "FILE: damaged: its attributes fail their
+checksum (...)"), a chunk that fails its Fletcher32 checksum is named, and whatever else h5py
+raises while reading a damaged or truncated file becomes one line too. Scripts turn that into
+exit status 2. Files without the checksum (written before it) are read as before.
 
 Trajectory file (src/io/trajectory_file.cpp, include/vibromap/io/trajectory_file.hpp):
   datasets  t (s), x1, x2 (m), v1, v2 (m/s), Fc, F (N): 1-D float64 of equal length,
@@ -50,10 +54,13 @@ regime_labels() names each cell's regime: "(n,k)", "chatter", "no-contact", "not
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import os
 
 import h5py
 import numpy as np
+
+from vibromap_seal import DamagedAttributes, check_seal
 
 TRAJECTORY_COLUMNS = ("t", "x1", "x2", "v1", "v2", "Fc", "F")
 TRAJECTORY_ATTRIBUTES = ("T", "regime", "n", "k", "T_con", "k_con", "scene", "vibromap_version")
@@ -110,12 +117,13 @@ class Trajectory:
 
 
 def _text(value) -> str:
-    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings)."""
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings, and keeps the
+    bytes of an invalid UTF-8 one as surrogates, which could not be printed: replaced here)."""
     if isinstance(value, bytes):
         return value.decode("utf-8", errors="replace")
     if isinstance(value, np.ndarray) and value.size == 1:
         return _text(value.reshape(()).item())
-    return str(value)
+    return str(value).encode("utf-8", errors="surrogateescape").decode("utf-8", errors="replace")
 
 
 def _scalar(value, path: str, name: str, kind):
@@ -126,19 +134,56 @@ def _scalar(value, path: str, name: str, kind):
     return kind(array.reshape(()).item())
 
 
-def open_h5(path: str) -> h5py.File:
-    """Opens an HDF5 file for reading, or raises VibromapFileError with a one-line reason."""
+# What reading a damaged or truncated HDF5 file raises from h5py and numpy (a missing or
+# garbled object, a size or type that makes no sense): reported as one line, never a traceback.
+READ_ERRORS = (OSError, LookupError, ValueError, TypeError, RuntimeError, ArithmeticError, MemoryError)
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+class OpenFile:
+    """open_h5's answer, for `with open_h5(path) as f:` (f is the h5py.File). `sealed` says
+    whether the file's attribute checksum was verified (False: a file written before vibromap
+    sealed its files). Leaving the block closes the file and turns what a damaged file raises
+    there (READ_ERRORS) into VibromapFileError naming the file."""
+
+    def __init__(self, file: h5py.File, path: str, sealed: bool):
+        self.file, self.path, self.sealed = file, path, sealed
+
+    def __enter__(self) -> h5py.File:
+        return self.file
+
+    def __exit__(self, kind, exc, traceback) -> bool:
+        self.file.close()
+        if isinstance(exc, READ_ERRORS) and not isinstance(exc, VibromapFileError):
+            raise VibromapFileError(f"{self.path}: damaged or not a vibromap file: cannot read it ({_one_line(exc)})") from exc
+        return False
+
+
+def open_h5(path: str) -> OpenFile:
+    """Opens an HDF5 file for reading and checks its attribute checksum when it has one
+    (vibromap_seal.py), or raises VibromapFileError with a one-line reason."""
     path = os.fspath(path)
     if not os.path.exists(path):
         raise VibromapFileError(f"{path}: no such file")
     if os.path.isdir(path):
         raise VibromapFileError(f"{path}: is a directory, not a file")
-    if not h5py.is_hdf5(path):
-        raise VibromapFileError(f"{path}: not an HDF5 file")
     try:
-        return h5py.File(path, "r")
-    except OSError as exc:
-        raise VibromapFileError(f"{path}: cannot open ({exc})") from exc
+        if not h5py.is_hdf5(path):
+            raise VibromapFileError(f"{path}: not an HDF5 file")
+        f = h5py.File(path, "r")
+    except READ_ERRORS as exc:
+        if isinstance(exc, VibromapFileError):
+            raise
+        raise VibromapFileError(f"{path}: cannot open ({_one_line(exc)})") from exc
+    try:
+        sealed = check_seal(f)
+    except DamagedAttributes as exc:
+        f.close()
+        raise VibromapFileError(f"{path}: damaged: {exc}; make it again with vibromap --overwrite") from None
+    return OpenFile(f, path, sealed)
 
 
 def read_trajectory(path: str) -> Trajectory:
@@ -271,6 +316,7 @@ class SweepMap:
     # census maps: "regime", "n", "k_con", "fraction", ... (attractor_<q> without its prefix),
     # each of shape + (A,); empty in a map without a census
     filled: tuple[str, ...] = ()  # datasets the file lacks that read_map made up ("stable": unknown)
+    sealed: bool = False  # its attributes were verified by their checksum (False: a map made before it had one)
 
     @property
     def is_census(self) -> bool:
@@ -380,9 +426,33 @@ def _attribute_value(value):
     return array
 
 
+def _missing_chunk(dataset: h5py.Dataset):
+    """The offset of a chunk missing from the chunk index of a dataset whose chunks are all made
+    with it (a map's: HDF5 would read fill values there without an error); None when none is.
+    Each chunk is looked up as a read looks it up (read_direct_chunk; get_chunk_info_by_coord
+    does not compare the whole key, and can find a chunk that a read then misses)."""
+    if dataset.chunks is None or dataset.id.get_create_plist().get_alloc_time() != h5py.h5d.ALLOC_TIME_EARLY:
+        return None
+    for offset in itertools.product(*(range(0, n, c) for n, c in zip(dataset.shape, dataset.chunks))):
+        try:
+            dataset.id.read_direct_chunk(offset)
+        except READ_ERRORS:
+            return offset
+    return None
+
+
 def read_dataset(dataset: h5py.Dataset, path: str) -> np.ndarray:
     """The whole dataset as a numpy array, or VibromapFileError naming it when a chunk of it fails
-    to read (vibromap's maps checksum every chunk: a damaged byte fails instead of reading wrong)."""
+    to read (vibromap's maps checksum every chunk: a damaged byte fails instead of reading wrong)
+    or is missing from its chunk index."""
+    name = dataset.name.lstrip("/")
+    try:
+        missing = _missing_chunk(dataset)
+    except READ_ERRORS as exc:
+        raise VibromapFileError(f"{path}: dataset '{name}' is damaged: its chunk index cannot be read ({_one_line(exc)})") from exc
+    if missing is not None:
+        raise VibromapFileError(f"{path}: dataset '{name}' is damaged: its chunk at {tuple(int(i) for i in missing)} is "
+                                "missing from its chunk index; vibromap sweep --resume recomputes the damaged cells")
     try:
         return np.asarray(dataset[()])
     except OSError as exc:
@@ -435,7 +505,8 @@ def axis_name(sweep: "SweepMap", name: str | None) -> str | None:
 def read_map(path: str) -> SweepMap:
     """Reads a map file written by vibromap (see the module docstring for the layout)."""
     path = os.fspath(path)
-    with open_h5(path) as f:
+    opened = open_h5(path)
+    with opened as f:
         for name in MAP_REQUIRED:
             if not isinstance(f.get(name), h5py.Dataset):
                 raise VibromapFileError(f"{path}: not a vibromap map file (no dataset '{name}')")
@@ -468,6 +539,7 @@ def read_map(path: str) -> SweepMap:
             units["stable"] = ""
         attrs = {name: _attribute_value(value) for name, value in f.attrs.items()}
     _check_soft_attributes(attrs, path)
+    _check_progress_attributes(attrs, path)
     if "stored" in attrs:
         stored = str(attrs["stored"]).split()
         missing = [name for name in stored if name not in data]
@@ -487,7 +559,22 @@ def read_map(path: str) -> SweepMap:
         stable_meanings=stable_meanings,
         census=census,
         filled=filled,
+        sealed=opened.sealed,
     )
+
+
+def _check_progress_attributes(attrs: dict, path: str) -> None:
+    """cells_done, complete and ranks, which the attribute checksum does not cover (a run rewrites
+    them when it ends; /done is what counts), must at least be in range."""
+    total = attrs.get("cells_total")
+    limits = {"cells_done": (0, total if isinstance(total, int) else None), "complete": (0, 1), "ranks": (1, None)}
+    for name, (low, high) in limits.items():
+        if name not in attrs:
+            continue
+        value = attrs[name]
+        if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
+            allowed = f"{low}..{high}" if high is not None else f">= {low}"
+            raise VibromapFileError(f"{path}: damaged: root attribute '{name}' is {value!r}, outside {allowed}")
 
 
 def _check_soft_attributes(attrs: dict, path: str) -> None:

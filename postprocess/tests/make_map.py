@@ -180,6 +180,19 @@ def write_map(path, axes, regime, n, k, *, done=None, status=None, stable=None, 
             f.attrs[name] = value
 
 
+def seal(path, uncovered=("cells_done", "complete", "ranks")):
+    """Gives a map written by write_map the attribute checksum the C++ writer gives its maps
+    (src/io/attribute_seal.hpp), computed by vibromap_seal (the reader's own code)."""
+    import zlib
+
+    import vibromap_seal
+
+    with h5py.File(path, "r+") as f:
+        crc = zlib.crc32(vibromap_seal.attribute_record(f, uncovered)) & 0xFFFFFFFF
+        text = f"crc32 {crc:08x}" + (f"; not covered: {' '.join(uncovered)}" if uncovered else "")
+        f.attrs[vibromap_seal.SEAL_ATTRIBUTE] = text
+
+
 # The soft test map: E1 (log, 6 points) x E2 (log, 4 points), cell [i, j] (i along E1).
 SOFT_AXES = [("E1", np.geomspace(1e5, 1e10, 6), "log"), ("E2", np.array([1e4, 1e6, 1e8, 1e10]), "log")]
 SOFT_HERTZ_INVALID = ((0, 0), (1, 1), (3, 0), (5, 3))  # z_ratio 0.2: the first two have k_con <= 10

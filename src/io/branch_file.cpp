@@ -5,6 +5,7 @@
 #include <limits>
 #include <span>
 
+#include "attribute_seal.hpp"
 #include "provenance.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
@@ -145,6 +146,7 @@ void write_branch(const std::string& path, const BranchData& data) {
     file.set_attribute("n", data.branches.empty() ? 1 : data.branches.front().n);
     file.set_attribute("stop", data.branches.empty() ? std::string() : data.branches.front().stop);
     file.set_attribute("stops", stops);
+    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
   });
 }
 

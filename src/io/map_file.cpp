@@ -127,7 +127,9 @@ MapWriter MapWriter::open_new(const std::string& path, const MapLayout& layout) 
 
 MapWriter MapWriter::resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done) {
   auto impl = open_for_writing(path);
-  impl->layout = detail::read_layout(impl->file);
+  detail::SealState seal = detail::SealState::verified;
+  impl->layout = detail::read_layout(impl->file, &seal);
+  impl->repair.unsealed = seal == detail::SealState::absent;
   const Shape shape = impl->layout.grid.shape();
   impl->chunk = detail::map_chunk_shape(shape);
   impl->chunks = detail::chunk_spans(shape, impl->chunk);

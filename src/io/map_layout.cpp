@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "attribute_seal.hpp"
 #include "vibromap/core/text.hpp"
 
 // CF conventions (cfconventions.org, 1.8): a coordinate variable is a 1-D variable named after
@@ -118,6 +119,9 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
   file.set_attribute("steady", layout.steady);
   file.set_attribute("hertz_limit", layout.hertz_limit);
   file.set_attribute("soft_kcon", layout.soft_kcon);
+  // Last of the map's attributes (MapWriter::create makes every dataset first): the seal over
+  // them all but the progress attributes, which finish() rewrites and no reader trusts.
+  seal_attributes(file, {"cells_done", "complete", "ranks"});
 }
 
 // Refuses a layout the file cannot hold, before any file is touched.
@@ -216,8 +220,10 @@ std::vector<Quantity> read_stored(const Hdf5File& file) {
 
 }  // namespace
 
-MapLayout read_layout(const Hdf5File& file) {
+MapLayout read_layout(const Hdf5File& file, SealState* seal) {
   const std::string& path = file.path();
+  const SealState state = verify_attributes(file);
+  if (seal) *seal = state;
   MapLayout layout;
   layout.stored = read_stored(file);
   for (const char* name : {"title", "Conventions", "vibromap_version", "scene", "identity", "ranks", "cells_total",
@@ -272,9 +278,47 @@ void MapDatasets::open(const Hdf5File& file, const MapLayout& layout) {
 }
 
 
+namespace {
+
+// The offset of the chunk whose first cell is `flat`, per dimension of the grid.
+Shape cell_offset(std::uint64_t flat, const Shape& shape) {
+  Shape offset(shape.size());
+  for (std::size_t d = shape.size(); d-- > 0;) {
+    offset[d] = static_cast<std::size_t>(flat % shape[d]);
+    flat /= shape[d];
+  }
+  return offset;
+}
+
+// The same chunk's offset in field f's dataset: a per-attractor field has one more dimension,
+// held whole in each chunk.
+Shape field_offset(Shape offset, const MapField& f) {
+  if (f.slots > 0) offset.push_back(0);
+  return offset;
+}
+
+}  // namespace
+
+bool MapDatasets::chunk_missing(int i, const CellSpan& span) {
+  if (grid_shape.empty()) grid_shape = done.shape();
+  if (early.empty()) {  // a map made before every chunk was allocated up front may lack some
+    early.push_back(done.allocated_early() ? 1 : 0);
+    for (const Dataset& d : data) early.push_back(d.allocated_early() ? 1 : 0);
+  }
+  if (!early[static_cast<std::size_t>(i + 1)]) return false;
+  const Shape offset = cell_offset(span.begin, grid_shape);
+  if (i < 0) return !done.chunk_allocated(offset);
+  const auto u = static_cast<std::size_t>(i);
+  return !data[u].chunk_allocated(field_offset(offset, fields[u]));
+}
+
 bool MapDatasets::read(int i, const CellSpan& span, std::string* why) {
   const std::size_t n = static_cast<std::size_t>(span.end - span.begin);
   try {
+    if (chunk_missing(i, span)) {
+      if (why) *why = "its chunk is missing from the dataset's chunk index";
+      return false;
+    }
     if (i < 0) {
       done_buffer.resize(n);
       done.read_flat(span.begin, std::span<std::uint8_t>(done_buffer));
@@ -319,15 +363,10 @@ CellResult MapDatasets::cell(std::size_t k, const std::string& path) const {
 
 
 void MapDatasets::fill_chunk(const CellSpan& span, const Shape& shape) {
-  Shape offset(shape.size());
-  std::uint64_t flat = span.begin;
-  for (std::size_t d = shape.size(); d-- > 0;) {
-    offset[d] = static_cast<std::size_t>(flat % shape[d]);
-    flat /= shape[d];
-  }
+  const Shape offset = cell_offset(span.begin, shape);
   done.reset_chunk(offset, 0.0);
   for (std::size_t i = 0; i < fields.size(); ++i)
-    data[i].reset_chunk(fields[i].slots > 0 ? with_slots(offset, fields[i]) : offset, fields[i].fill.value_or(0.0));
+    data[i].reset_chunk(field_offset(offset, fields[i]), fields[i].fill.value_or(0.0));
 }
 
 }  // namespace vibromap::detail

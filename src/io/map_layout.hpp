@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "attribute_seal.hpp"
 #include "map_fields.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
@@ -35,12 +36,15 @@ Shape with_slots(Shape shape, const MapField& f);
 // coordinates, then (with a census) /attractor.
 Dataset make_field(Hdf5File& file, const MapField& f, const Shape& shape, const Shape& chunk,
                    const std::vector<Dataset>& scales);
+// The root attributes, then the seal over every attribute (attribute_seal.hpp): call it last.
 void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks);
 
 // ---- Reading a map's layout
 // Its axes, stored quantities, scene, identity and attractor dimension; malformed() when a
-// required part is missing or inconsistent.
-MapLayout read_layout(const Hdf5File& file);
+// required part is missing or inconsistent. The attributes' seal is checked first, so damage is
+// reported as damage ("<path>: damaged: ..."), never as a wrong value; `seal` (when given) says
+// whether the map had one (maps written before have none and are read as before).
+MapLayout read_layout(const Hdf5File& file, SealState* seal = nullptr);
 
 // ---- One chunk of every dataset
 // The datasets of an open map and a buffer per dataset for one chunk of cells.
@@ -51,11 +55,17 @@ struct MapDatasets {
   std::vector<std::uint8_t> done_buffer;
   std::vector<std::vector<double>> reals;        // per field, float fields
   std::vector<std::vector<std::int64_t>> ints;   // per field, integer fields
+  Shape grid_shape;                              // the grid's shape, read from /done by read()
+  std::vector<char> early;                       // per dataset, done first: allocated early (read())
 
   // Opens every dataset of `layout` in `file`, checking its shape.
   void open(const Hdf5File& file, const MapLayout& layout);
-  // Reads cells `span` of dataset i (-1: done). False when HDF5 fails (a damaged chunk).
+  // Reads cells `span` of dataset i (-1: done). False when HDF5 fails (a damaged chunk), or when
+  // the chunk is missing from the dataset's chunk index (a damaged index: HDF5 would read fill
+  // values without an error, but every chunk of a map is allocated when it is made).
   bool read(int i, const CellSpan& span, std::string* why);
+  // Chunk `span` of dataset i (-1: done) is not in its chunk index (maps allocate every chunk).
+  bool chunk_missing(int i, const CellSpan& span);
   std::string name(int i) const { return i < 0 ? "done" : fields[static_cast<std::size_t>(i)].name; }
   // Cell k of the chunk read last, from the buffers (integer values range-checked).
   CellResult cell(std::size_t k, const std::string& path) const;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "vibromap/io/hdf5_file.hpp"
+#include "attribute_seal.hpp"
 #include "regime_flags.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 
@@ -233,6 +234,7 @@ void write_optimise_file(const std::string& path, const OptimiseReport& report, 
       Group g = best.create_group(padded(i, 2));
       write_best(g, report.best[i], options);
     }
+    detail::seal_attributes(f);  // last: over every attribute above (attribute_seal.hpp)
   });
 }
 

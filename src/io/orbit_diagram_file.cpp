@@ -5,6 +5,7 @@
 #include <limits>
 #include <span>
 
+#include "attribute_seal.hpp"
 #include "provenance.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
@@ -56,6 +57,7 @@ void write_orbit_diagram(const std::string& path, const OrbitDiagramData& data) 
     detail::set_provenance(file, "vibromap orbit diagram", data.scene_text, data.axis.key);
     file.set_attribute("transient", data.options.transient);
     file.set_attribute("keep", data.options.keep);
+    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
   });
 }
 

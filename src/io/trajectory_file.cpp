@@ -3,6 +3,7 @@
 #include <array>
 #include <vector>
 
+#include "attribute_seal.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
 namespace vibromap {
@@ -54,6 +55,7 @@ void write_trajectory(const std::string& path, const PointSummary& summary, cons
   write_hdf5_atomically(path, [&](Hdf5File& file) {
     write_columns(file, summary.trajectory);
     write_root_attributes(file, summary, scene_text);
+    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
   });
 }
 

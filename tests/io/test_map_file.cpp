@@ -313,6 +313,7 @@ TEST_F(MapFile, ADamagedCensusDatasetIsNamed) {
     Hdf5File f(file("census.h5"), FileMode::read_write);
     f.remove("attractors");
     f.write_dataset("attractors", std::vector<int>(12, 4), {3, 4});
+    f.remove_attribute("attribute_checksum");  // as a map written before it (else: refused as damaged first)
   }
   try {
     read_map(file("census.h5"));
@@ -581,13 +582,16 @@ TEST_F(MapFile, ReadingAMissingOrForeignFileThrowsIoErrorNamingIt) {
   EXPECT_EQ(read_error(other), other + ": not a valid vibromap map: no root attribute 'stored'");
 }
 
-// Writes the 2-D sample map to `path`, then lets `damage` alter it in place.
+// Writes the 2-D sample map to `path`, then lets `damage` alter it in place. The attribute
+// checksum goes too (sealed = false), as in a map written before it: the reader's own checks are
+// what is tested then. With it, any such change is refused first as damage (attribute_seal.hpp).
 template <class Damage>
-std::string damaged_map_error(const std::string& path, Damage damage) {
+std::string damaged_map_error(const std::string& path, Damage damage, bool sealed = false) {
   write_map(path, sample_map_2d());
   {
     Hdf5File f(path, FileMode::read_write);
     damage(f);
+    if (!sealed) f.remove_attribute("attribute_checksum");
   }
   return read_error(path);
 }
@@ -596,6 +600,8 @@ TEST_F(MapFile, ReadingADamagedMapNamesTheFileAndTheDataset) {
   const std::string path = file("map.h5");
   const std::string prefix = path + ": not a valid vibromap map: ";
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("regime"); }), prefix + "no dataset '/regime'");
+  const std::string damage = path + ": damaged: its attributes fail their checksum (attribute_checksum says crc32 ";
+  EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("regime"); }, true).substr(0, damage.size()), damage);
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("k_con"); }), prefix + "no dataset '/k_con'");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("done"); }), prefix + "no dataset '/done'");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("stable"); }), prefix + "no dataset '/stable'");

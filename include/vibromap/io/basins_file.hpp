@@ -22,7 +22,9 @@
 //       (int64, flat: j N0 + i), strobe_points (int32, n or 0), strobe (A, S, 4) float64: the
 //       stroboscopic states (x1, x2, v1, v2), NaN past strobe_points
 // Attractors are numbered by pixel count, descending, ties by first pixel: the file does not
-// depend on the number of MPI ranks. Written atomically (write_hdf5_atomically).
+// depend on the number of MPI ranks. Written atomically (write_hdf5_atomically), with the root
+// attribute attribute_checksum last: the CRC-32 of every attribute (src/io/attribute_seal.hpp),
+// verified before a resume compares identities; a file without it (older) is read as before.
 
 #include <cstdint>
 #include <string>
@@ -45,6 +47,7 @@ struct BasinsContent {
   std::vector<Attractor> attractors;      // count = pixels; fraction filled by the writer's caller
   std::vector<std::int64_t> first_pixel;  // per attractor
   bool complete = false;
+  bool unsealed = false;                  // read back: the file has no attribute checksum (older)
 };
 
 // Writes `c` atomically (tmp + rename). Throws IoError naming the path.

@@ -1,7 +1,8 @@
 #pragma once
 // A small checked C++ layer over the HDF5 C library, in the spirit of HighFive: one RAII
 // handle type that closes every hid_t with its own H5*close, one checking helper that turns a
-// negative return into vibromap::IoError, and no raw H5* call outside src/io/hdf5_file.cpp.
+// negative return into vibromap::IoError, and no raw H5* call outside src/io/hdf5_file.cpp and
+// its two halves hdf5_dataset.cpp (datasets, groups) and hdf5_listing.cpp (listing a file).
 //
 // This header does not include <hdf5.h>: HDF5 stays a private dependency of vibromap::io, and
 // code that reads or writes files (tests, sweep output) needs no HDF5 include path.
@@ -96,6 +97,21 @@ std::int64_t check(std::int64_t ret, std::string_view file, std::string_view ope
 // The element types of datasets (file types little-endian; integers signed but uint8).
 enum class ElementType { float64, int64, int32, int8, uint8 };
 
+// One attribute's value as stored, for comparing a file with itself (attribute checksums,
+// attribute_seal.hpp): a string as its bytes, integers as int64, floats as float64, anything
+// else (a compound, a reference) by its HDF5 type class alone.
+struct AttributeValue {
+  enum class Kind { string, integer, real, other };
+  Kind kind = Kind::other;
+  std::string text;                // string: its bytes (a fixed-length one without trailing NULs)
+  std::vector<std::int64_t> ints;  // integer: every element, flattened
+  std::vector<double> reals;       // real: every element, flattened
+  int type_class = -1;             // other: HDF5's H5T_class_t of the attribute
+};
+
+// What a link in a group leads to.
+enum class LinkKind { group, dataset, other };
+
 // Storage options of a new dataset. Defaults: contiguous, uncompressed.
 struct DatasetOptions {
   Shape chunk;      // chunk extent per dimension (clamped to the data's extent); empty: contiguous unless deflate > 0 or fletcher32, -
@@ -144,6 +160,12 @@ class Hdf5Object {
   // Read a numeric attribute of any extent (a scalar reads as one element), flattened.
   std::vector<std::int64_t> read_int_array_attribute(std::string_view name) const;
   std::vector<double> read_double_array_attribute(std::string_view name) const;
+  // The names of the attributes, sorted by their bytes; and one attribute's value as stored
+  // (hdf5_listing.cpp). Both throw IoError when HDF5 cannot read them (a damaged file).
+  std::vector<std::string> attribute_names() const;
+  AttributeValue read_attribute(std::string_view name) const;
+  // Removes an attribute (nothing when there is none).
+  void remove_attribute(std::string_view name);
 
   const std::string& name() const { return name_; }  // path inside the file, "/" for the root
   detail::Hid id() const { return handle_.get(); }
@@ -198,6 +220,16 @@ class Dataset : public Hdf5Object {
   std::string dimension_scale_name() const;  // the name given by make_dimension_scale; "" if none
   // Paths ("/E1") of the scales attached to dimension `dim`, in the order attached.
   std::vector<std::string> attached_scales(std::size_t dim) const;
+  // The element type as numpy spells it ("<f8", "|i1", "|u1", "<i4", ">f8"...; "other" for a
+  // type that is not an integer or a float), for comparing a file with itself (hdf5_listing.cpp).
+  std::string element_type_text() const;
+  // Whether every chunk was allocated when the dataset was made (DatasetOptions::allocate_early),
+  // and whether the chunk that starts at `offset` (one index per dimension, a multiple of the
+  // chunk extent) is in the chunk index, looked up as a read looks it up (hdf5_listing.cpp). In
+  // a dataset allocated early a chunk not there means a damaged index, which HDF5 would read as
+  // fill values without any error.
+  bool allocated_early() const;
+  bool chunk_allocated(const Shape& offset) const;
 
  private:
   friend class Group;
@@ -250,6 +282,9 @@ class Group : public Hdf5Object {
   Group create_group(std::string_view name);
   Group open_group(std::string_view name) const;
   bool exists(std::string_view name) const;  // a link `name` (dataset or group) exists here
+  // The links of this group (names sorted by their bytes) and what each leads to
+  // (hdf5_listing.cpp); soft and external links are `other`. Throws IoError.
+  std::vector<std::pair<std::string, LinkKind>> links() const;
   // Removes the link `name` (a dataset or group); HDF5 does not reclaim its space in the file.
   void remove(std::string_view name);
 

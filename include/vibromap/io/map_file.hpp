@@ -39,7 +39,22 @@
 // Root attributes: title, Conventions ("CF-1.8"), vibromap_version, scene (the scene text),
 // identity (what --resume compares: the canonical cell-defining values), ranks, cells_total,
 // cells_done, complete (0 | 1; both brought up to date when a run ends), stored (the quantity
-// names, space separated).
+// names, space separated), and last attribute_checksum (below).
+//
+// Attribute checksum: chunks have Fletcher32, attributes do not (a string attribute lives in
+// HDF5's global heap, which has no checksum: one flipped byte there emptied title, Conventions
+// and vibromap_version of a map that was then resumed as if whole). So the root attribute
+// attribute_checksum = "crc32 XXXXXXXX; not covered: cells_done complete ranks" holds the CRC-32
+// of every attribute of the file and every dataset's type, shape and dimension scales
+// (src/io/attribute_seal.hpp documents the record), written when the map is made. Every reader
+// (resume(), read_map_layout(), scan_map(), read_map(): --resume, the optimiser's seeding map;
+// postprocess/vibromap_h5.py) checks it before reading any value and refuses a map that fails
+// it as damaged: IoError "<path>: damaged: its attributes fail their checksum (...); make it
+// again with --overwrite" (exit 4, as a damaged coordinate), never "a different scene". The
+// three progress attributes are not covered: finish() rewrites them in place, and readers take
+// the counts from /done. A map without attribute_checksum (made before it existed) is read as
+// before, and --resume says its attributes are not verified; one whose root has an attribute
+// named one or two bytes away from attribute_checksum (the seal's own name damaged) is damaged.
 //
 // Storage, and why a run killed at any instant loses nothing that was checkpointed:
 //   - Every dataset is chunked and carries HDF5's Fletcher32 checksum filter (verified by HDF5,
@@ -98,6 +113,9 @@ struct MapRepair {
   std::uint64_t chunks = 0;              // damaged chunks (counted once over the datasets)
   std::uint64_t cells = 0;               // cells in them that were done and will be recomputed
   std::vector<std::string> datasets;     // the datasets where damage was found
+  // The map has no attribute checksum (written before vibromap sealed its maps): its attributes
+  // could not be verified.
+  bool unsealed = false;
 };
 
 class NewFile;  // io/output_file.hpp

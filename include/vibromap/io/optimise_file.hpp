@@ -47,6 +47,7 @@
 //                    orbit_fraction (NaN: not found), unresolved, unlisted, wall_s; per attractor (A):
 //                    regime (int8, CF flags) with n, k (int32), k_con, T_con (s), fraction,
 //                    fraction_stderr (float64), stable (int8), soft (uint8)
+// Root attribute attribute_checksum (the CRC-32 of every attribute, written last: src/io/attribute_seal.hpp).
 // Written atomically (write_hdf5_atomically); throws IoError naming the path.
 
 #include <string>

@@ -3,7 +3,7 @@
 //
 // Layout: datasets t, x1, x2, v1, v2, Fc, F (1-D, float64, each with a `units` attribute);
 // root attributes: T (s), regime (label), n, k, T_con, k_con, scene (full scene text),
-// vibromap_version. Written to FILE.tmp and renamed, so a failure never leaves a
+// vibromap_version, attribute_checksum (the CRC-32 of every attribute, written last: src/io/attribute_seal.hpp). Written to FILE.tmp and renamed, so a failure never leaves a
 // half-written FILE behind. Throws vibromap::IoError (hdf5_file.hpp) with the path on failure.
 
 #include <string>

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -82,6 +83,9 @@ BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, cons
     throw SceneError(cat(path, ": --resume: the file was made by another run than this one: ",
                          keys.empty() ? std::string("the grid") : keys, "; use --overwrite or another --output"));
   }
+  if (have.unsealed)
+    std::cerr << "vibromap: note: " << path << ": made before basins files carried an attribute checksum: its "
+              << "attributes are not verified (--overwrite makes a new file that has one)\n";
   have.scene_text = scene.text;
   return have;
 }

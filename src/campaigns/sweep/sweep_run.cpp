@@ -53,14 +53,19 @@ void check_space(const std::string& output, const MapLayout& layout) {
                          " GB free; store fewer quantities, sweep fewer cells or write elsewhere"));
 }
 
-// A note on stderr when resume() wiped damaged chunks (their cells are computed again).
+// Notes on stderr when the map has no attribute checksum (made by an older vibromap) and when
+// resume() wiped damaged chunks (their cells are computed again).
 void report_repair(const MapWriter& w) {
   const MapRepair& r = w.repair();
+  if (r.unsealed)
+    std::cerr << "vibromap: note: " << w.path() << ": made before maps carried an attribute checksum: its "
+              << "attributes are not verified (--overwrite makes a new map that has one)\n";
   if (r.chunks == 0) return;
   std::string datasets;
   for (const std::string& d : r.datasets) datasets += (datasets.empty() ? "" : ", ") + d;
   std::cerr << "vibromap: note: " << w.path() << ": " << r.chunks << " damaged chunk" << (r.chunks > 1 ? "s" : "")
-            << " (checksum failed in " << datasets << ") wiped; their " << r.cells << " cells are computed again\n";
+            << " (a failed checksum or a chunk missing from its index, in " << datasets << ") wiped; their " << r.cells
+            << " cells are computed again\n";
 }
 
 // Checks that a map being resumed is this scene's: the same canonical values key by key (the

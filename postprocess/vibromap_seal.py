@@ -1,0 +1,169 @@
+"""The attribute checksum ("seal") of vibromap's HDF5 files, checked as vibromap checks it.
+
+Chunks carry HDF5's Fletcher32 checksum, attributes do not: a variable-length string attribute
+(scene, identity, title, units) lives in HDF5's global heap, which has no checksum. So vibromap
+writes the root attribute `attribute_checksum` = "crc32 XXXXXXXX" (8 lowercase hex digits,
+zlib's CRC-32), optionally followed by "; not covered: NAME ..." (root attributes a writer
+updates in place and no reader trusts: a map's cells_done, complete and ranks), over the
+canonical record of the file's metadata that src/io/attribute_seal.cpp builds and documents.
+attribute_record() builds the same bytes with h5py's low-level API (raw bytes of every string,
+never a decoded str), so a file vibromap wrote checks here exactly as in `vibromap sweep --resume`.
+
+check_seal(f) -> True (the seal matches) or False (no seal: a file written before vibromap sealed
+its files, read as before); raises DamagedAttributes with a one-line reason otherwise.
+"""
+
+from __future__ import annotations
+
+import re
+import zlib
+
+import h5py
+import numpy as np
+
+SEAL_ATTRIBUTE = "attribute_checksum"
+_SEAL_NAME = SEAL_ATTRIBUTE.encode()
+_SEAL_TEXT = re.compile(rb"crc32 ([0-9a-f]{8})(?:; not covered: ([a-z_]+(?: [a-z_]+)*))?")
+_SKIPPED = (b"DIMENSION_LIST", b"REFERENCE_LIST")  # object references: the layout's scales stand for them
+
+
+class DamagedAttributes(Exception):
+    """The file's attributes fail their checksum, or cannot be read: the message says which."""
+
+
+def _field(data: bytes) -> bytes:
+    return str(len(data)).encode() + b":" + data
+
+
+def _record(path: bytes, name: bytes, kind: bytes, value: bytes) -> bytes:
+    return _field(path) + _field(name) + kind + _field(value)
+
+
+def _attribute_names(oid) -> list[bytes]:
+    names: list[bytes] = []
+    h5py.h5a.iterate(oid, lambda name: names.append(name))  # None: go on
+    return sorted(names)
+
+
+def _attribute_value(oid, name: bytes) -> tuple[bytes, bytes]:
+    """(kind, value) of one attribute as src/io/attribute_seal.cpp writes them in the record."""
+    aid = h5py.h5a.open(oid, name)
+    tid = aid.get_type()
+    cls = tid.get_class()
+    count = aid.get_space().get_simple_extent_npoints()
+    if cls == h5py.h5t.STRING and count == 1:
+        if tid.is_variable_str():
+            array = np.empty(aid.shape, dtype=h5py.string_dtype("ascii"))
+            aid.read(array)
+        else:  # the raw bytes, trailing NULs dropped (numpy's bytes_ drops them)
+            array = np.empty(aid.shape, dtype=f"S{tid.get_size()}")
+            aid.read(array, mtype=tid)
+        value = array.reshape(-1)[0]
+        return b"s", bytes(value) if value is not None else b""
+    if cls in (h5py.h5t.INTEGER, h5py.h5t.FLOAT):
+        integer = cls == h5py.h5t.INTEGER
+        array = np.empty(aid.shape if count else (0,), dtype="<i8" if integer else "<f8")
+        if count:
+            aid.read(array)
+        if integer:
+            return b"i", ",".join(str(int(v)) for v in array.reshape(-1)).encode()
+        return b"f", ",".join(f"{int(v):016x}" for v in array.reshape(-1).view("<u8")).encode()
+    return b"x", str(int(cls)).encode()
+
+
+def _layout_text(dsid) -> bytes:
+    """b"<f8 3x4 /E1;/E2": element type as numpy spells it, shape, attached dimension scales."""
+    tid = dsid.get_type()
+    cls = tid.get_class()
+    if cls in (h5py.h5t.INTEGER, h5py.h5t.FLOAT):
+        size = tid.get_size()
+        order = "|" if size == 1 else (">" if tid.get_order() == h5py.h5t.ORDER_BE else "<")
+        kind = "f" if cls == h5py.h5t.FLOAT else ("u" if tid.get_sign() == h5py.h5t.SGN_NONE else "i")
+        dtype = f"{order}{kind}{size}".encode()
+    else:
+        dtype = b"other"
+    shape = dsid.shape or ()
+    dims = b"x".join(str(n).encode() for n in shape) or b"scalar"
+    scales = []
+    for dim in range(len(shape)):
+        names: list[bytes] = []
+        if h5py.h5ds.get_num_scales(dsid, dim) > 0:
+            h5py.h5ds.iterate(dsid, dim, lambda scale: names.append(h5py.h5i.get_name(scale)))
+        scales.append(b",".join(names))
+    return dtype + b" " + dims + b" " + b";".join(scales)
+
+
+def _attributes(oid, path: bytes, skipped=()) -> bytes:
+    out = []
+    for name in _attribute_names(oid):
+        if name in _SKIPPED or name in skipped:
+            continue
+        kind, value = _attribute_value(oid, name)
+        out.append(_record(path, name, kind, value))
+    return b"".join(out)
+
+
+def _group(gid, path: bytes) -> bytes:
+    names: list[bytes] = []
+    gid.links.iterate(lambda name: names.append(name))
+    out = []
+    for name in sorted(names):
+        child = (b"" if path == b"/" else path) + b"/" + name
+        kind = None
+        if gid.links.get_info(name).type == h5py.h5l.TYPE_HARD:
+            oid = h5py.h5o.open(gid, name)
+            kind = h5py.h5i.get_type(oid)
+        if kind == h5py.h5i.DATASET:
+            out.append(_record(child, b"", b"l", _layout_text(oid)))
+            out.append(_attributes(oid, child))
+        elif kind == h5py.h5i.GROUP:
+            out.append(_attributes(oid, child))
+            out.append(_group(oid, child))
+        else:
+            out.append(_record(child, b"", b"x", b"link"))
+    return b"".join(out)
+
+
+def attribute_record(f: h5py.File, uncovered=()) -> bytes:
+    """The canonical record of the file's metadata (src/io/attribute_seal.hpp), without the
+    seal itself and the root attributes named in `uncovered`."""
+    skipped = {_SEAL_NAME} | {name.encode() if isinstance(name, str) else name for name in uncovered}
+    return _attributes(f.id, b"/", skipped) + _group(f.id, b"/")
+
+
+def _printable(data: bytes) -> str:
+    text = "".join(chr(c) if 0x20 <= c < 0x7F else f"\\x{c:02x}" for c in data[:60])
+    return text + ("..." if len(data) > 60 else "")
+
+
+def _near_seal_name(name: bytes) -> bool:
+    """Of the seal's length and one or two bytes away from it: its own name damaged."""
+    return len(name) == len(_SEAL_NAME) and 0 < sum(a != b for a, b in zip(name, _SEAL_NAME)) <= 2
+
+
+def check_seal(f: h5py.File) -> bool:
+    """True when the file's seal matches its attributes, False when it has none (older file);
+    DamagedAttributes with a one-line reason when they are damaged or cannot be read."""
+    try:
+        names = _attribute_names(f.id)
+        if _SEAL_NAME not in names:
+            for name in names:
+                if _near_seal_name(name):
+                    raise DamagedAttributes(f"it has no attribute '{SEAL_ATTRIBUTE}' but one named '{_printable(name)}'")
+            return False
+        kind, value = _attribute_value(f.id, _SEAL_NAME)
+        match = _SEAL_TEXT.fullmatch(value) if kind == b"s" else None
+        if match is None:
+            raise DamagedAttributes(f"its attribute '{SEAL_ATTRIBUTE}' is not 'crc32 XXXXXXXX' ('{_printable(value)}')")
+        uncovered = match.group(2).split() if match.group(2) else []
+        computed = f"{zlib.crc32(attribute_record(f, uncovered)) & 0xFFFFFFFF:08x}"
+        stored = match.group(1).decode()
+        if computed != stored:
+            raise DamagedAttributes(f"its attributes fail their checksum ({SEAL_ATTRIBUTE} says crc32 {stored}, "
+                                    f"the attributes give {computed})")
+        return True
+    except DamagedAttributes:
+        raise
+    except Exception as exc:  # h5py/HDF5 could not read them (KeyError, OSError, ValueError, ...)
+        reason = " ".join(str(exc).split()) or type(exc).__name__
+        raise DamagedAttributes(f"its attributes cannot be read ({reason})") from exc

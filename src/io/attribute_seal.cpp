@@ -1,0 +1,197 @@
+// The attribute checksum of vibromap's HDF5 files (attribute_seal.hpp documents the record).
+
+#include "attribute_seal.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstdio>
+
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/journal.hpp"
+
+namespace vibromap::detail {
+namespace {
+
+constexpr std::string_view kCrcPrefix = "crc32 ";
+constexpr std::string_view kUncoveredPrefix = "; not covered: ";
+
+// field(b): its byte length in decimal, ':', then b.
+void append_field(std::string& out, std::string_view bytes) {
+  out.append(std::to_string(bytes.size())).append(":").append(bytes);
+}
+
+void append_record(std::string& out, std::string_view path, std::string_view name, char kind, std::string_view value) {
+  append_field(out, path);
+  append_field(out, name);
+  out.push_back(kind);
+  append_field(out, value);
+}
+
+std::string hex(std::uint64_t value, int digits) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%0*llx", digits, static_cast<unsigned long long>(value));
+  return buffer;
+}
+
+// An attribute's value in the record: its kind letter and its text.
+std::pair<char, std::string> value_text(const AttributeValue& v) {
+  std::string text;
+  switch (v.kind) {
+    case AttributeValue::Kind::string: return {'s', v.text};
+    case AttributeValue::Kind::integer:
+      for (const std::int64_t i : v.ints) text.append(text.empty() ? "" : ",").append(std::to_string(i));
+      return {'i', text};
+    case AttributeValue::Kind::real:
+      for (const double x : v.reals) text.append(text.empty() ? "" : ",").append(hex(std::bit_cast<std::uint64_t>(x), 16));
+      return {'f', text};
+    case AttributeValue::Kind::other: break;
+  }
+  return {'x', std::to_string(v.type_class)};
+}
+
+// "<f8 3x4 /E1;/E2": a dataset's element type, shape and attached dimension scales.
+std::string layout_text(const Dataset& d) {
+  const Shape shape = d.shape();
+  std::string dims, scales;
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    dims.append(i ? "x" : "").append(std::to_string(shape[i]));
+    std::string attached;
+    for (const std::string& s : d.attached_scales(i)) attached.append(attached.empty() ? "" : ",").append(s);
+    scales.append(i ? ";" : "").append(attached);
+  }
+  return cat(d.element_type_text(), " ", dims.empty() ? std::string("scalar") : dims, " ", scales);
+}
+
+void append_attributes(std::string& out, const Hdf5Object& object, const std::vector<std::string>& skipped) {
+  for (const std::string& name : object.attribute_names()) {
+    if (name == "DIMENSION_LIST" || name == "REFERENCE_LIST") continue;
+    if (std::find(skipped.begin(), skipped.end(), name) != skipped.end()) continue;
+    const auto [kind, text] = value_text(object.read_attribute(name));
+    append_record(out, object.name(), name, kind, text);
+  }
+}
+
+void append_group(std::string& out, const Group& group) {
+  for (const auto& [name, kind] : group.links()) {
+    const std::string path = group.name() == "/" ? "/" + name : group.name() + "/" + name;
+    if (kind == LinkKind::dataset) {
+      const Dataset d = group.open_dataset(name);
+      append_record(out, path, "", 'l', layout_text(d));
+      append_attributes(out, d, {});
+    } else if (kind == LinkKind::group) {
+      const Group g = group.open_group(name);
+      append_attributes(out, g, {});
+      append_group(out, g);
+    } else {
+      append_record(out, path, "", 'x', "link");
+    }
+  }
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out.append(out.empty() ? "" : " ").append(n);
+  return out;
+}
+
+// `text` for a one-line message: control and non-ASCII bytes as \xNN, cut to 60 characters.
+std::string printable(std::string_view text) {
+  std::string out;
+  for (const char c : text.substr(0, 60)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      out.push_back(c);
+    } else {
+      out.append("\\x").append(hex(u, 2));
+    }
+  }
+  if (text.size() > 60) out.append("...");
+  return out;
+}
+
+[[noreturn]] void damaged(const Hdf5File& file, std::string_view why) {
+  fail(file.path(), cat("damaged: ", why, "; make it again with --overwrite"));
+}
+
+// The seal's value parsed: the CRC as 8 hex digits and the uncovered root attributes; false
+// when it is not of the form "crc32 XXXXXXXX[; not covered: NAME...]".
+bool parse_seal(std::string_view text, std::string& crc, std::vector<std::string>& uncovered) {
+  if (!text.starts_with(kCrcPrefix) || text.size() < kCrcPrefix.size() + 8) return false;
+  crc = std::string(text.substr(kCrcPrefix.size(), 8));
+  if (!std::all_of(crc.begin(), crc.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); }))
+    return false;
+  std::string_view rest = text.substr(kCrcPrefix.size() + 8);
+  if (rest.empty()) return true;
+  if (!rest.starts_with(kUncoveredPrefix)) return false;
+  rest.remove_prefix(kUncoveredPrefix.size());
+  while (!rest.empty()) {
+    const std::size_t end = std::min(rest.find(' '), rest.size());
+    const std::string_view name = rest.substr(0, end);
+    if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c == '_' || (c >= 'a' && c <= 'z'); }))
+      return false;
+    uncovered.emplace_back(name);
+    rest.remove_prefix(std::min(end + 1, rest.size()));
+  }
+  return !uncovered.empty();
+}
+
+// True when `name` has the seal's length and differs from it in one or two bytes.
+bool near_seal_name(std::string_view name) {
+  if (name.size() != kSealAttribute.size() || name == kSealAttribute) return false;
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < name.size(); ++i) differ += name[i] != kSealAttribute[i] ? 1 : 0;
+  return differ <= 2;
+}
+
+SealState check_seal(const Hdf5File& file) {
+  if (!file.has_attribute(kSealAttribute)) {
+    for (const std::string& name : file.attribute_names())
+      if (near_seal_name(name))
+        damaged(file, cat("it has no attribute '", kSealAttribute, "' but one named '", printable(name), "'"));
+    return SealState::absent;
+  }
+  const AttributeValue seal = file.read_attribute(kSealAttribute);
+  std::string stored;
+  std::vector<std::string> uncovered;
+  if (seal.kind != AttributeValue::Kind::string || !parse_seal(seal.text, stored, uncovered))
+    damaged(file, cat("its attribute '", kSealAttribute, "' is not 'crc32 XXXXXXXX' ('", printable(seal.text), "')"));
+  const std::string record = attribute_record(file, uncovered);
+  const std::string computed = hex(crc32(record.data(), record.size()), 8);
+  if (computed != stored)
+    damaged(file, cat("its attributes fail their checksum (", kSealAttribute, " says crc32 ", stored,
+                      ", the attributes give ", computed, ")"));
+  return SealState::verified;
+}
+
+}  // namespace
+
+std::string attribute_record(const Hdf5File& file, const std::vector<std::string>& uncovered) {
+  std::vector<std::string> skipped = uncovered;
+  skipped.emplace_back(kSealAttribute);
+  std::string out;
+  append_attributes(out, file, skipped);
+  append_group(out, file);
+  return out;
+}
+
+void seal_attributes(Hdf5File& file, const std::vector<std::string>& uncovered) {
+  const std::string record = attribute_record(file, uncovered);
+  std::string value = cat(kCrcPrefix, hex(crc32(record.data(), record.size()), 8));
+  if (!uncovered.empty()) value += cat(kUncoveredPrefix, joined(uncovered));
+  file.set_attribute(kSealAttribute, value);
+}
+
+SealState verify_attributes(const Hdf5File& file) {
+  try {
+    return check_seal(file);
+  } catch (const IoError& e) {
+    const std::string_view what = e.what();
+    if (what.starts_with(cat(file.path(), ": damaged: "))) throw;
+    // HDF5 could not read them: "<path>: cannot read attribute 'x' (reason)" -> the part after the path.
+    const std::string prefix = cat(file.path(), ": ");
+    damaged(file, cat("its attributes cannot be read (", what.starts_with(prefix) ? what.substr(prefix.size()) : what, ")"));
+  }
+}
+
+}  // namespace vibromap::detail
