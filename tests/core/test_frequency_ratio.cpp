@@ -57,5 +57,38 @@ TEST(FrequencyRatio, ValidateRefusesForcingOutsideTheRangeAndNamesIt) {
   EXPECT_EQ(errors.front().rfind("m1 = -1", 0), 0u) << errors.front();
 }
 
+TEST(FrequencyRatio, FastestDampingRateMatchesClosedForms) {
+  Parameters p = springs(2.0, 50.0, 2.0, 50.0);
+  // No coupling damper: body 1 alone, c1/m1.
+  p.damper1 = {Damper::Form::coefficient, 6.0};
+  p.damper2 = {Damper::Form::coefficient, 0.0};
+  EXPECT_NEAR(fastest_damping_rate(p), 3.0, 3.0 * kTol);
+  // Equal masses and dampers: C/m = [[2, -1], [-1, 1]] c/m, largest eigenvalue phi^2 c/m.
+  p.damper2 = {Damper::Form::coefficient, 6.0};
+  EXPECT_NEAR(fastest_damping_rate(p) / (std::numbers::phi * std::numbers::phi * 3.0), 1.0, kTol);
+  // A ratio xi is c / (2 sqrt(k m)): xi1 = 1, no coupling: 2 sqrt(k1/m1) = 10 1/s.
+  p.damper1 = {Damper::Form::ratio, 1.0};
+  p.damper2 = {Damper::Form::ratio, 0.0};
+  EXPECT_NEAR(fastest_damping_rate(p), 10.0, 10.0 * kTol);
+}
+
+TEST(FrequencyRatio, ValidateRefusesDampingFasterThan1e4TimesTheForcing) {
+  Parameters p;  // Table 1: the dampers' rate is about 0.02 omega
+  EXPECT_LT(fastest_damping_rate(p) / p.omega, 0.05);
+  EXPECT_TRUE(validate(p).empty());
+  p.damper1 = {Damper::Form::coefficient, 0.999e4 * p.omega * p.m1};  // c1/m1 just under the bound
+  p.damper2 = {Damper::Form::coefficient, 0.0};
+  EXPECT_TRUE(validate(p).empty()) << validate(p).front();
+  p.damper1 = {Damper::Form::coefficient, 1.001e4 * p.omega * p.m1};
+  auto errors = validate(p);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_NE(errors.front().find("times forcing.omega = 7.23 rad/s: at most 1e+04 times"), std::string::npos)
+      << errors.front();
+  p.damper1 = {Damper::Form::ratio, 1e12};  // the fuzzer's xi1 = 1e12, which spent minutes
+  errors = validate(p);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors.front(), frequency_ratio_error(p));
+}
+
 }  // namespace
 }  // namespace vibromap

@@ -16,11 +16,9 @@ endif()
 
 set(_vibromap_fuzz_dir "${CMAKE_CURRENT_BINARY_DIR}/fuzz")
 file(MAKE_DIRECTORY "${_vibromap_fuzz_dir}")
-# class and cases. In CI today: the classes that vibromap passes (issue #28 items 1 and 2's
-# reading). Not yet: scene, options and signal (extreme values that make a run hang or stop
-# slowly: item 3 and the in-flight stop of item 2) and damage (damaged attributes accepted:
-# item 4); they run by hand (tests/fuzz/fuzz_cli.py --classes NAME) until those land.
-foreach(_entry IN ITEMS scene-path:20 output:40)
+# class and cases: every class, about a minute in all on 2 cores (a longer run by hand:
+# VIBROMAP_FUZZ_CASES=3000 as above).
+foreach(_entry IN ITEMS scene:60 scene-path:20 options:60 output:40 signal:30 damage:30)
   string(REPLACE ":" ";" _pair "${_entry}")
   list(GET _pair 0 _class)
   list(GET _pair 1 _cases)

@@ -106,26 +106,52 @@ double get_parameter(const Parameters& p, std::string_view name) {
   return pf->first_form ? c : c / (2.0 * std::sqrt(m * k));
 }
 
+namespace {
+// The largest eigenvalue of M^-1 A, M = diag(m1, m2), A = [[a1 + a2, -a2], [-a2, a2]] (the
+// springs' K or the dampers' C): the larger root of l^2 - 2 h l + P = 0, in a form that does not
+// square h.
+double largest_mode_rate(double a1, double a2, double m1, double m2) {
+  const double h = 0.5 * ((a1 + a2) / m1 + a2 / m2);
+  if (!(h > 0.0)) return 0.0;
+  const double P = (a1 / m1) * (a2 / m2);
+  return h * (1.0 + std::sqrt(std::max(0.0, 1.0 - (P / h) / h)));
+}
+}  // namespace
+
 double fastest_natural_frequency(const Parameters& p) {
-  // The larger root lambda of lambda^2 - 2 h lambda + P = 0, in a form that does not square h.
   const double k1 = p.spring1.stiffness(p.m1), k2 = p.spring2.stiffness(p.m2);
-  const double h = 0.5 * ((k1 + k2) / p.m1 + k2 / p.m2);
-  const double P = (k1 / p.m1) * (k2 / p.m2);
-  const double lambda = h * (1.0 + std::sqrt(std::max(0.0, 1.0 - (P / h) / h)));
-  return std::sqrt(lambda);
+  return std::sqrt(largest_mode_rate(k1, k2, p.m1, p.m2));
+}
+
+double fastest_damping_rate(const Parameters& p) {
+  const double k1 = p.spring1.stiffness(p.m1), k2 = p.spring2.stiffness(p.m2);
+  const double c1 = p.damper1.coefficient(p.m1, k1), c2 = p.damper2.coefficient(p.m2, k2);
+  return largest_mode_rate(c1, c2, p.m1, p.m2);
 }
 
 std::string frequency_ratio_error(const Parameters& p) {
   const double wn = fastest_natural_frequency(p);
   const double ratio = p.omega / wn;
-  if (ratio >= kMinFrequencyRatio && ratio <= kMaxFrequencyRatio) return {};
   std::ostringstream os;
-  os << std::setprecision(3) << "forcing.omega = " << p.omega << " rad/s is " << ratio
-     << " times omega_n = " << wn << " rad/s, the fastest natural frequency of m1 and m2 on their springs "
-     << "(k1, k2): omega/omega_n must be in [" << kMinFrequencyRatio << ", " << kMaxFrequencyRatio
-     << "], i.e. forcing.omega in [" << kMinFrequencyRatio * wn << ", " << kMaxFrequencyRatio * wn
-     << "] rad/s with these masses and springs";
-  return os.str();
+  os << std::setprecision(3);
+  if (!(ratio >= kMinFrequencyRatio && ratio <= kMaxFrequencyRatio)) {
+    os << "forcing.omega = " << p.omega << " rad/s is " << ratio << " times omega_n = " << wn
+       << " rad/s, the fastest natural frequency of m1 and m2 on their springs "
+       << "(k1, k2): omega/omega_n must be in [" << kMinFrequencyRatio << ", " << kMaxFrequencyRatio
+       << "], i.e. forcing.omega in [" << kMinFrequencyRatio * wn << ", " << kMaxFrequencyRatio * wn
+       << "] rad/s with these masses and springs";
+    return os.str();
+  }
+  const double rate = fastest_damping_rate(p);
+  if (!(rate / p.omega <= kMaxFrequencyRatio)) {
+    os << "the dampers (c1|xi1, c2|xi2) damp m1 and m2 at up to " << rate << " 1/s, " << rate / p.omega
+       << " times forcing.omega = " << p.omega << " rad/s: at most " << kMaxFrequencyRatio
+       << " times (a forcing period would take more than 10^4 of the integrator's steps), i.e. c1 and c2 "
+       << "at most " << std::setprecision(3) << kMaxFrequencyRatio * p.omega / rate
+       << " times their values here";
+    return os.str();
+  }
+  return {};
 }
 
 std::vector<std::string> validate(const Parameters& p) {

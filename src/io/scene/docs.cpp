@@ -199,8 +199,9 @@ void write_reference_sweep(std::ostream& os) {
 std::string frequency_rule_text(std::string_view prefix) {
   static_assert(kMinFrequencyRatio == 1e-4 && kMaxFrequencyRatio == 1e4, "the text below states them");
   return cat(prefix, "Across keys: forcing.omega/omega_n must be in [1e-4, 1e4], omega_n the fastest natural\n",
-             prefix, "frequency of m1 and m2 on their springs (k1|omega1, k2|omega2, no contact); checked on the\n",
-             prefix, "scene after --set and at every corner of a [sweep] grid and an [optimise] box.\n");
+             prefix, "frequency of m1 and m2 on their springs (k1|omega1, k2|omega2, no contact), and their\n",
+             prefix, "fastest decay rate on the dampers (c1|xi1, c2|xi2) at most 1e4 forcing.omega; checked on\n",
+             prefix, "the scene after --set and at every corner of a [sweep] grid and an [optimise] box.\n");
 }
 
 void write_scene_keys(std::ostream& os) {

@@ -290,8 +290,9 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
 // [sweep] grid or an [optimise] box its extremes are at the corners: those are checked.
 
 // The keys frequency_ratio_error reads, as --set names them.
-constexpr std::string_view kRatioKeys[] = {"forcing.omega", "system.m1", "system.m2",    "system.k1",
-                                           "system.omega1", "system.k2", "system.omega2"};
+constexpr std::string_view kRatioKeys[] = {"forcing.omega", "system.m1", "system.m2", "system.k1", "system.omega1",
+                                           "system.k2",     "system.omega2", "system.c1", "system.xi1", "system.c2",
+                                           "system.xi2"};
 
 // "file: --set forcing.omega=1e-9" when one of the rule's keys was overridden, else "file".
 std::string ratio_origin(const Context& ctx) {

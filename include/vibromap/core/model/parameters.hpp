@@ -96,8 +96,14 @@ inline constexpr double kMinFrequencyRatio = 1e-4;
 inline constexpr double kMaxFrequencyRatio = 1e4;
 // omega_n above, rad/s.
 double fastest_natural_frequency(const Parameters& p);
-// Empty when omega / omega_n lies in that range, else the one-line reason with the range of
-// omega it allows.
+// The same for the dampers: the fastest decay rate of the bodies on their dampers alone, the
+// largest eigenvalue of M^-1 C, C = [[c1 + c2, -c2], [-c2, c2]], 1/s. It must be at most
+// kMaxFrequencyRatio times omega: each decay time is a few steps of the explicit integrators, so
+// above that a forcing period costs more than 10^4 steps (xi1 = 1e12 on Table 1: 10^13 a period,
+// a run that spends its whole step budget in the first one). Table 1's is 0.02 omega.
+double fastest_damping_rate(const Parameters& p);
+// Empty when omega / omega_n lies in that range and the damping rate is within its bound, else
+// the one-line reason with the range it allows.
 std::string frequency_ratio_error(const Parameters& p);
 
 // Physical checks that do not depend on how the values were read; each message names the
