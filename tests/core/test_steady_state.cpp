@@ -62,7 +62,7 @@ TEST(SteadyState, ACycleLongerThanNMaxIsNotFound) {
   EXPECT_EQ(d.detected_at(), -1);
 }
 
-TEST(SteadyState, CandidatePeriodsOfACycleAreItsMultiplesFirst) {
+TEST(SteadyState, CandidatePeriodsOfACycleStartWithItsPeriod) {
   const Model model{Parameters{}};
   SteadyStateDetector d(model, kNMax, kTol);
   // Samples 0..4 of a 3-cycle: one short of detection (which needs samples 0..5).
