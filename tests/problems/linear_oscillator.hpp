@@ -46,6 +46,9 @@ class LinearOscillator {
     return (amp_ * e).real() + constant_;
   }
 
+  // The system matrix A of u' = A u + ... (the free vector field's Jacobian).
+  const Eigen::Matrix4d& matrix() const { return A_; }
+
   Eigen::Vector4d solution(const Eigen::Vector4d& u0, double t) const {
     const Eigen::Matrix4d E = (A_ * t).exp();
     return E * (u0 - particular(0.0)) + particular(t);
