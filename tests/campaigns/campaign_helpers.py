@@ -1,6 +1,7 @@
 """Helpers shared by the campaign tests under mpiexec (sweep and multistart)."""
 import os
 import signal
+import subprocess
 import time
 
 EXE = os.environ.get("VIBROMAP_EXE", "build/vibromap")
@@ -83,3 +84,15 @@ def wait_for_cells_done(proc, out, at_least, poll=0.1, timeout=120):
         except (OSError, KeyError, ValueError, RuntimeError):
             continue  # the map is being written while we read it (no SWMR): try again
     return done
+
+
+def reference_map(folder, scene_text):
+    """A finished map of `scene_text` in `folder` (scene.toml, reference.h5): the undamaged
+    reference the damage tests compare with."""
+    scene = folder / "scene.toml"
+    scene.write_text(scene_text)
+    ref = folder / "reference.h5"
+    proc = subprocess.run([EXE, "sweep", str(scene), "-o", str(ref), "-q"], env=ENV, capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    return scene, ref

@@ -23,7 +23,7 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess"))
-from campaign_helpers import ENV, EXE  # noqa: E402
+from campaign_helpers import ENV, EXE, reference_map  # noqa: E402
 import vibromap_h5  # noqa: E402
 
 # Cheap cells (no forcing: no contact), 4 x 3.
@@ -76,14 +76,7 @@ def chunk_bytes(path):
 
 @pytest.fixture(scope="module")
 def reference(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("attributes")
-    scene = folder / "scene.toml"
-    scene.write_text(SCENE)
-    ref = folder / "reference.h5"
-    proc = subprocess.run([EXE, "sweep", str(scene), "-o", str(ref), "-q"], env=ENV, capture_output=True, text=True,
-                          timeout=300)
-    assert proc.returncode == 0, proc.stderr
-    return scene, ref
+    return reference_map(tmp_path_factory.mktemp("attributes"), SCENE)
 
 
 def assert_damage_refused(proc, path, reason):
