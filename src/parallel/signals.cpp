@@ -4,15 +4,31 @@
 #include <csignal>
 #include <cstring>
 
+#include <unistd.h>
+
+#include "vibromap/parallel/exit_code.hpp"
+
 namespace vibromap {
 namespace {
 
 std::atomic<int> g_stop_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free, "the handler's store must be async-signal-safe");
 
+std::atomic<int> g_at_once{0};  // open StopAtOnce sections
+
+// Async-signal-safe: write(2) and _exit(2) only.
+void exit_at_once(int signal) {
+  const char* line = signal == SIGINT    ? "vibromap: stopped by SIGINT while reading a file (no checkpoint needed)\n"
+                     : signal == SIGUSR1 ? "vibromap: stopped by SIGUSR1 while reading a file (no checkpoint needed)\n"
+                                         : "vibromap: stopped by SIGTERM while reading a file (no checkpoint needed)\n";
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, line, std::strlen(line));
+  ::_exit(code(ExitCode::stopped));
+}
+
 extern "C" void on_stop_signal(int signal) {
   int none = 0;
   g_stop_signal.compare_exchange_strong(none, signal);  // the first signal wins
+  if (g_at_once.load() > 0) exit_at_once(g_stop_signal.load());
 }
 
 }  // namespace
@@ -25,6 +41,13 @@ void install_stop_handlers() {
   action.sa_flags = SA_RESTART;  // interrupted system calls (MPI's, HDF5's) resume
   for (const int signal : {SIGINT, SIGTERM, SIGUSR1}) sigaction(signal, &action, nullptr);
 }
+
+StopAtOnce::StopAtOnce() {
+  g_at_once.fetch_add(1);
+  if (const int signal = g_stop_signal.load(); signal != 0) exit_at_once(signal);
+}
+
+StopAtOnce::~StopAtOnce() { g_at_once.fetch_sub(1); }
 
 int stop_signal() { return g_stop_signal.load(); }
 

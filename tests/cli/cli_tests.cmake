@@ -296,3 +296,9 @@ vibromap_cli_test(step_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set
                   ERR "--set solver\\.max_steps=1e11: must be an integer in \\[1, 1e\\+10\\]")
 vibromap_cli_test(period_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set analysis.max_periods=9e18
                   ERR "--set analysis\\.max_periods=9e18: must be an integer in \\[1, 1e\\+08\\]")
+# A diverging integration whose measure overflows (rk4 at 2^11 steps a period on an impact at
+# 1e9 m/s: F_max = inf) is a failed point naming the measure, never an infinite number (#28).
+vibromap_cli_test(run_measure_overflow_is_a_failed_point RC 0
+                  ARGS run jobs/paper/table1.toml --set "solver.method=\"rk4\"" --set solver.rk4_steps=2048
+                  --set initial.v2=1e9 --set analysis.max_periods=5 --set "analysis.steady=\"integrate\"" -f json
+                  OUT "\"status\": \"failed\",[^}]*\"message\": \"non-finite F_max: the integration diverged[^}]*\"F_max\": null")

@@ -24,6 +24,19 @@ int stop_signal();
 const std::atomic<int>& stop_flag();
 // Records `signal` as if it had arrived (the farm on rank 0, when another rank was signalled).
 void request_stop(int signal);
+// While one lives, a stop signal ends the process at once: one line on stderr, exit 3
+// (ExitCode::stopped), no final checkpoint. For work that cannot poll the stop flag and whose
+// interruption loses nothing: reading an existing file through the HDF5 library, which a damaged
+// file can send into an endless loop (HDF5 1.10 walks a global heap whose free-space object has
+// size 0 for ever). A signal that came before the section opens ends the process as it opens.
+// The file is left as kill -9 would leave it: whole, as of its last checkpoint.
+class StopAtOnce {
+ public:
+  explicit StopAtOnce();
+  ~StopAtOnce();
+  StopAtOnce(const StopAtOnce&) = delete;
+  StopAtOnce& operator=(const StopAtOnce&) = delete;
+};
 // "SIGTERM", "SIGINT", "SIGUSR1", or "signal N".
 std::string signal_name(int signal);
 

@@ -21,6 +21,7 @@
 #include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -73,7 +74,10 @@ BasinsContent new_content(const Scene& scene, const BasinsPlane& plane) {
 
 // A file being resumed must be this run's; the error names the values that differ.
 BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, const std::string& path) {
-  BasinsContent have = read_basins_file(path);
+  BasinsContent have = [&] {
+    const StopAtOnce reading;  // HDF5 cannot poll the stop flag, and a damaged file can make it loop
+    return read_basins_file(path);
+  }();
   BasinsContent want = new_content(scene, plane);
   const std::vector<std::string> diff = canonical_differences(have.identity, want.identity);
   if (!diff.empty() || have.labels.size() != want.labels.size()) {

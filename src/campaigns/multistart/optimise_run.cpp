@@ -26,6 +26,7 @@
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 #include "vibromap/parallel/campaign.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -47,6 +48,10 @@ void check_outputs(const OptimiseRunConfig& config) {
   if (check_output(config.journal, {.option = "journal", .overwrite = true}) && !config.resume && !config.overwrite)
     throw SceneError(cat(config.journal, ": an unfinished run of this output left its journal; --resume finishes it, "
                          "--overwrite starts again"));
+  // The files written beside it, later: a link, a device or a folder in their place is refused
+  // now, before the seeding map and the journal are made (an existing file is replaced).
+  check_output(config.map_output, {.option = "seeding map", .overwrite = true, .resumable = true});
+  if (!config.trajectory.empty()) check_output(config.trajectory, {.option = "trajectory", .overwrite = true});
 }
 
 // What a journal must match to be resumed: the scene's result-defining values (every
@@ -117,6 +122,7 @@ std::string_view not_a_regular_file(const std::filesystem::file_status& st) {
 
 // Rank 0: the best cells of a map file as seeds, read a chunk at a time (any map size).
 std::vector<Seed> seeds_from_map(const Scene& scene, const std::string& path, bool made_here) {
+  const StopAtOnce reading;  // HDF5 cannot poll the stop flag, and a damaged file can make it loop
   std::error_code ec;
   if (const std::string_view what = not_a_regular_file(std::filesystem::status(path, ec)); !what.empty())
     throw SceneError(cat(scene.path, ": [optimise] map ", path, ": ", what));

@@ -18,6 +18,7 @@
 #include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -99,7 +100,10 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   detail::MapTally tally;
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;
   if (config.resume && exists) {
-    MapWriter w = MapWriter::resume(config.output, [&](const CellResult& c) { tally.add(c); });
+    MapWriter w = [&] {
+      const StopAtOnce reading;  // HDF5 cannot poll the stop flag, and a damaged file can make it loop
+      return MapWriter::resume(config.output, [&](const CellResult& c) { tally.add(c); });
+    }();
     check_same_run(w, layout, scene);
     report_repair(w);
     return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(tally), ranks);

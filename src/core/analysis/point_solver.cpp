@@ -174,6 +174,21 @@ void measure_impacts(PointSummary& s, const Model& model, double hertz_limit) {
   }
   s.k_con = s.T_con > 0.0 ? model.period() / s.T_con : 0.0;
   s.hertz_valid = s.z_ratio <= hertz_limit;
+  // A diverging integration (rk4 with too few steps on a violent impact) can overflow a
+  // measure while the state stays finite: the point has failed, and says which measure.
+  const std::pair<const char*, double*> measures[] = {
+      {"T_con", &s.T_con}, {"F_max", &s.F_max}, {"z_max", &s.z_max}, {"z_ratio", &s.z_ratio}, {"k_con", &s.k_con}};
+  std::string overflowed;
+  for (const auto& [name, value] : measures)
+    if (!std::isfinite(*value)) {
+      overflowed.append(overflowed.empty() ? "" : ", ").append(name);
+      *value = std::numeric_limits<double>::quiet_NaN();
+    }
+  if (overflowed.empty()) return;
+  s.status = SolveStatus::failed;
+  s.message = "non-finite " + overflowed + ": the integration diverged (a finer solver setting may not)";
+  s.regime = {RegimeKind::failed, 0, 0};
+  s.hertz_valid = false;
 }
 
 // The regime of an n-periodic motion whose cycle is the periods j-n+1 .. j.

@@ -137,3 +137,21 @@ def test_a_lock_file_that_is_a_link_is_refused(tmp_path):
     assert proc.returncode == 2, proc.stderr
     assert "out.h5.lock: is a symbolic link" in one_error_line(proc.stderr)
     assert canary.read_text() == "keep me\n" and not out.exists()
+
+
+@pytest.mark.parametrize("side", ["_trajectory.h5", "_map.h5"])
+@pytest.mark.parametrize("kind", ["link", "directory"])
+def test_optimise_refuses_a_bad_side_file_before_making_any(tmp_path, side, kind):
+    """optimise writes OUT, OUT.journal, OUT_map.h5 (the seeding sweep) and OUT_trajectory.h5:
+    a link or a folder in place of one written last is refused before the others are made (the
+    fuzzer found a journal and a seeding map left behind by a link at OUT_trajectory.h5)."""
+    out = tmp_path / "o.h5"
+    bad = tmp_path / ("o" + side)
+    intact = make_link(bad, tmp_path) if kind == "link" else make_directory(bad, tmp_path)
+    proc = run(command("optimise", out, tmp_path))
+    assert proc.returncode == 2, proc.stderr
+    line = one_error_line(proc.stderr)
+    assert str(bad) in line and ("symbolic link" in line if kind == "link" else "directory" in line), line
+    assert intact()
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["tiny_sweep.toml", bad.name] + (["canary.txt"] if kind == "link" else [])), list(tmp_path.iterdir())
