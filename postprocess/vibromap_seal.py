@@ -141,9 +141,64 @@ def _near_seal_name(name: bytes) -> bool:
     return len(name) == len(_SEAL_NAME) and 0 < sum(a != b for a, b in zip(name, _SEAL_NAME)) <= 2
 
 
+_HEAP_SIGNATURE = b"GCOL\x01\x00\x00\x00"
+_SCAN_WHOLE = 1 << 30   # files up to this are scanned whole, larger ones at both ends (their heaps)
+_SCAN_ENDS = 256 << 20
+
+
+def _stuck_object(f, at: int, file_size: int) -> int:
+    """Where HDF5's walk of the global heap collection at `at` would stop advancing, or -1.
+    The same walk as src/io/attribute_seal.cpp (endless_global_heap)."""
+    f.seek(at)
+    head = f.read(16)
+    size = min(int.from_bytes(head[8:16], "little"), file_size - at)
+    f.seek(at)
+    heap = f.read(size)
+    p = 16
+    while p + 16 <= len(heap):
+        index = int.from_bytes(heap[p:p + 2], "little")
+        obj = int.from_bytes(heap[p + 8:p + 16], "little")
+        need = 16 + (obj + 7) // 8 * 8 if index > 0 else obj
+        if need == 0:
+            return at + p
+        if need > len(heap) - p:
+            break
+        p += need
+    return -1
+
+
+def endless_global_heap(path) -> str:
+    """Empty, or why the HDF5 library would loop for ever reading the file's string attributes:
+    a global heap collection whose free-space object has size 0 (one flipped bit can do it).
+    Read 4 MiB at a time."""
+    block = 4 << 20
+    with open(path, "rb") as f:
+        f.seek(0, 2)
+        size = f.tell()
+        spans = [(0, size)] if size <= _SCAN_WHOLE else [(0, _SCAN_ENDS), (size - _SCAN_ENDS, size)]
+        for start, end in spans:
+            for at in range(start, end, block):
+                f.seek(at)
+                data = f.read(min(block + len(_HEAP_SIGNATURE) - 1, end - at))
+                found = data.find(_HEAP_SIGNATURE)
+                while found >= 0:
+                    stuck = _stuck_object(f, at + found, size)
+                    if stuck >= 0:
+                        return (f"a global heap (HDF5's store of string attributes) has a free-space object of "
+                                f"size 0 at byte {stuck}, which the HDF5 library would read for ever")
+                    found = data.find(_HEAP_SIGNATURE, found + 1)
+    return ""
+
+
 def check_seal(f: h5py.File) -> bool:
     """True when the file's seal matches its attributes, False when it has none (older file);
     DamagedAttributes with a one-line reason when they are damaged or cannot be read."""
+    try:
+        why = endless_global_heap(f.filename)
+    except OSError:
+        why = ""
+    if why:
+        raise DamagedAttributes(why)
     try:
         names = _attribute_names(f.id)
         if _SEAL_NAME not in names:

@@ -6,6 +6,13 @@
 #include <bit>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <functional>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/journal.hpp"
@@ -144,7 +151,81 @@ bool near_seal_name(std::string_view name) {
   return differ <= 2;
 }
 
+// ---- Global heaps that HDF5 would read for ever -------------------------------------------
+// A string attribute's bytes live in a global heap collection ("GCOL", version 1, then its size
+// in 8 bytes): objects one after another, each a 16-byte header (index 2 bytes, references 2,
+// reserved 4, size 8) and its data padded to 8 bytes; index 0 is the free space, which has no
+// header padding. HDF5 1.10 walks a collection object by object when it first reads from it, and
+// a free-space object of size 0 never advances the walk: one flipped bit in a size can make the
+// library loop for ever. The walk is repeated here, on the bytes, before any attribute is read.
+
+constexpr char kHeapSignature[] = {'G', 'C', 'O', 'L', 1, 0, 0, 0};
+constexpr std::uint64_t kScanWhole = std::uint64_t{1} << 30;  // files up to this are scanned whole,
+constexpr std::uint64_t kScanEnds = std::uint64_t{256} << 20;  // larger ones at both ends (their heaps)
+
+std::uint64_t little_endian(const unsigned char* p, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
+  return v;
+}
+
+// Where the walk of the collection at `at` would stop advancing, or 0.
+std::uint64_t stuck_object(int fd, std::uint64_t at, std::uint64_t file_size) {
+  unsigned char head[16];
+  if (::pread(fd, head, sizeof head, static_cast<off_t>(at)) != static_cast<ssize_t>(sizeof head)) return 0;
+  const std::uint64_t size = std::min(little_endian(head + 8, 8), file_size - at);
+  std::vector<unsigned char> heap(static_cast<std::size_t>(size));
+  if (size < 16 || ::pread(fd, heap.data(), heap.size(), static_cast<off_t>(at)) != static_cast<ssize_t>(size)) return 0;
+  for (std::uint64_t p = 16; p + 16 <= size;) {
+    const std::uint64_t index = little_endian(&heap[p], 2), object = little_endian(&heap[p + 8], 8);
+    const std::uint64_t need = index > 0 ? 16 + ((object + 7) / 8) * 8 : object;
+    if (need == 0) return at + p;
+    if (need > size - p) break;
+    p += need;
+  }
+  return 0;
+}
+
+// Calls visit(offset) for each collection signature in [from, to) of the file.
+void find_heaps(int fd, std::uint64_t from, std::uint64_t to, const std::function<void(std::uint64_t)>& visit) {
+  constexpr std::size_t kBlock = std::size_t{4} << 20;
+  std::vector<char> block(kBlock + sizeof kHeapSignature);
+  for (std::uint64_t at = from; at < to; at += kBlock) {
+    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock + sizeof kHeapSignature - 1, to - at));
+    const ssize_t got = ::pread(fd, block.data(), want, static_cast<off_t>(at));
+    if (got <= 0) return;
+    const char* end = block.data() + got;
+    for (const char* p = block.data(); (p = std::search(p, end, std::begin(kHeapSignature), std::end(kHeapSignature))) != end; ++p)
+      visit(at + static_cast<std::uint64_t>(p - block.data()));
+  }
+}
+
+// Empty, or why HDF5 would loop for ever reading the file's attributes.
+std::string endless_global_heap(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};  // HDF5 opened it: a failure here says nothing about its heaps
+  struct stat st {};
+  std::uint64_t stuck = 0;
+  if (::fstat(fd, &st) == 0) {
+    const auto size = static_cast<std::uint64_t>(st.st_size);
+    const auto visit = [&](std::uint64_t at) {
+      if (stuck == 0) stuck = stuck_object(fd, at, size);
+    };
+    if (size <= kScanWhole) {
+      find_heaps(fd, 0, size, visit);
+    } else {
+      find_heaps(fd, 0, kScanEnds, visit);
+      find_heaps(fd, size - kScanEnds, size, visit);
+    }
+  }
+  ::close(fd);
+  if (stuck == 0) return {};
+  return cat("a global heap (HDF5's store of string attributes) has a free-space object of size 0 at byte ",
+             std::to_string(stuck), ", which the HDF5 library would read for ever");
+}
+
 SealState check_seal(const Hdf5File& file) {
+  if (const std::string why = endless_global_heap(file.path()); !why.empty()) damaged(file, why);
   if (!file.has_attribute(kSealAttribute)) {
     for (const std::string& name : file.attribute_names())
       if (near_seal_name(name))

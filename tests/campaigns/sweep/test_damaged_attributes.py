@@ -129,6 +129,23 @@ def test_the_map_of_issue_28_is_refused_as_damage(reference, tmp_path):
     assert_damage_refused(resume(scene, damaged), damaged, "its attribute")
 
 
+def test_a_heap_that_hdf5_would_read_for_ever_is_refused_as_damage(reference, tmp_path):
+    """The long fuzz run's hang: a flipped bit in a heap object's size sent the walk of the
+    collection onto a free-space object (index 0) of size 0, which HDF5 1.10 reads for ever (the
+    resume ignored every signal). Made here directly: the first object's header becomes that."""
+    scene, ref = reference
+    damaged = tmp_path / "damaged.h5"
+    data = bytearray(ref.read_bytes())
+    first = data.find(b"GCOL\x01\x00\x00\x00") + 16
+    struct.pack_into("<HHIQ", data, first, 0, 0, 0, 0)
+    damaged.write_bytes(bytes(data))
+    assert_damage_refused(resume(scene, damaged), damaged,
+                          f"a global heap (HDF5's store of string attributes) has a free-space object of size 0 at byte {first}")
+    with pytest.raises(vibromap_h5.VibromapFileError,
+                       match="free-space object of size 0"):
+        vibromap_h5.read_map(str(damaged))
+
+
 @pytest.mark.parametrize("seed", range(1, 9))
 def test_metadata_flips_are_refused_or_harmless(reference, tmp_path, seed):
     scene, ref = reference
