@@ -1,7 +1,8 @@
 # One step of the install tests (install_tests.cmake), run with cmake -P:
-#   STEP        tree | run_table1 | post | consumer_core | consumer_all
+#   STEP        tree | run_table1 | post | consumer_core | consumer_all | python_package
 #   SOURCE_DIR  BUILD_DIR  PREFIX (the install prefix)  WORK (scratch folder)
 #   EXE         the build tree's vibromap   GENERATOR CXX CC LAUNCHER: for the consumer project
+#   PYTHON      the interpreter of the postprocess tests (python_package)
 
 # Runs a command; fails the test unless it exits 0. Sets <prefix>_out.
 function(run prefix)
@@ -96,6 +97,39 @@ elseif(STEP MATCHES "^consumer_(core|all)$")
     message(FATAL_ERROR "consumer printed '${consumer_out}', vibromap run ${table1}: '${built}'")
   endif()
   message(STATUS "consumer (${STEP}): ${consumer_out}")
+
+elseif(STEP STREQUAL "python_package")
+  # pip install --no-build-isolation --no-deps of a copy of postprocess/ (setuptools builds in
+  # the tree it is given), into a folder of its own: every module, one command per script.
+  set(dir ${WORK}/python)
+  file(REMOVE_RECURSE ${dir})
+  file(GLOB modules RELATIVE ${SOURCE_DIR}/postprocess ${SOURCE_DIR}/postprocess/*.py)
+  foreach(f ${modules} pyproject.toml)
+    file(COPY ${SOURCE_DIR}/postprocess/${f} DESTINATION ${dir}/src)
+  endforeach()
+  run(pip ${PYTHON} -m pip install --no-build-isolation --no-deps --no-index --no-cache-dir
+      --disable-pip-version-check --target ${dir}/target ${dir}/src)
+  file(GLOB installed RELATIVE ${dir}/target ${dir}/target/*.py)
+  list(SORT modules)
+  list(SORT installed)
+  set(commands "")
+  foreach(m IN LISTS modules)
+    if(NOT m MATCHES "^vibromap_")
+      string(REGEX REPLACE "\\.py$" "" name "${m}")
+      string(REPLACE "_" "-" name "vibromap-${name}")
+      list(APPEND commands ${name})
+    endif()
+  endforeach()
+  file(GLOB scripts RELATIVE ${dir}/target/bin ${dir}/target/bin/vibromap-*)
+  list(SORT scripts)
+  if(NOT installed STREQUAL modules OR NOT scripts STREQUAL commands)
+    message(FATAL_ERROR "modules installed '${installed}', expected '${modules}'; "
+                        "commands '${scripts}', expected '${commands}' (postprocess/pyproject.toml)")
+  endif()
+  run(help ${CMAKE_COMMAND} -E env PYTHONPATH=${dir}/target ${dir}/target/bin/vibromap-summarize-map --help)
+  if(NOT help_out MATCHES "^usage: summarize_map ")
+    message(FATAL_ERROR "vibromap-summarize-map --help:\n${help_out}")
+  endif()
 
 else()
   message(FATAL_ERROR "unknown STEP '${STEP}'")

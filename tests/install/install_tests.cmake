@@ -7,6 +7,8 @@
 #   install.consumer_core   find_package(vibromap COMPONENTS core) from a project outside the
 #                           tree (tests/install/consumer), linked to vibromap::core, solves Table 1
 #   install.consumer_all    the same with every component, linked to vibromap::campaigns
+#   install.python_package  pip installs postprocess/ (pyproject.toml) without network: every
+#                           module, one vibromap-<script> command per script, which runs
 set(_check ${PROJECT_SOURCE_DIR}/tests/install/check_install.cmake)
 set(_args -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DBUILD_DIR=${PROJECT_BINARY_DIR}
           -DPREFIX=${CMAKE_CURRENT_BINARY_DIR}/install/prefix -DWORK=${CMAKE_CURRENT_BINARY_DIR}/install
@@ -19,5 +21,7 @@ foreach(_step run_table1 post consumer_core consumer_all)
   set_tests_properties(install.${_step} PROPERTIES FIXTURES_REQUIRED vibromap_installed)
 endforeach()
 unset(_step)
+add_test(NAME install.python_package COMMAND ${CMAKE_COMMAND} ${_args} -DPYTHON=${VibromapPython_EXECUTABLE}
+         -DSTEP=python_package -P ${_check})
 unset(_args)
 unset(_check)
