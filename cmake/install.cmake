@@ -1,0 +1,46 @@
+# Installation (included from the top-level CMakeLists.txt): `cmake --install build --prefix P` gives
+#   P/bin/vibromap                          the executable
+#   P/bin/vibromap-post                     the postprocess scripts, one command (postprocess/vmpy)
+#   P/share/vibromap/postprocess/           the scripts it runs
+#   P/share/vibromap/jobs/                  the example scenes (jobs/)
+#   P/share/doc/vibromap/                   README.md, CHANGELOG.md, docs/
+#   P/include/vibromap/, P/lib/libvibromap_*.a and P/lib/cmake/vibromap/: the libraries, for
+#   find_package(vibromap [COMPONENTS core io parallel campaigns]) and vibromap::core etc.
+# One export set per layer, so that a user of the core alone needs Eigen only.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(VIBROMAP_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/vibromap)
+
+install(TARGETS vibromap RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+foreach(_layer core io parallel campaigns)
+  install(TARGETS vibromap_${_layer} EXPORT vibromap-${_layer}-targets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(EXPORT vibromap-${_layer}-targets NAMESPACE vibromap::
+          DESTINATION ${VIBROMAP_INSTALL_CMAKEDIR})
+endforeach()
+unset(_layer)
+install(DIRECTORY include/vibromap DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+
+configure_package_config_file(cmake/vibromapConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/vibromapConfig.cmake INSTALL_DESTINATION ${VIBROMAP_INSTALL_CMAKEDIR})
+# 0.x: a minor version may change the API.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/vibromapConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/vibromapConfig.cmake ${PROJECT_BINARY_DIR}/vibromapConfigVersion.cmake
+        DESTINATION ${VIBROMAP_INSTALL_CMAKEDIR})
+
+# The postprocess scripts: vmpy installed as bin/vibromap-post finds them in
+# ../share/vibromap/postprocess (and picks the Python interpreter as in the source tree).
+file(GLOB _vibromap_py ${PROJECT_SOURCE_DIR}/postprocess/*.py)
+install(FILES ${_vibromap_py} DESTINATION ${CMAKE_INSTALL_DATADIR}/vibromap/postprocess)
+install(PROGRAMS postprocess/vmpy DESTINATION ${CMAKE_INSTALL_DATADIR}/vibromap/postprocess)
+install(PROGRAMS postprocess/vmpy DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME vibromap-post)
+unset(_vibromap_py)
+
+install(DIRECTORY jobs/ DESTINATION ${CMAKE_INSTALL_DATADIR}/vibromap/jobs USE_SOURCE_PERMISSIONS)
+install(FILES README.md CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY docs DESTINATION ${CMAKE_INSTALL_DOCDIR})
+include(${CMAKE_CURRENT_LIST_DIR}/package.cmake)

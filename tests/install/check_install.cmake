@@ -1,0 +1,136 @@
+# One step of the install tests (install_tests.cmake), run with cmake -P:
+#   STEP        tree | run_table1 | post | consumer_core | consumer_all | python_package
+#   SOURCE_DIR  BUILD_DIR  PREFIX (the install prefix)  WORK (scratch folder)
+#   EXE         the build tree's vibromap   GENERATOR CXX CC LAUNCHER: for the consumer project
+#   PYTHON      the interpreter of the postprocess tests (python_package)
+
+# Runs a command; fails the test unless it exits 0. Sets <prefix>_out.
+function(run prefix)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  WORKING_DIRECTORY ${WORK})
+  if(NOT rc STREQUAL "0")
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "${cmd}\n--- exit code: ${rc}\n--- stdout:\n${out}\n--- stderr:\n${err}")
+  endif()
+  set(${prefix}_out "${out}" PARENT_SCOPE)
+endfunction()
+
+# The regime and k_con rows of `vibromap run SCENE` as "regime (1,1) k_con 1111.22".
+function(regime_of exe scene result)
+  run(cli ${exe} run ${scene})
+  if(NOT cli_out MATCHES "\n  regime +([^ ]+) .*\n  k_con +([^ ]+) ")
+    message(FATAL_ERROR "${exe} run ${scene}: no regime and k_con rows in\n${cli_out}")
+  endif()
+  set(${result} "regime ${CMAKE_MATCH_1} k_con ${CMAKE_MATCH_2}" PARENT_SCOPE)
+endfunction()
+
+file(MAKE_DIRECTORY ${WORK})
+set(table1 jobs/paper/table1.toml)
+
+if(STEP STREQUAL "tree")
+  file(REMOVE_RECURSE ${PREFIX})
+  run(install ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${PREFIX})
+  foreach(f bin/vibromap bin/vibromap-post share/vibromap/postprocess/vmpy
+            share/vibromap/postprocess/vibromap_h5.py share/vibromap/postprocess/plot_regime_map.py
+            share/vibromap/${table1} share/vibromap/jobs/demo/e1_e2.toml share/vibromap/jobs/reference.toml
+            share/doc/vibromap/README.md share/doc/vibromap/CHANGELOG.md share/doc/vibromap/docs/model.md
+            share/doc/vibromap/docs/img/demo_e1_e2_soft.png
+            include/vibromap/core/analysis/point_solver.hpp include/vibromap/campaigns/exit_status.hpp)
+    if(NOT EXISTS ${PREFIX}/${f})
+      message(FATAL_ERROR "not installed: ${PREFIX}/${f}")
+    endif()
+  endforeach()
+  file(GLOB_RECURSE config RELATIVE ${PREFIX} ${PREFIX}/*/vibromapConfig.cmake)
+  file(GLOB_RECURSE libs RELATIVE ${PREFIX} ${PREFIX}/*/libvibromap_*.a)
+  list(SORT libs)
+  list(TRANSFORM libs REPLACE ".*/" "")
+  if(NOT config MATCHES "cmake/vibromap/vibromapConfig.cmake$"
+     OR NOT libs STREQUAL "libvibromap_campaigns.a;libvibromap_core.a;libvibromap_io.a;libvibromap_parallel.a")
+    message(FATAL_ERROR "package config '${config}', libraries '${libs}'")
+  endif()
+  file(GLOB bin RELATIVE ${PREFIX}/bin ${PREFIX}/bin/*)
+  list(SORT bin)
+  if(NOT bin STREQUAL "vibromap;vibromap-post")
+    message(FATAL_ERROR "bin/ holds '${bin}', expected 'vibromap;vibromap-post' (no test program)")
+  endif()
+
+elseif(STEP STREQUAL "run_table1")
+  regime_of(${PREFIX}/bin/vibromap ${PREFIX}/share/vibromap/${table1} installed)
+  regime_of(${EXE} ${SOURCE_DIR}/${table1} built)
+  if(NOT installed STREQUAL built OR NOT installed MATCHES "^regime \\(1,1\\) ")
+    message(FATAL_ERROR "installed: '${installed}', build tree: '${built}' (the paper: (1,1))")
+  endif()
+  message(STATUS "installed vibromap, table1: ${installed}")
+
+elseif(STEP STREQUAL "post")
+  run(help ${PREFIX}/bin/vibromap-post --help)
+  if(NOT help_out MATCHES "^usage: vibromap-post SCRIPT" OR NOT help_out MATCHES "\n  plot_regime_map\n"
+     OR help_out MATCHES "vibromap_h5")
+    message(FATAL_ERROR "vibromap-post --help:\n${help_out}")
+  endif()
+  # A script run from share/vibromap/postprocess, importing its sibling modules.
+  run(script ${PREFIX}/bin/vibromap-post summarize_map --help)
+  if(NOT script_out MATCHES "^usage: summarize_map ")
+    message(FATAL_ERROR "vibromap-post summarize_map --help:\n${script_out}")
+  endif()
+
+elseif(STEP MATCHES "^consumer_(core|all)$")
+  set(components "")
+  if(CMAKE_MATCH_1 STREQUAL "core")
+    set(components core)
+  endif()
+  set(dir ${WORK}/${STEP})
+  file(REMOVE_RECURSE ${dir})
+  # Only the prefix: no package registry, no build tree.
+  run(configure ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/install/consumer -B ${dir} -G ${GENERATOR}
+      -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_C_COMPILER=${CC}
+      -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER} -DCMAKE_PREFIX_PATH=${PREFIX}
+      -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF -DCONSUMER_COMPONENTS=${components})
+  string(FIND "${configure_out}" " from ${PREFIX}/" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "vibromap not found in ${PREFIX}:\n${configure_out}")
+  endif()
+  run(build ${CMAKE_COMMAND} --build ${dir})
+  run(consumer ${dir}/consumer)
+  regime_of(${EXE} ${SOURCE_DIR}/${table1} built)
+  if(NOT consumer_out STREQUAL "${built}\n")
+    message(FATAL_ERROR "consumer printed '${consumer_out}', vibromap run ${table1}: '${built}'")
+  endif()
+  message(STATUS "consumer (${STEP}): ${consumer_out}")
+
+elseif(STEP STREQUAL "python_package")
+  # pip install --no-build-isolation --no-deps of a copy of postprocess/ (setuptools builds in
+  # the tree it is given), into a folder of its own: every module, one command per script.
+  set(dir ${WORK}/python)
+  file(REMOVE_RECURSE ${dir})
+  file(GLOB modules RELATIVE ${SOURCE_DIR}/postprocess ${SOURCE_DIR}/postprocess/*.py)
+  foreach(f ${modules} pyproject.toml)
+    file(COPY ${SOURCE_DIR}/postprocess/${f} DESTINATION ${dir}/src)
+  endforeach()
+  run(pip ${PYTHON} -m pip install --no-build-isolation --no-deps --no-index --no-cache-dir
+      --disable-pip-version-check --target ${dir}/target ${dir}/src)
+  file(GLOB installed RELATIVE ${dir}/target ${dir}/target/*.py)
+  list(SORT modules)
+  list(SORT installed)
+  set(commands "")
+  foreach(m IN LISTS modules)
+    if(NOT m MATCHES "^vibromap_")
+      string(REGEX REPLACE "\\.py$" "" name "${m}")
+      string(REPLACE "_" "-" name "vibromap-${name}")
+      list(APPEND commands ${name})
+    endif()
+  endforeach()
+  file(GLOB scripts RELATIVE ${dir}/target/bin ${dir}/target/bin/vibromap-*)
+  list(SORT scripts)
+  if(NOT installed STREQUAL modules OR NOT scripts STREQUAL commands)
+    message(FATAL_ERROR "modules installed '${installed}', expected '${modules}'; "
+                        "commands '${scripts}', expected '${commands}' (postprocess/pyproject.toml)")
+  endif()
+  run(help ${CMAKE_COMMAND} -E env PYTHONPATH=${dir}/target ${dir}/target/bin/vibromap-summarize-map --help)
+  if(NOT help_out MATCHES "^usage: summarize_map ")
+    message(FATAL_ERROR "vibromap-summarize-map --help:\n${help_out}")
+  endif()
+
+else()
+  message(FATAL_ERROR "unknown STEP '${STEP}'")
+endif()
