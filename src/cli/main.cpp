@@ -280,6 +280,8 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       ->check(kOutputName)
       ->type_name("FILE.h5");
   c->add_flag("--overwrite", args.overwrite, "Replace an existing branch file");
+  c->add_flag("--points", args.points,
+              "Table: print every point of every branch too (by default a summary: branches and bifurcations)");
   c->add_option("-f,--format", args.format, "Output on stdout: table or json")
       ->check(CLI::IsMember({"table", "json"}))
       ->type_name("table|json")
