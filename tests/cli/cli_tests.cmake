@@ -92,6 +92,14 @@ vibromap_cli_test(unknown_key_by_set RC 2 ARGS run jobs/paper/table1.toml --set 
                   ERR "--set contact\\.E3=1e9: unknown key 'E3' in \\[contact\\]")
 vibromap_cli_test(set_without_equals RC 2 ARGS run jobs/paper/table1.toml --set system.m2
                   ERR "--set system\\.m2: expected section\\.key=value")
+# --set names a key as [sweep] does: the key alone when only one section has it (#29 item 4).
+# m2 = 300 kg gives the (7,3) with k_con 775.110929... that --set system.m2=300 gives.
+vibromap_cli_test(set_short_key RC 0 ARGS run jobs/paper/table1.toml --set m2=300 --format json
+                  OUT "\"regime\": \"\\(7,3\\)\",.*\"k_con\": 775\\.1109292869")
+vibromap_cli_test(set_short_key_checked RC 2 ARGS run jobs/paper/table1.toml --set m2=-5
+                  ERR "jobs/paper/table1\\.toml: --set m2=-5: must be > 0 \\(kg\\)")
+vibromap_cli_test(set_short_key_of_two_sections RC 2 ARGS run jobs/paper/table1.toml --set x1=0.01
+                  ERR "--set x1=0\\.01: several sections have the key 'x1': name it section\\.key \\(initial\\.x1 or census\\.x1\\)")
 vibromap_cli_test(bad_format RC 2 ARGS run jobs/paper/table1.toml --format xml ERR "--format")
 vibromap_cli_test(unknown_option RC 2 ARGS run jobs/paper/table1.toml --bogus ERR "--bogus")
 vibromap_cli_test(no_command RC 2 ARGS ERR "subcommand is required")
