@@ -332,7 +332,8 @@ def plot_convergence(opt: Optimisation):
                  "dots: feasible evaluations; grey crosses: outside the kept regime; lines: best feasible so far",
                  fontsize=10)  # fmt: skip
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    # Below the axes: the starts' labels are long, and beside them they would squeeze the axes.
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.13), borderaxespad=0.0, ncols=1 if len(opt.starts) < 8 else 2)
     return fig
 
 
