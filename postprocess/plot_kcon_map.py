@@ -4,9 +4,11 @@ outlined.
 
 k_con = T / T_con (forcing period over the duration of the longest impact) is the source
 paper's softness measure: near 1000 the impact is rigid (a short "stick"-shaped force pulse),
-near 1-10 it is soft (a long "bell"). The heat map uses a log colour scale; cells without an
-impact (no contact, or k_con not finite) and cells not computed are drawn in two greys and
-named in the legend. Cells beyond the Hertz limit (z_max/R* > the map's hertz_limit, 0.05 by
+near 1-10 it is soft (a long "bell"). The heat map uses a log colour scale; cells without a
+k_con are drawn by why, each named in the legend with its count: no contact (mid grey),
+permanent contact (brown), not periodic (quasi-periodic, chaotic, non-periodic: pink),
+unresolved or failed (dark grey), any other without a finite k_con (tan), and not computed
+(light grey). Cells beyond the Hertz limit (z_max/R* > the map's hertz_limit, 0.05 by
 default) are greyed and hatched: their k_con comes from a force law that does not hold there.
 A red line outlines the soft region by the one definition (periodic with impacts, stable,
 Hertz-valid, k_con <= the map's soft_kcon, 10 by default): the map's /soft, or for an older map
@@ -63,13 +65,23 @@ FIGSIZE_IN = (9.0, 6.5)  # width, height in inches; at the default 150 dpi: 1350
 STRIP_FIGSIZE_IN = (9.0, 3.5)  # a 1-D map: 1350 x 525 px
 CMAP = "viridis"  # dark = soft (small k_con), bright = rigid
 COLOR_SOFT_OUTLINE = "#e31a1c"  # red: the border of the soft region
-COLOR_NO_IMPACT = "#9e9e9e"  # mid grey: computed, but no impact (k_con undefined)
+COLOR_NO_CONTACT = "#9e9e9e"  # mid grey: the bodies never touch (k_con undefined)
 COLOR_NOT_COMPUTED = "#dedede"  # light grey: not computed yet
+# Cells without a finite k_con, by why: (colour, legend text, regime flag meanings). A periodic
+# cell with impacts always has one; "other" catches the rest (e.g. chatter without a k_con).
+NO_KCON_KINDS = (
+    (COLOR_NO_CONTACT, "no contact", ("no_contact",)),
+    ("#8c564b", "permanent contact (no impact)", ("permanent_contact",)),
+    ("#e377c2", "not periodic (quasi-periodic, chaotic): no k_con", ("quasi_periodic", "chaotic", "non_periodic")),
+    ("#404040", "unresolved or failed: no k_con", ("unresolved", "failed")),
+    ("#c49c94", "other: no finite k_con", ()),
+)
 HERTZ_HATCH = "xx"  # over Hertz-invalid cells, on a translucent white that greys their colour
 HERTZ_HATCH_COLOR = "0.25"
 HERTZ_FACE = (1.0, 1.0, 1.0, 0.55)
 SOFT_GID = "soft-outline"  # gid of the soft region's outline (tests find it by this)
 HERTZ_GID = "hertz-invalid"  # gid of the hatched Hertz-invalid cells
+NO_KCON_GID = "no-kcon"  # gid of the cells drawn by why they have no k_con
 
 
 def parse_args(argv: list[str] | None):
@@ -80,7 +92,9 @@ def parse_args(argv: list[str] | None):
             "map file, on a log colour scale, with the soft region outlined: periodic with impacts, "
             "stable, Hertz-valid and k_con <= the map's soft_kcon (10 by default). k_con ~1000 is a "
             "rigid impact, ~1-10 a soft one. Cells beyond the Hertz limit (z_max/R* > hertz_limit) are "
-            "greyed and hatched; cells without an impact or not computed are grey. The map must store "
+            "greyed and hatched; cells without a k_con are coloured by why (no contact, permanent contact, "
+            "not periodic, unresolved or failed, other) and named in the legend, apart from cells not "
+            "computed. The map must store "
             "k_con ([sweep] store = [\"k_con\", ...])."
         ),
         suffix="_kcon",
@@ -115,6 +129,19 @@ def kcon_cells(sl: MapSlice):
     valid = ~not_computed & np.isfinite(k_con) & (k_con > 0)
     no_impact = ~not_computed & ~valid
     return np.ma.masked_array(k_con, mask=~valid), no_impact, not_computed
+
+
+def no_kcon_kinds(sweep: SweepMap, sl: MapSlice, no_impact: np.ndarray) -> list[np.ndarray]:
+    """The computed cells without a finite k_con split by why, one mask per NO_KCON_KINDS entry
+    (by the cell's regime flag meaning; the last one takes every cell the others do not)."""
+    regime = np.asarray(sl.data["regime"]) if "regime" in sl.data else np.full(no_impact.shape, -99)
+    meaning = np.vectorize(lambda code: sweep.regime_meanings.get(int(code), ""), otypes=[str])(regime)
+    masks, left = [], no_impact.copy()
+    for _, _, meanings in NO_KCON_KINDS[:-1]:
+        mask = left & np.isin(meaning, meanings)
+        masks.append(mask)
+        left &= ~mask
+    return masks + [left]
 
 
 def draw_kcon(fig, ax, x_edges, y_edges, k_con: np.ma.MaskedArray, soft_kcon: float, strip: bool) -> None:
@@ -161,7 +188,7 @@ def hertz_marks(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
 
 
 def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
-    """The figure: log-coloured k_con, grey cells without impact or not computed, Hertz-invalid
+    """The figure: log-coloured k_con, cells without k_con coloured by why (NO_KCON_KINDS) or not computed, Hertz-invalid
     cells greyed and hatched, the soft region (add_soft_cells' flag: never an invalid cell)
     outlined (a LineCollection with gid SOFT_GID), a colorbar and a legend row below."""
     k_con, no_impact, not_computed = kcon_cells(sl)
@@ -169,10 +196,16 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
     x_edges, y_edges = maps.setup_axes(ax, sl)
     ax.set_title(maps.slice_title("k_con = T/T_con, soft region outlined", sweep, sl), fontsize=10)
 
-    # Grey cells first: 0 = no impact, 1 = not computed, masked where k_con is shown.
-    grey = np.ma.masked_array(not_computed.astype(np.int64), mask=~(no_impact | not_computed))
-    grey_cmap = matplotlib.colors.ListedColormap([COLOR_NO_IMPACT, COLOR_NOT_COMPUTED])
-    ax.pcolormesh(x_edges, y_edges, grey, cmap=grey_cmap, vmin=-0.5, vmax=1.5, shading="flat")
+    # Cells without k_con first, one colour per reason (index into the list), not computed last;
+    # masked where k_con is shown.
+    counts = [(mask, color, what) for mask, (color, what, _) in zip(no_kcon_kinds(sweep, sl, no_impact), NO_KCON_KINDS)]
+    counts.append((not_computed, COLOR_NOT_COMPUTED, "not computed"))
+    reason = np.zeros(no_impact.shape, dtype=np.int64)
+    for index, (mask, _, _) in enumerate(counts):
+        reason[mask] = index
+    reason_cmap = matplotlib.colors.ListedColormap([color for _, color, _ in counts])
+    ax.pcolormesh(x_edges, y_edges, np.ma.masked_array(reason, mask=~(no_impact | not_computed)), cmap=reason_cmap,
+                  vmin=-0.5, vmax=len(counts) - 0.5, shading="flat", gid=NO_KCON_GID)  # fmt: skip
     handles = []
     if k_con.count() > 0:
         draw_kcon(fig, ax, x_edges, y_edges, k_con, info.soft_kcon, sl.y is None)
@@ -180,7 +213,6 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
         handles.append(Line2D([], [], color="none", label="no cell with an impact in this slice"))
     handles.append(soft_outline(ax, sl, info, x_edges, y_edges))
     handles.append(hertz_marks(ax, sl, info, x_edges, y_edges))
-    counts = ((no_impact, COLOR_NO_IMPACT, "no impact / no k_con"), (not_computed, COLOR_NOT_COMPUTED, "not computed"))
     for mask, color, what in counts:
         if mask.any():
             handles.append(maps.cell_patch(color, f"{what}: {maps.cells_text(int(mask.sum()))}"))

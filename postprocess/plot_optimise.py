@@ -2,21 +2,26 @@
 """Plot what `vibromap optimise` found: how each start converged, where the starts went over
 the regime map they were seeded from, and the best point's motion as the source paper shows it.
 
-Three figures, named after the optimisation file OPT.h5 (or -o PREFIX):
-  PREFIX_convergence.png  the objective (k_con, T_con or F_max) against the evaluation number,
-                          one panel line per start: every feasible evaluation as a dot, every
+Three figures, named after the optimisation file OPT.h5 (or -o STEM; -o law.png is the stem law:
+law_convergence.png, law_on_map.png, law_best.png):
+  STEM_convergence.png  the objective (k_con, T_con or F_max) against the evaluation number,
+                          one line per start in its own colour (line style: its algorithm),
+                          labelled with its number, algorithm, seed point, best value and why
+                          it stopped: every feasible evaluation as a dot, every
                           infeasible one (regime left, solve failed) as a grey cross where its
                           objective is defined, and the best feasible value so far as a line;
                           the overall best as a dashed level.
-  PREFIX_on_map.png       the regime map of the seeding sweep (as plot_regime_map draws it), a
+  STEM_on_map.png       the regime map of the seeding sweep (as plot_regime_map draws it), a
                           2-D slice through the best point (other axes held at the grid values
                           nearest to it, or --fix), with each start's path of improving feasible
                           points from its seed (circle) projected on the slice, and the best
                           points (stars, numbered as in the output). Needs the map: --map, or the
                           file the optimisation names in its seeds_from attribute.
-  PREFIX_best.png         displacements and contact force of the best point's steady motion
+  STEM_best.png         displacements and contact force of the best point's steady motion
                           (plot_trajectory's figure), from the trajectory file the optimisation
-                          wrote beside OPT.h5; the title names the motion's Hertz validity
+                          wrote beside OPT.h5; the title names the contact law and its
+                          restitution (the best point's when restitution is free), and the
+                          motion's Hertz validity
                           (z_max/R* against the limit: "Hertz-valid" or "Hertz-INVALID") from
                           the best point's re-solve from rest (best/00/integrate), when the
                           file holds its z_ratio or hertz_valid.
@@ -96,6 +101,7 @@ class Start:
     feasible: np.ndarray  # (E) bool
     labels: np.ndarray  # (E) regime labels "(1,1)", "chatter", ...
     best: int | None  # index of the best feasible evaluation
+    law: str = ""  # the start's contact law when the law is a free variable ("" otherwise)
 
 
 @dataclasses.dataclass
@@ -115,6 +121,7 @@ class Optimisation:
     best: list[dict]  # per best point: every parameter (E1, ..., omega2), objective, regime, k_con, ...
     trajectory: str  # the best point's trajectory file name ("" when none)
     hertz_limit: float = HERTZ_LIMIT_DEFAULT  # z_max/R* above which Hertz theory does not hold
+    scene: str = ""  # the scene the optimisation ran (TOML text; "" in files without one)
 
     def column(self, name: str) -> int | None:
         return self.variables.index(name) if name in self.variables else None
@@ -144,11 +151,14 @@ def _read_start(group, path: str, variables: int) -> Start:
         feasible=np.asarray(group["feasible"][()]) != 0,
         labels=regime_labels(group["regime"][()], group["n"][()], group["k"][()]),
         best=best if best >= 0 else None,
+        law=_text(group.attrs.get("law", "")),
     )
 
 
 def _read_best(group) -> dict:
     point = {name: float(value) for name, value in group.attrs.items() if np.asarray(value).dtype.kind in "iuf"}
+    if "law" in group.attrs:  # the best point's contact law
+        point["law"] = _text(group.attrs["law"])
     # integrate/: the re-solve from rest; soft_check/: the soft-fraction re-check (min_soft_fraction > 0 only;
     # older files have none).
     for sub in ("integrate", "soft_check"):
@@ -159,17 +169,25 @@ def _read_best(group) -> dict:
     return point
 
 
+def scene_table(scene: str, section: str) -> dict:
+    """The [section] table of a scene's TOML text ({} when absent or unreadable)."""
+    try:
+        import tomllib  # Python >= 3.11
+
+        table = tomllib.loads(scene).get(section, {})
+        return table if isinstance(table, dict) else {}
+    except (ImportError, ValueError, TypeError, AttributeError):
+        return {}
+
+
 def file_hertz_limit(f) -> float:
     """The Hertz limit the optimisation ran with: its hertz_limit attribute, else its scene's
     [analysis] hertz_limit, else the default (0.05)."""
     if "hertz_limit" in f.attrs:
         return float(np.asarray(f.attrs["hertz_limit"]).reshape(()))
     try:
-        import tomllib  # Python >= 3.11
-
-        analysis = tomllib.loads(_text(f.attrs.get("scene", ""))).get("analysis", {})
-        return float(analysis.get("hertz_limit", HERTZ_LIMIT_DEFAULT))
-    except (ImportError, ValueError, TypeError, AttributeError):
+        return float(scene_table(_text(f.attrs.get("scene", "")), "analysis").get("hertz_limit", HERTZ_LIMIT_DEFAULT))
+    except (ValueError, TypeError):
         return HERTZ_LIMIT_DEFAULT
 
 
@@ -199,6 +217,7 @@ def read_optimise(path: str) -> Optimisation:
             best=best,
             trajectory=_text(f.attrs.get("trajectory", "")),
             hertz_limit=file_hertz_limit(f),
+            scene=_text(f.attrs.get("scene", "")),
         )
 
 
@@ -212,7 +231,7 @@ def soft_check_text(point: dict) -> str:
 
 
 def hertz_text(opt: Optimisation) -> str:
-    """The best point's Hertz validity as its re-solve from rest (the motion PREFIX_best.png
+    """The best point's Hertz validity as its re-solve from rest (the motion STEM_best.png
     shows) found it, e.g. "Hertz-valid: z_max/R* = 0.012 <= 0.05" or "Hertz-INVALID: z_max/R* =
     0.21 > 0.05"; "" when the file holds neither its z_ratio nor its hertz_valid."""
     point = opt.best[0] if opt.best else {}
@@ -246,23 +265,58 @@ def improving_points(start: Start, sense: str) -> np.ndarray:
     return np.nonzero(changed)[0]
 
 
-def start_label(s: Start) -> str:
-    return f"start {s.index}: {s.algorithm}, seed {s.seed}"
+def _seed_text(opt: Optimisation, s: Start) -> str:
+    """The start's seed point, e.g. "m2=250, omega2=4.8" ("" when the file holds no such seed)."""
+    if not 0 <= s.seed < len(opt.seeds):
+        return ""
+    return ", ".join(f"{name}={value:.4g}" for name, value in zip(opt.variables, opt.seeds[s.seed]))
+
+
+def start_label(opt: Optimisation, s: Start) -> str:
+    """A start's legend entry, distinct from every other start's: its number, algorithm, seed
+    (number and point), contact law when it is free, best feasible value and why it stopped, e.g.
+    "#0 bobyqa, seed 0 (m2=250, omega2=4.8): best 3, XTOL_REACHED"."""
+    seed = _seed_text(opt, s)
+    law = f", {s.law}" if s.law else ""
+    best = f"best {s.objective[s.best]:.5g}" if s.best is not None and s.best < len(s.objective) else "no feasible point"
+    stop = f", {s.stop}" if s.stop else ""
+    return f"#{s.index} {s.algorithm}{law}, seed {s.seed}" + (f" ({seed})" if seed else "") + f": {best}{stop}"
+
+
+def start_color(position: int) -> str:
+    """One colour per start (matplotlib's ten-colour cycle, then tab20's lighter shades)."""
+    return f"C{position}" if position < 10 else matplotlib.colormaps["tab20"]((2 * position + 1) % 20)
+
+
+def contact_text(opt: Optimisation) -> str:
+    """The contact law of the best point and its restitution, e.g. "contact: hunt-crossley,
+    restitution e = 0.6": the best point's own (the file's best/00 law and restitution), else
+    the scene's [contact] law and restitution; the defaults hertz and 1."""
+    contact = scene_table(opt.scene, "contact")
+    point = opt.best[0] if opt.best else {}
+    law = str(point.get("law") or contact.get("law", "hertz"))
+    e = point.get("restitution")
+    if e is None:
+        e = contact.get("restitution", 1.0)
+    try:
+        return f"contact: {law}, restitution e = {float(e):.4g}"
+    except (TypeError, ValueError):
+        return f"contact: {law}"
 
 
 def plot_convergence(opt: Optimisation):
     """Objective against evaluation number, per start."""
     fig, ax = plt.subplots(figsize=CONVERGENCE_FIGSIZE_IN, constrained_layout=True)
     shown = []
-    for s in opt.starts:
-        color = ALGORITHM_COLORS.get(s.algorithm, "C7")
+    for position, s in enumerate(opt.starts):
+        color = start_color(position)
         number = np.arange(1, len(s.objective) + 1)
         ok = s.feasible & np.isfinite(s.objective)
         bad = ~s.feasible & np.isfinite(s.objective)
         ax.plot(number[ok], s.objective[ok], ".", color=color, alpha=0.35, markersize=4)
         ax.plot(number[bad], s.objective[bad], "x", color=INFEASIBLE_COLOR, markersize=4)
-        ax.plot(number, running_best(s.objective, s.feasible, opt.sense), "-", color=color, linewidth=1.5,
-                label=start_label(s), gid=f"running-best-{s.index}")
+        ax.plot(number, running_best(s.objective, s.feasible, opt.sense), ALGORITHM_LINESTYLES.get(s.algorithm, "-"),
+                color=color, linewidth=1.5, label=start_label(opt, s), gid=f"running-best-{s.index}")
         shown.append(s.objective[ok | bad])
     values = np.concatenate(shown) if shown else np.array([])
     values = values[np.isfinite(values) & (values > 0)]
@@ -278,7 +332,8 @@ def plot_convergence(opt: Optimisation):
                  "dots: feasible evaluations; grey crosses: outside the kept regime; lines: best feasible so far",
                  fontsize=10)  # fmt: skip
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    # Below the axes: the starts' labels are long, and beside them they would squeeze the axes.
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.13), borderaxespad=0.0, ncols=1 if len(opt.starts) < 8 else 2)
     return fig
 
 
@@ -375,7 +430,8 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
             "regime map they were seeded from, and the best point's displacements and contact force."
         ),
         epilog=(
-            "Writes PREFIX_convergence.png, PREFIX_on_map.png and PREFIX_best.png (PREFIX: OPT without .h5). "
+            "Writes STEM_convergence.png, STEM_on_map.png and STEM_best.png (STEM: -o without a trailing .png, "
+            "default OPT without .h5). "
             "The map slice goes through the best point: map axes other than --x and --y are held at the grid "
             "values nearest to it (or --fix NAME=VALUE, SI units). Exit status 2 on a bad argument or file."
         ),
@@ -387,7 +443,10 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--fix", metavar="NAME=VALUE", nargs="+", action="extend", default=[],
                         help="hold map axis NAME at the grid value nearest VALUE (default: the best point's value)")  # fmt: skip
     parser.add_argument("--periods", metavar="N", type=float, help="plot only N forcing periods of the best motion")
-    parser.add_argument("-o", "--output", metavar="PREFIX", help="prefix of the images (default: OPT without .h5)")
+    parser.add_argument("-o", "--output", metavar="STEM",
+                        help="stem of the images: STEM_convergence.png, STEM_on_map.png, STEM_best.png; "
+                             "a trailing .png is dropped (-o law.png: law_convergence.png, ...) "
+                             "(default: OPT without .h5)")  # fmt: skip
     parser.add_argument("--dpi", type=int, default=150, help="resolution of the images (default: 150)")
     args = parser.parse_args(argv)
     try:
@@ -398,9 +457,16 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
         parser.error("--dpi must be positive")
     if args.periods is not None and not args.periods > 0:
         parser.error("--periods must be positive")
-    if args.output is None:
-        args.output = os.path.splitext(args.optimisation)[0]
+    args.output = output_stem(args.output, args.optimisation)
     return args
+
+
+def output_stem(output: str | None, optimisation: str) -> str:
+    """The images' stem: -o without a trailing .png (any case), else OPT without .h5."""
+    if output is None:
+        return os.path.splitext(optimisation)[0]
+    root, ext = os.path.splitext(output)
+    return root if ext.lower() == ".png" else output
 
 
 def write_figures(args: argparse.Namespace) -> tuple[list[str], list[str]]:
@@ -426,7 +492,7 @@ def write_figures(args: argparse.Namespace) -> tuple[list[str], list[str]]:
         traj = read_trajectory(traj_path)
         fig = plot_trajectory.plot(traj, plot_trajectory.select_periods(traj, args.periods))
         hertz = hertz_text(opt)
-        fig.suptitle(f"best point: {plot_trajectory.title(traj)}" + (f"\n{hertz}" if hertz else ""))
+        fig.suptitle(f"best point: {plot_trajectory.title(traj)}\n{contact_text(opt)}" + (f"\n{hertz}" if hertz else ""))
         out = f"{args.output}_best.png"
         save_figure(fig, out, args.dpi)
         written.append(out)

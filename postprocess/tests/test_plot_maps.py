@@ -550,7 +550,37 @@ def test_kcon_figure_outlines_the_soft_cells_and_no_hertz_invalid_one(tmp_path):
         assert (mesh.norm.vmin, mesh.norm.vmax) == (2.0, 486.0)
         assert mesh.get_array().mask.sum() == 1 + 1  # no contact, not computed
         assert legend_texts(fig) == [f"{SOFT_DEFINITION} (outlined): 4 cells", "Hertz-invalid (z_max/R* > 0.05): 4 cells",
-                                     "no impact / no k_con: 1 cell", "not computed: 1 cell"]  # fmt: skip
+                                     "no contact: 1 cell", "not computed: 1 cell"]  # fmt: skip
+    finally:
+        matplotlib.pyplot.close(fig)
+
+
+def test_kcon_key_tells_no_contact_from_non_periodic_cells(tmp_path):
+    """The soft map with [0, 3] no contact, [1, 3] chaotic, [2, 3] quasi-periodic, [3, 3]
+    permanent contact, [4, 3] failed (k_con NaN in all but the first, 0 there): each reason its
+    own colour and legend entry (they were all one grey "no impact / no k_con")."""
+    path = tmp_path / "reasons.h5"
+    arrays = make_map.soft_pattern()
+    regime, k_con = arrays["regime"].copy(), arrays["k_con"].copy()
+    for cell, kind in (((1, 3), "chaotic"), ((2, 3), "quasi_periodic"), ((3, 3), "permanent_contact"), ((4, 3), "failed")):
+        regime[cell], k_con[cell] = R[kind], np.nan
+    n = np.where(regime == R["periodic"], 1, 0)
+    make_map.write_soft_map(path, regime=regime, k_con=k_con, n=n, k=n.copy())
+    m, sl, fig = kcon_figure(path)
+    try:
+        assert legend_texts(fig)[2:] == ["no contact: 1 cell", "permanent contact (no impact): 1 cell",
+                                         "not periodic (quasi-periodic, chaotic): no k_con: 2 cells",
+                                         "unresolved or failed: no k_con: 1 cell", "not computed: 1 cell"]  # fmt: skip
+        [mesh] = [c for c in fig.axes[0].collections if c.get_gid() == plot_kcon_map.NO_KCON_GID]
+        colors = {}
+        rgba = mesh.to_rgba(mesh.get_array()).reshape(sl.data["regime"].shape + (4,))
+        for cell, kind in (((0, 3), "no_contact"), ((1, 3), "chaotic"), ((2, 3), "quasi_periodic"),
+                           ((3, 3), "permanent_contact"), ((4, 3), "failed"), ((5, 2), "not_computed")):  # fmt: skip
+            j, i = (cell[1], cell[0]) if sl.x.name == make_map.SOFT_AXES[0][0] else cell
+            colors[kind] = matplotlib.colors.to_hex(rgba[j, i])
+        assert colors["no_contact"] == plot_kcon_map.COLOR_NO_CONTACT
+        assert colors["chaotic"] == colors["quasi_periodic"] == "#e377c2"
+        assert len({colors[k] for k in ("no_contact", "chaotic", "permanent_contact", "failed", "not_computed")}) == 5
     finally:
         matplotlib.pyplot.close(fig)
 
@@ -693,7 +723,7 @@ def test_kcon_script_writes_a_png(tmp_path):
     image = matplotlib.image.imread(out)
     assert pixels_near(image, plot_kcon_map.COLOR_SOFT_OUTLINE, tol=0.05) > 300  # the soft outline
     assert pixels_near(image, plot_kcon_map.COLOR_NOT_COMPUTED, tol=0.01) > 15_000
-    assert pixels_near(image, plot_kcon_map.COLOR_NO_IMPACT, tol=0.01) > 15_000
+    assert pixels_near(image, plot_kcon_map.COLOR_NO_CONTACT, tol=0.01) > 15_000
 
 
 # ---- the map scripts: errors, help, launcher -------------------------------------------------

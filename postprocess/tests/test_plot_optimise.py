@@ -18,6 +18,7 @@ import os
 import sys
 
 import h5py
+import matplotlib.colors
 import matplotlib.lines
 import matplotlib.pyplot
 import numpy as np
@@ -202,4 +203,63 @@ def test_best_figure_names_the_best_points_hertz_validity(files, monkeypatch, in
     assert plot_optimise.main([str(opt_path), "-o", str(opt_path.parent / "out")]) == 0
     lines = titles["out_best.png"].splitlines()
     assert lines[0].startswith("best point: regime (1,1)")
-    assert lines[1:] == ([expected] if expected else [])
+    assert lines[1] == "contact: hertz, restitution e = 1" if scene is None else lines[1].startswith("contact: hertz")
+    assert lines[2:] == ([expected] if expected else [])
+
+
+def best_title(opt_path, monkeypatch) -> list[str]:
+    titles = {}
+
+    def keep_title(fig, path, dpi):
+        titles[os.path.basename(path)] = fig._suptitle.get_text() if fig._suptitle else ""
+        matplotlib.pyplot.close(fig)
+
+    monkeypatch.setattr(plot_optimise, "save_figure", keep_title)
+    assert plot_optimise.main([str(opt_path), "-o", str(opt_path.parent / "out")]) == 0
+    return titles["out_best.png"].splitlines()
+
+
+def test_best_figure_names_the_contact_law_and_restitution(files, monkeypatch):
+    opt_path = files[0]
+    write_optimisation(opt_path, scene='[contact]\nlaw = "hunt-crossley"\nrestitution = 0.6\n')
+    assert best_title(opt_path, monkeypatch)[1] == "contact: hunt-crossley, restitution e = 0.6"
+    with h5py.File(opt_path, "r+") as f:  # as vibromap writes it: the best point's own law and restitution
+        f["best/00"].attrs["restitution"] = 0.35
+        f["best/00"].attrs["law"] = "flores"
+    assert best_title(opt_path, monkeypatch)[1] == "contact: flores, restitution e = 0.35"
+
+
+def test_minus_o_names_a_stem_and_drops_png(files, capsys):
+    opt, _, _ = files
+    assert plot_optimise.main([str(opt), "-o", str(opt.parent / "law.png")]) == 0
+    for suffix in ("_convergence.png", "_on_map.png", "_best.png"):
+        assert (opt.parent / f"law{suffix}").is_file(), suffix
+    assert not list(opt.parent.glob("law.png*"))
+    assert plot_optimise.output_stem("out/LAW.PNG", "x.h5") == "out/LAW"
+    assert plot_optimise.output_stem("law", "x.h5") == "law"
+    assert plot_optimise.output_stem(None, "runs/opt.h5") == "runs/opt"
+    proc = run([sys.executable, SCRIPT, "--help"])
+    assert "-o law.png: law_convergence.png" in " ".join(proc.stdout.split())
+
+
+def test_convergence_lines_of_one_algorithm_are_told_apart(tmp_path):
+    """Five bobyqa starts (jobs/demo/optimise_law.toml's case, one per contact law, drew five
+    same-coloured lines "start N: bobyqa, seed 0"): five colours, five labels naming each start's
+    law, seed point, best value and stop."""
+    laws = ["hertz", "hunt-crossley", "lankarani-nikravesh", "flores", "gonthier"]
+    path = tmp_path / "opt.h5"
+    write_optimisation(path)
+    with h5py.File(path, "r+") as f:
+        del f["starts"], f["seeds"]
+        seeds = np.array([[150.0 + 30 * i, 4.0 + 0.2 * i] for i in range(5)])
+        f.create_dataset("seeds", data=seeds)
+        for i in range(5):
+            start = f.create_group(f"starts/{i:03d}")
+            write_start(start, i, i, "bobyqa", np.tile(seeds[i], (2, 1)), [5.0 - i, 4.0 - i], [1, 1], [1, 1], 1)
+            start.attrs["law"] = laws[i]
+    opt = plot_optimise.read_optimise(path)
+    fig = plot_optimise.plot_convergence(opt)
+    lines = [line for line in fig.axes[0].get_lines() if (line.get_gid() or "").startswith("running-best-")]
+    labels = [line.get_label() for line in lines]
+    assert len(set(labels)) == 5 and len({matplotlib.colors.to_hex(line.get_color()) for line in lines}) == 5
+    assert labels[2] == "#2 bobyqa, lankarani-nikravesh, seed 2 (m2=210, omega2=4.4): best 2, XTOL_REACHED"

@@ -121,6 +121,7 @@ struct ContinueArgs {
   int pd_depth = 1;              // period-doubling generations switched onto (0: none)
   std::string output;            // branch file (HDF5); empty: none
   bool overwrite = false;        // replace an existing branch file
+  bool points = false;           // table: every point of every branch too (json always has them)
   std::string format = "table";
 };
 int continue_command(const ContinueArgs& args, std::ostream& out);

@@ -72,6 +72,61 @@ void bifurcations_table(std::ostream& out, const std::string& key, const std::ve
         << "  max|mu| " << std::setprecision(6) << largest(b.at.multipliers) << "\n";
 }
 
+double born_at_param(const std::vector<Branch>& branches, const Branch& s) {
+  return branches[static_cast<std::size_t>(s.parent)].bifurcations[static_cast<std::size_t>(s.born_at)].at.param;
+}
+
+// One line per branch: its period, first and last key value, points and why it stopped.
+void branches_table(std::ostream& out, const std::vector<Branch>& branches, bool points_shown) {
+  out << "\n  " << std::setw(6) << "branch" << "  " << std::setw(6) << "period" << "  " << std::setw(16) << "from"
+      << "  " << std::setw(16) << "to" << "  " << std::setw(6) << "points" << "  stopped"
+      << (points_shown ? "" : "   (every point: --points, or --format json)") << "\n";
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    const Branch& b = branches[i];
+    const double first = b.points.empty() ? NAN : b.points.front().param;
+    const double last = b.points.empty() ? NAN : b.points.back().param;
+    out << "  " << std::setw(6) << i << "  " << std::setw(4) << b.n << " T  " << std::setprecision(10) << std::setw(16)
+        << first << "  " << std::setw(16) << last << "  " << std::setw(6) << b.points.size() << "  " << b.stop << "\n";
+  }
+}
+
+void points_table(std::ostream& out, const std::vector<Branch>& branches,
+                  const std::vector<std::vector<Measured>>& measured) {
+  for (std::size_t i = 0; i < branches.size(); ++i) {
+    out << "\n  branch " << i << " (period " << branches[i].n << " T)\n  " << std::setw(14) << "param" << "  stable  "
+        << std::setw(9) << "max|mu|" << "  " << std::setw(8) << "regime" << "  " << std::setw(10) << "k_con" << "  "
+        << std::setw(11) << "F_max (N)" << "\n";
+    for (const Measured& m : measured[i])
+      out << "  " << std::setw(14) << std::setprecision(8) << m.point.param << "  " << std::setw(6)
+          << (m.point.stable ? "yes" : "no") << "  " << std::setw(9) << std::setprecision(5)
+          << largest(m.point.multipliers) << "  " << std::setw(8) << m.orbit.regime.label() << "  " << std::setw(10)
+          << m.orbit.k_con << "  " << std::setw(11) << m.orbit.F_max << "\n";
+  }
+}
+
+// The table output: the first branch and its bifurcations, the switched branches and theirs, a
+// summary line per branch, and every point only with --points.
+void print_table(std::ostream& out, const ContinueArgs& args, const std::string& key, int n,
+                 const std::string& start_regime, const std::vector<Branch>& branches,
+                 const std::vector<std::vector<Measured>>& measured) {
+  const Branch& branch = branches.front();
+  out << "branch         " << key << " from " << short_number(args.from) << " to " << short_number(args.to) << ", period "
+      << n << " T (" << start_regime << " at the start)\n"
+      << "points         " << branch.points.size() << "; " << branch.stop << "\n"
+      << "bifurcations   " << branch.bifurcations.size() << "\n";
+  if (!args.output.empty()) out << "file           " << args.output << "\n";
+  bifurcations_table(out, key, branch.bifurcations);
+  for (std::size_t i = 1; i < branches.size(); ++i) {
+    const Branch& s = branches[i];
+    out << "switched       branch " << i << ": period " << s.n << " T, born at the period doubling " << key << " = "
+        << std::setprecision(10) << born_at_param(branches, s) << " of branch " << s.parent << "; " << s.points.size()
+        << " points; " << s.stop << "\n";
+    bifurcations_table(out, key, s.bifurcations);
+  }
+  branches_table(out, branches, args.points);
+  if (args.points) points_table(out, branches, measured);
+}
+
 }  // namespace
 
 int continue_command(const ContinueArgs& args, std::ostream& out) {
@@ -141,7 +196,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
     for (std::size_t i = 1; i < branches.size(); ++i) {
       const Branch& s = branches[i];
       w.begin_object().field("n", s.n).field("parent", s.parent).field("born_at", s.born_at);
-      w.field("born_at_param", branches[static_cast<std::size_t>(s.parent)].bifurcations[static_cast<std::size_t>(s.born_at)].at.param);
+      w.field("born_at_param", born_at_param(branches, s));
       w.field("stop", s.stop);
       points_json(w, measured[i]);
       bifurcations_json(w, s.bifurcations);
@@ -151,30 +206,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
     out << "\n";
     return code(ExitCode::ok);
   }
-  out << "branch         " << key << " from " << short_number(args.from) << " to " << short_number(args.to) << ", period "
-      << co.n << " T (" << start.regime.label() << " at the start)\n"
-      << "points         " << branch.points.size() << "; " << branch.stop << "\n"
-      << "bifurcations   " << branch.bifurcations.size() << "\n";
-  if (!args.output.empty()) out << "file           " << args.output << "\n";
-  bifurcations_table(out, key, branch.bifurcations);
-  for (std::size_t i = 1; i < branches.size(); ++i) {
-    const Branch& s = branches[i];
-    out << "switched       branch " << i << ": period " << s.n << " T, born at the period doubling " << key << " = "
-        << std::setprecision(10)
-        << branches[static_cast<std::size_t>(s.parent)].bifurcations[static_cast<std::size_t>(s.born_at)].at.param
-        << " of branch " << s.parent << "; " << s.points.size() << " points; " << s.stop << "\n";
-    bifurcations_table(out, key, s.bifurcations);
-  }
-  for (std::size_t i = 0; i < branches.size(); ++i) {
-    out << "\n  branch " << i << " (period " << branches[i].n << " T)\n  " << std::setw(14) << "param" << "  stable  "
-        << std::setw(9) << "max|mu|" << "  " << std::setw(8) << "regime" << "  " << std::setw(10) << "k_con" << "  "
-        << std::setw(11) << "F_max (N)" << "\n";
-    for (const Measured& m : measured[i])
-      out << "  " << std::setw(14) << std::setprecision(8) << m.point.param << "  " << std::setw(6)
-          << (m.point.stable ? "yes" : "no") << "  " << std::setw(9) << std::setprecision(5)
-          << largest(m.point.multipliers) << "  " << std::setw(8) << m.orbit.regime.label() << "  " << std::setw(10)
-          << m.orbit.k_con << "  " << std::setw(11) << m.orbit.F_max << "\n";
-  }
+  print_table(out, args, key, co.n, start.regime.label(), branches, measured);
   return code(ExitCode::ok);
 }
 

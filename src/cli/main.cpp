@@ -98,10 +98,14 @@ std::string run_footer() {
   return os.str();
 }
 
+// --set's help, the same for every command.
+constexpr const char* kSetHelp =
+    "Override one scene key (repeatable): section.key=value, or key=value when only one section has the key (as in [sweep])";
+
 CLI::App* add_run(CLI::App& app, cli::RunArgs& args) {
   CLI::App* run = app.add_subcommand("run", "Solve one parameter point: steady motion, impacts, regime");
   run->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
-  run->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  run->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   run->add_option("-f,--format", args.format, "Output on stdout: a table for people or JSON for scripts")
@@ -145,7 +149,7 @@ std::string sweep_footer() {
 CLI::App* add_sweep(CLI::App& app, cli::SweepArgs& args) {
   CLI::App* sweep = app.add_subcommand("sweep", "Sweep a grid of parameter points on MPI ranks into an HDF5 map");
   sweep->add_option("scene", args.scene, "Scene file (TOML) with a [sweep] section")->required()->type_name("SCENE");
-  sweep->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  sweep->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   sweep->add_option("-o,--output", args.output, "Map file to write (default: the scene's name with .h5)")
@@ -191,7 +195,7 @@ std::string accuracy_footer() {
 CLI::App* add_accuracy(CLI::App& app, cli::AccuracyArgs& args) {
   CLI::App* acc = app.add_subcommand("accuracy", "Error against run time of rk4, dopri5 and hybrid+shooting on one point");
   acc->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
-  acc->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  acc->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   acc->add_option("--csv", args.csv, "Also write the rows to FILE.csv (one line per case, reference first)")
@@ -234,7 +238,7 @@ std::string optimise_footer() {
 CLI::App* add_optimise(CLI::App& app, cli::OptimiseArgs& args) {
   CLI::App* opt = app.add_subcommand("optimise", "Multistart optimisation of the softest impact on MPI ranks (NLopt)");
   opt->add_option("scene", args.scene, "Scene file (TOML) with an [optimise] section")->required()->type_name("SCENE");
-  opt->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  opt->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   opt->add_option("-o,--output", args.output, "Result file to write (default: the scene's name with _optimise.h5)")
@@ -255,7 +259,7 @@ CLI::App* add_optimise(CLI::App& app, cli::OptimiseArgs& args) {
 CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
   CLI::App* c = app.add_subcommand("continue", "Follow a periodic orbit in one key: branch, stability, bifurcations");
   c->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
-  c->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  c->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   c->add_option("-p,--param", args.param, "The scene key to follow the orbit in: forcing.omega, omega, m2, ...")
@@ -280,6 +284,8 @@ CLI::App* add_continue(CLI::App& app, cli::ContinueArgs& args) {
       ->check(kOutputName)
       ->type_name("FILE.h5");
   c->add_flag("--overwrite", args.overwrite, "Replace an existing branch file");
+  c->add_flag("--points", args.points,
+              "Table: print every point of every branch too (by default a summary: branches and bifurcations)");
   c->add_option("-f,--format", args.format, "Output on stdout: table or json")
       ->check(CLI::IsMember({"table", "json"}))
       ->type_name("table|json")
@@ -304,7 +310,7 @@ CLI::App* add_orbit_diagram(CLI::App& app, cli::OrbitDiagramArgs& args) {
   CLI::App* od = app.add_subcommand("orbit-diagram",
                                     "Brute-force bifurcation diagram: step one key up and down, carrying the state");
   od->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
-  od->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  od->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   od->add_option("-p,--param", args.param, "The scene key to step: forcing.omega, omega, contact.E2, m2, ...")
@@ -369,7 +375,7 @@ std::string basins_footer() {
 CLI::App* add_basins(CLI::App& app, cli::BasinsArgs& args) {
   CLI::App* b = app.add_subcommand("basins", "Basins of attraction on a plane of initial states, on MPI ranks");
   b->add_option("scene", args.scene, "Scene file (TOML)")->required()->type_name("SCENE");
-  b->add_option("-s,--set", args.sets, "Override one scene key (repeatable): section.key=value")
+  b->add_option("-s,--set", args.sets, kSetHelp)
       ->allow_extra_args(false)
       ->type_name("SECTION.KEY=VALUE");
   b->add_option("--plane", args.plane, "The two state variables of the plane (of x1, x2, v1, v2)")

@@ -178,7 +178,8 @@ int keys_command(bool as_toml, std::ostream& out) {
   } else {
     write_scene_keys(out);
     out << "\nGive a key in a scene as `key = value` under its [section], or on the command line as\n"
-           "`--set section.key=value`. Keys marked 'or give ...' form a pair: give one of the two.\n";
+           "`--set section.key=value` (or `--set key=value` when only one section has the key). Keys\n"
+           "marked 'or give ...' form a pair: give one of the two.\n";
   }
   return code(ExitCode::ok);
 }

@@ -92,6 +92,14 @@ vibromap_cli_test(unknown_key_by_set RC 2 ARGS run jobs/paper/table1.toml --set 
                   ERR "--set contact\\.E3=1e9: unknown key 'E3' in \\[contact\\]")
 vibromap_cli_test(set_without_equals RC 2 ARGS run jobs/paper/table1.toml --set system.m2
                   ERR "--set system\\.m2: expected section\\.key=value")
+# --set names a key as [sweep] does: the key alone when only one section has it (#29 item 4).
+# m2 = 300 kg gives the (7,3) with k_con 775.110929... that --set system.m2=300 gives.
+vibromap_cli_test(set_short_key RC 0 ARGS run jobs/paper/table1.toml --set m2=300 --format json
+                  OUT "\"regime\": \"\\(7,3\\)\",.*\"k_con\": 775\\.1109292869")
+vibromap_cli_test(set_short_key_checked RC 2 ARGS run jobs/paper/table1.toml --set m2=-5
+                  ERR "jobs/paper/table1\\.toml: --set m2=-5: must be > 0 \\(kg\\)")
+vibromap_cli_test(set_short_key_of_two_sections RC 2 ARGS run jobs/paper/table1.toml --set x1=0.01
+                  ERR "--set x1=0\\.01: several sections have the key 'x1': name it section\\.key \\(initial\\.x1 or census\\.x1\\)")
 vibromap_cli_test(bad_format RC 2 ARGS run jobs/paper/table1.toml --format xml ERR "--format")
 vibromap_cli_test(unknown_option RC 2 ARGS run jobs/paper/table1.toml --bogus ERR "--bogus")
 vibromap_cli_test(no_command RC 2 ARGS ERR "subcommand is required")
@@ -150,7 +158,7 @@ set(VIBROMAP_CLI_EXISTING ${CMAKE_CURRENT_BINARY_DIR}/cli_existing_trajectory.h5
 file(WRITE ${VIBROMAP_CLI_EXISTING} "not a trajectory yet\n")
 vibromap_cli_test(trajectory_refuses_an_existing_file RC 2
                   ARGS run jobs/paper/table1.toml --trajectory ${VIBROMAP_CLI_EXISTING}
-                  ERR "cli_existing_trajectory\\.h5: --trajectory: already exists; use --overwrite to replace it")
+                  ERR "cli_existing_trajectory\\.h5: --trajectory: already exists. use --overwrite to replace it")
 vibromap_cli_test(trajectory_refuses_a_device RC 2 ARGS run jobs/paper/table1.toml --trajectory /dev/full --overwrite
                   ERR "/dev/full: --trajectory: is a character device, not a regular file")
 vibromap_cli_test(trajectory_too_big_is_refused_with_its_size RC 4
@@ -216,7 +224,7 @@ vibromap_cli_test(run_labels_needs_census RC 2 ARGS run jobs/paper/table1.toml -
 vibromap_cli_test(run_census_bad_box RC 2 ARGS run jobs/paper/table1.toml --census --set "census.x1=[1, 0]"
                   ERR "census\\.x1=\\[1, 0\\]: must be an array \\[lo, hi\\]")
 vibromap_cli_test(run_census_unknown_key RC 2 ARGS run jobs/paper/table1.toml --census --set census.initial_states=4
-                  ERR "unknown key 'initial_states' in \\[census\\]; keys of \\[census\\]: initial_conditions")
+                  ERR "unknown key 'initial_states' in \\[census\\]. keys of \\[census\\]: initial_conditions")
 
 # `vibromap orbit-diagram` (issue #12): the path up and back down, the state carried; a clear
 # line for a bad key, range or option.
@@ -241,7 +249,14 @@ vibromap_cli_test(continue_json RC 0 ARGS continue jobs/paper/table2.toml --para
 # onto there (checked against the orbit diagram in tests/core/test_continuation.cpp).
 vibromap_cli_test(continue_switches_at_period_doubling RC 0 ARGS continue jobs/paper/table1.toml --param omega
                   --from 7.23 --to 6.3
-                  OUT "bifurcations +1\n +period-doubling +forcing\\.omega = 6\\.4617[0-9]+ +max\\|mu\\| 1\nswitched +branch 1: period 2 T, born at the period doubling forcing\\.omega = 6\\.4617[0-9]+ of branch 0; [0-9]+ points")
+                  OUT "bifurcations +1\n +period-doubling +forcing\\.omega = 6\\.4617[0-9]+ +max\\|mu\\| 1\nswitched +branch 1: period 2 T, born at the period doubling forcing\\.omega = 6\\.4617[0-9]+ of branch 0. [0-9]+ points")
+# The table is a summary (#29 item 4): one line per branch, no point unless --points; the output
+# ends with the branch line (the contact-free branch over omega in [2, 3]: 24 points), and with
+# --points with the last point, omega = 3.
+vibromap_cli_test(continue_summary RC 0 ARGS continue jobs/paper/table1.toml --set system.D=10 --param omega --from 2 --to 3
+                  OUT "^branch +forcing\\.omega from 2 to 3, period 1 T \\(no-contact at the start\\)\npoints +24. reached the end of the interval\nbifurcations +0\n\n +branch +period +from +to +points +stopped +\\(every point: --points, or --format json\\)\n +0 +1 T +2 +3 +24 +reached the end of the interval\n$")
+vibromap_cli_test(continue_points RC 0 ARGS continue jobs/paper/table1.toml --set system.D=10 --param omega --from 2 --to 3 --points
+                  OUT "\n +0 +1 T +2 +3 +24 +reached the end of the interval\n\n  branch 0 \\(period 1 T\\)\n +param +stable +max\\|mu\\| +regime +k_con +F_max \\(N\\)\n +2 +yes [^\n]+\n( +[0-9.]+ +yes [^\n]+\n)+ +3 +yes +0\\.91217 +no-contact +0 +0\n$")
 vibromap_cli_test(continue_bad_key RC 2 ARGS continue jobs/paper/table2.toml --param omeg --from 7 --to 8
                   ERR "--param omeg: unknown key 'omeg'")
 vibromap_cli_test(continue_same_ends RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 7
@@ -251,7 +266,7 @@ vibromap_cli_test(continue_file RC 0 ARGS continue jobs/paper/table1.toml --set 
                   OUT "bifurcations +0\nfile +.*cli_branch\\.h5")
 vibromap_cli_test(continue_file_exists RC 2 ARGS continue jobs/paper/table1.toml --param omega --from 7 --to 7.5
                   -o jobs/paper/table2.toml
-                  ERR "jobs/paper/table2\\.toml: --output: already exists; use --overwrite to replace it")
+                  ERR "jobs/paper/table2\\.toml: --output: already exists. use --overwrite to replace it")
 
 # `vibromap restitution` (issue #13): the effective restitution of a free impact per law and e
 # (values checked against an independent integration in tests/core/test_contact_laws.cpp);

@@ -229,6 +229,26 @@ TEST(Scene, SetOverridesTheFileAndCreatesSections) {
   EXPECT_EQ(s.options.analysis.n_max, 4);
 }
 
+// --set names a key as a [sweep] axis does: section.key, or the key alone when only one section has it.
+TEST(Scene, SetTakesTheShortKeyNamesOfSweep) {
+  const std::vector<std::string> short_names = {"m2=300", "omega=8.1", "method=rk4", "E2=1e9", "D=0.04"};
+  const std::vector<std::string> full_names = {"system.m2=300", "forcing.omega=8.1", "solver.method=rk4",
+                                               "contact.E2=1e9", "system.D=0.04"};
+  const Scene s = parse("[system]\nm2 = 200.0\n", short_names);
+  EXPECT_EQ(s.params.m2, 300.0);
+  EXPECT_EQ(s.params.omega, 8.1);
+  EXPECT_EQ(s.options.integrator.method, Method::rk4);
+  EXPECT_EQ(s.params.E2, 1e9);
+  EXPECT_EQ(s.params.D, 0.04);
+  // the same scene as with the full names: equal texts after the line recording the overrides
+  const Scene full = parse("[system]\nm2 = 200.0\n", full_names);
+  EXPECT_EQ(s.text.substr(s.text.find("[system]")), full.text.substr(full.text.find("[system]")));
+  // the other form of a pair is replaced, as with the full name
+  const Scene k = parse("[system]\nomega2 = 5.0\n", {"k2=3000"});
+  EXPECT_EQ(k.params.spring2.form, Spring::Form::stiffness);
+  EXPECT_EQ(k.params.spring2.value, 3000.0);
+}
+
 TEST(Scene, SetValueIsTomlOrElseAString) {
   EXPECT_EQ(parse("", {"solver.method=rk4"}).options.integrator.method, Method::rk4);
   EXPECT_EQ(parse("", {"solver.method=\"rk4\""}).options.integrator.method, Method::rk4);
@@ -309,7 +329,13 @@ const std::vector<BadScene>& bad_scenes() {
       {"malformed toml", "[system]\nm1 = = 3\n", {}, {"jobs/x.toml:2:", "malformed TOML"}},
       {"set negative mass", "", {"system.m2=-5"}, {"jobs/x.toml: --set system.m2=-5: must be > 0 (kg)"}},
       {"set without =", "", {"system.m2"}, {"jobs/x.toml: --set system.m2: expected section.key=value"}},
-      {"set without section", "", {"m2=5"}, {"--set m2=5: expected section.key=value", "--set system.m2="}},
+      {"set unknown short key", "", {"mass=5"}, {"jobs/x.toml: --set mass=5: unknown key 'mass'",
+                                                 "key=value when only one section has the key"}},
+      {"set short key of two sections", "", {"x1=0.01"}, {"--set x1=0.01: several sections have the key 'x1'",
+                                                           "initial.x1 or census.x1"}},
+      {"set short key of an option too", "", {"law=flores"}, {"several sections have the key 'law'",
+                                                              "contact.law or optimise.law"}},
+      {"set short key checked", "", {"m2=-5"}, {"jobs/x.toml: --set m2=-5: must be > 0 (kg)"}},
       {"set unknown key", "", {"system.mass=5"}, {"--set system.mass=5: unknown key 'mass' in [system]"}},
       {"set unknown section", "", {"sytem.m2=5"}, {"--set sytem.m2=5: unknown section [sytem]"}},
       {"set bad choice", "", {"solver.method=euler"}, {"--set solver.method=euler", "must be one of"}},

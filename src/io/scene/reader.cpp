@@ -163,11 +163,42 @@ void assign_override_value(toml::table& section, std::string_view key, const std
   section.insert_or_assign(key, raw);
 }
 
+// The sections with a key of this name: the schema's, then [sweep], [optimise] and [census] options.
+std::vector<std::string_view> sections_with_key(std::string_view name) {
+  std::vector<std::string_view> homes;
+  for (const Binding& b : bindings())
+    if (b.info.key == name) homes.push_back(b.info.section);
+  const auto has = [&](const std::vector<std::string_view>& keys) { return std::find(keys.begin(), keys.end(), name) != keys.end(); };
+  if (has(sweep_option_keys())) homes.push_back(kSweep);
+  if (has(optimise_option_keys())) homes.push_back(kOptimise);
+  if (has(census_keys())) homes.push_back(kCensus);
+  return homes;
+}
+
+// An override named by its key alone (m2, omega, E1): section.key when only one section has
+// that key, as a [sweep] axis is named (sweep_axes.cpp); else one line saying why not.
+std::string qualified_override_name(const std::string& name, const std::string& loc) {
+  const std::vector<std::string_view> homes = sections_with_key(name);
+  if (homes.size() == 1) return cat(homes.front(), ".", name);
+  if (homes.size() > 1) {
+    std::vector<std::string> choices;
+    for (const std::string_view s : homes) choices.push_back(cat(s, ".", name));
+    fail(cat(loc, ": several sections have the key '", name, "': name it section.key (", join(views(choices), " or "), ")"));
+  }
+  std::vector<std::string> keys;
+  for (const Binding& b : bindings()) keys.emplace_back(b.info.key);
+  std::string msg = cat(loc, ": unknown key '", clip(name), "'");
+  if (const auto hint = closest(name, views(keys))) msg += cat(" (did you mean '", *hint, "'?)");
+  fail(cat(msg, "; expected section.key=value, or key=value when only one section has the key (e.g. --set system.m2=310)"));
+}
+
 void apply_override(toml::table& table, const std::string& given, Context& ctx) {
   const std::string option = "--set " + given;
   const std::string loc = cat(ctx.path, ": ", clip(option));
   const auto eq = given.find('=');
-  const std::string name = trim(std::string_view(given).substr(0, std::min(eq, given.size())));
+  std::string name = trim(std::string_view(given).substr(0, std::min(eq, given.size())));
+  if (eq != std::string::npos && !name.empty() && name.find('.') == std::string::npos)
+    name = qualified_override_name(name, loc);  // m2=300 is system.m2=300
   const auto dot = name.find('.');
   if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == name.size()) {
     const auto home = section_of(name);
