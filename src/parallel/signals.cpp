@@ -15,12 +15,14 @@ std::atomic<int> g_stop_signal{0};
 static_assert(std::atomic<int>::is_always_lock_free, "the handler's store must be async-signal-safe");
 
 std::atomic<int> g_at_once{0};  // open StopAtOnce sections
+char g_remove[4096] = {};       // the file a StopAtOnce exit removes first ("" none)
 
 // Async-signal-safe: write(2) and _exit(2) only.
 void exit_at_once(int signal) {
   const char* line = signal == SIGINT    ? "vibromap: stopped by SIGINT while reading a file (no checkpoint needed)\n"
                      : signal == SIGUSR1 ? "vibromap: stopped by SIGUSR1 while reading a file (no checkpoint needed)\n"
                                          : "vibromap: stopped by SIGTERM while reading a file (no checkpoint needed)\n";
+  if (g_remove[0] != '\0') ::unlink(g_remove);
   [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, line, std::strlen(line));
   ::_exit(code(ExitCode::stopped));
 }
@@ -42,12 +44,16 @@ void install_stop_handlers() {
   for (const int signal : {SIGINT, SIGTERM, SIGUSR1}) sigaction(signal, &action, nullptr);
 }
 
-StopAtOnce::StopAtOnce() {
+StopAtOnce::StopAtOnce(const std::string& remove) {
+  if (remove.size() < sizeof g_remove) std::memcpy(g_remove, remove.c_str(), remove.size() + 1);
   g_at_once.fetch_add(1);
   if (const int signal = g_stop_signal.load(); signal != 0) exit_at_once(signal);
 }
 
-StopAtOnce::~StopAtOnce() { g_at_once.fetch_sub(1); }
+StopAtOnce::~StopAtOnce() {
+  g_at_once.fetch_sub(1);
+  g_remove[0] = '\0';
+}
 
 int stop_signal() { return g_stop_signal.load(); }
 

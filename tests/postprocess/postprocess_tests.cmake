@@ -42,7 +42,7 @@ add_test(NAME postprocess_pytest
          WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
 set_tests_properties(postprocess_pytest PROPERTIES
   ENVIRONMENT "${_vibromap_pytest_env}"
-  TIMEOUT 300)
+  TIMEOUT 900)  # about 140 s on 2 idle cores; a loaded machine can take twice that
 set(_vibromap_pytest_fixtures "")
 if(TARGET test_trajectory_file)
   list(APPEND _vibromap_pytest_fixtures vibromap_sample_trajectory)

@@ -29,10 +29,11 @@ void request_stop(int signal);
 // interruption loses nothing: reading an existing file through the HDF5 library, which a damaged
 // file can send into an endless loop (HDF5 1.10 walks a global heap whose free-space object has
 // size 0 for ever). A signal that came before the section opens ends the process as it opens.
-// The file is left as kill -9 would leave it: whole, as of its last checkpoint.
+// The file is left as kill -9 would leave it: whole, as of its last checkpoint; `remove` (the
+// run's lock file, which kill -9 would leave behind) is removed first.
 class StopAtOnce {
  public:
-  explicit StopAtOnce();
+  explicit StopAtOnce(const std::string& remove = {});
   ~StopAtOnce();
   StopAtOnce(const StopAtOnce&) = delete;
   StopAtOnce& operator=(const StopAtOnce&) = delete;

@@ -73,9 +73,10 @@ BasinsContent new_content(const Scene& scene, const BasinsPlane& plane) {
 }
 
 // A file being resumed must be this run's; the error names the values that differ.
-BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, const std::string& path) {
+BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, const std::string& path,
+                              const OutputLock& lock) {
   BasinsContent have = [&] {
-    const StopAtOnce reading;  // HDF5 cannot poll the stop flag, and a damaged file can make it loop
+    const StopAtOnce reading(lock.path());  // HDF5 cannot poll the stop flag
     return read_basins_file(path);
   }();
   BasinsContent want = new_content(scene, plane);
@@ -102,7 +103,7 @@ std::unique_ptr<detail::BasinsSink> prepare_sink(const Scene& scene, const Basin
   lock = std::make_unique<OutputLock>(config.output);
   if (config.resume && exists)
     return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
-                                                resumed_content(scene, plane, config.output));
+                                                resumed_content(scene, plane, config.output, *lock));
   return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
                                               new_content(scene, plane));
 }

@@ -26,7 +26,6 @@
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 #include "vibromap/parallel/campaign.hpp"
-#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -122,7 +121,6 @@ std::string_view not_a_regular_file(const std::filesystem::file_status& st) {
 
 // Rank 0: the best cells of a map file as seeds, read a chunk at a time (any map size).
 std::vector<Seed> seeds_from_map(const Scene& scene, const std::string& path, bool made_here) {
-  const StopAtOnce reading;  // HDF5 cannot poll the stop flag, and a damaged file can make it loop
   std::error_code ec;
   if (const std::string_view what = not_a_regular_file(std::filesystem::status(path, ec)); !what.empty())
     throw SceneError(cat(scene.path, ": [optimise] map ", path, ": ", what));

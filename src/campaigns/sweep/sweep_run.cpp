@@ -101,7 +101,7 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;
   if (config.resume && exists) {
     MapWriter w = [&] {
-      const StopAtOnce reading;  // HDF5 cannot poll the stop flag, and a damaged file can make it loop
+      const StopAtOnce reading(lock->path());  // HDF5 cannot poll the stop flag
       return MapWriter::resume(config.output, [&](const CellResult& c) { tally.add(c); });
     }();
     check_same_run(w, layout, scene);
