@@ -46,38 +46,7 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
 
   // The census, after the follow past the budget (on this rank, from where the ranks left the
   // states), its records made canonical from the first state that reached each.
-  CensusSummary summary(const std::vector<Eigen::Vector4d>& ics, const CensusOptions& census) {
-    const CensusOptions followers = detail::follower_census(census);
-    std::optional<CensusFollower> follower;
-    const PastBudget past = follow_past_budget(
-        left_, ics.front(), scene_.options.analysis.max_periods, followers.max_transient_periods,
-        [&](int label) { return found_[static_cast<std::size_t>(label)].periodic; },
-        [&](std::size_t k, const Eigen::Vector4d& x0, long budget, bool exact) {
-          if (!follower) follower.emplace(scene_.params, scene_.options, followers);
-          return outcome(k, detail::follow_state(*follower, x0, budget, exact));
-        });
-    CensusSummary s;
-    s.T = scene_.params.period();
-    s.K = static_cast<int>(left_.size());
-    s.periods = periods_ + past.periods;
-    s.decided_early = early_;
-    s.budget_states = static_cast<int>(std::count_if(left_.begin(), left_.end(), [](const auto& f) { return f.budget; }));
-    s.budget_periods = budget_periods_ + past.budget_periods;
-    s.transient_periods = past.transient_periods;
-    s.transient_states = past.transient_states;
-    for (std::size_t g = 0; g < found_.size(); ++g) {
-      found_[g] = canonical_record(scene_.params, scene_.options, followers, ics[static_cast<std::size_t>(first_[g])], found_[g]);
-      record_escape(found_[g], past, g);
-    }
-    std::vector<int> labels;
-    for (const CensusFollower::Outcome& f : left_) labels.push_back(f.label);
-    list_attractors(s, found_, labels, census.max_attractors);
-    if (census.labels) {
-      s.initial_conditions = ics;
-      s.labels = labels;
-    }
-    return s;
-  }
+  CensusSummary summary(const std::vector<Eigen::Vector4d>& ics, const CensusOptions& census);
 
  private:
   // State k's result as an outcome whose label indexes the global list.
@@ -104,6 +73,39 @@ class CensusSink final : public ResultSink<detail::PixelResult> {
   long periods_ = 0, budget_periods_ = 0;
   int early_ = 0;
 };
+
+CensusSummary CensusSink::summary(const std::vector<Eigen::Vector4d>& ics, const CensusOptions& census) {
+  const CensusOptions followers = detail::follower_census(census);
+  std::optional<CensusFollower> follower;
+  const PastBudget past = follow_past_budget(
+      left_, ics.front(), scene_.options.analysis.max_periods, followers.max_transient_periods,
+      [&](int label) { return found_[static_cast<std::size_t>(label)].periodic; },
+      [&](std::size_t k, const Eigen::Vector4d& x0, long budget, bool exact) {
+        if (!follower) follower.emplace(scene_.params, scene_.options, followers);
+        return outcome(k, detail::follow_state(*follower, x0, budget, exact));
+      });
+  CensusSummary s;
+  s.T = scene_.params.period();
+  s.K = static_cast<int>(left_.size());
+  s.periods = periods_ + past.periods;
+  s.decided_early = early_;
+  s.budget_states = static_cast<int>(std::count_if(left_.begin(), left_.end(), [](const auto& f) { return f.budget; }));
+  s.budget_periods = budget_periods_ + past.budget_periods;
+  s.transient_periods = past.transient_periods;
+  s.transient_states = past.transient_states;
+  for (std::size_t g = 0; g < found_.size(); ++g) {
+    found_[g] = canonical_record(scene_.params, scene_.options, followers, ics[static_cast<std::size_t>(first_[g])], found_[g]);
+    record_escape(found_[g], past, g);
+  }
+  std::vector<int> labels;
+  for (const CensusFollower::Outcome& f : left_) labels.push_back(f.label);
+  list_attractors(s, found_, labels, census.max_attractors);
+  if (census.labels) {
+    s.initial_conditions = ics;
+    s.labels = labels;
+  }
+  return s;
+}
 
 }  // namespace
 
