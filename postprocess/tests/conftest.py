@@ -1,5 +1,6 @@
-"""Shared fixtures for the postprocess tests: the scripts' directory on sys.path, and an
-analytic trajectory file written with h5py in the layout of src/io/trajectory_file.cpp."""
+"""Shared fixtures for the postprocess tests: the scripts' directory on sys.path, an analytic
+trajectory file written with h5py in the layout of src/io/trajectory_file.cpp, and the map files
+of map_cases.py (map1d, map2d, map3d)."""
 
 from __future__ import annotations
 
@@ -68,6 +69,30 @@ def trajectory_file(tmp_path):
     path = tmp_path / "traj.h5"
     write_trajectory_h5(path, columns)
     return path, columns
+
+
+@pytest.fixture
+def map2d(tmp_path):
+    """(path, arrays) of map_cases.py's 2-D map, with k_con and T_con."""
+    import map_cases
+
+    return map_cases.write_map2d(tmp_path)
+
+
+@pytest.fixture
+def map3d(tmp_path):
+    """(path, k_con) of map_cases.py's 3-D map; cell [3, 2, 4] not done."""
+    import map_cases
+
+    return map_cases.write_map3d(tmp_path)
+
+
+@pytest.fixture
+def map1d(tmp_path):
+    """The path of map_cases.py's 1-D map over E2."""
+    import map_cases
+
+    return map_cases.write_map1d(tmp_path)
 
 
 def run(args, **env):

@@ -16,6 +16,11 @@ set(_vibromap_sample_trajectory "${CMAKE_CURRENT_BINARY_DIR}/postprocess_sample_
 set(_vibromap_pytest_env
     "PYTHONDONTWRITEBYTECODE=1"
     "MPLCONFIGDIR=${CMAKE_CURRENT_BINARY_DIR}/mplconfig")
+# The program itself, for the tests that make their file with it (test_plot_branch.py: a branch
+# of vibromap continue).
+if(TARGET vibromap)
+  list(APPEND _vibromap_pytest_env "VIBROMAP_EXE=$<TARGET_FILE:vibromap>")
+endif()
 if(TARGET test_trajectory_file)
   add_test(NAME postprocess_sample_trajectory
            COMMAND test_trajectory_file --gtest_filter=TrajectoryFileSample.*)

@@ -1,0 +1,186 @@
+"""Opening vibromap's HDF5 files and reading their datasets safely; writing a plot's figure.
+Part of the readers that vibromap_h5 gathers (import them from there).
+
+Every reader raises VibromapFileError with a one-line message (naming the file) when the file is
+missing, is not HDF5, lacks what the reader needs, or is damaged: open_h5 checks the attribute
+checksum vibromap writes into every file (vibromap_seal.py; "FILE: damaged: its attributes fail
+their checksum (...)"), read_dataset names a chunk that fails its Fletcher32 checksum or is missing
+from its chunk index, and whatever else h5py raises while reading a damaged or truncated file
+inside `with open_h5(path) as f:` becomes one line too. Scripts turn that into exit status 2.
+Files without the checksum (written before it) are read as before.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+
+import h5py
+import numpy as np
+
+from vibromap_seal import DamagedAttributes, check_seal
+
+
+class VibromapFileError(Exception):
+    """A vibromap file cannot be read: missing, not HDF5, or not of the expected layout."""
+
+
+def _text(value) -> str:
+    """An HDF5 string attribute as str (h5py gives bytes for fixed-length strings, and keeps the
+    bytes of an invalid UTF-8 one as surrogates, which could not be printed: replaced here)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", errors="replace")
+    if isinstance(value, np.ndarray) and value.size == 1:
+        return _text(value.reshape(()).item())
+    return str(value).encode("utf-8", errors="surrogateescape").decode("utf-8", errors="replace")
+
+
+def _scalar(value, path: str, name: str, kind):
+    """A numeric scalar attribute as float or int."""
+    array = np.asarray(value)
+    if array.size != 1 or array.dtype.kind not in "iuf":
+        raise VibromapFileError(f"{path}: attribute '{name}' is not a number")
+    return kind(array.reshape(()).item())
+
+
+# What reading a damaged or truncated HDF5 file raises from h5py and numpy (a missing or
+# garbled object, a size or type that makes no sense): reported as one line, never a traceback.
+READ_ERRORS = (OSError, LookupError, ValueError, TypeError, RuntimeError, ArithmeticError, MemoryError)
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split()) or type(exc).__name__
+
+
+class OpenFile:
+    """open_h5's answer, for `with open_h5(path) as f:` (f is the h5py.File). `sealed` says
+    whether the file's attribute checksum was verified (False: a file written before vibromap
+    sealed its files). Leaving the block closes the file and turns what a damaged file raises
+    there (READ_ERRORS) into VibromapFileError naming the file."""
+
+    def __init__(self, file: h5py.File, path: str, sealed: bool):
+        self.file, self.path, self.sealed = file, path, sealed
+
+    def __enter__(self) -> h5py.File:
+        return self.file
+
+    def __exit__(self, kind, exc, traceback) -> bool:
+        self.file.close()
+        if isinstance(exc, READ_ERRORS) and not isinstance(exc, VibromapFileError):
+            raise VibromapFileError(f"{self.path}: damaged or not a vibromap file: cannot read it ({_one_line(exc)})") from exc
+        return False
+
+
+def open_h5(path: str) -> OpenFile:
+    """Opens an HDF5 file for reading and checks its attribute checksum when it has one
+    (vibromap_seal.py), or raises VibromapFileError with a one-line reason."""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise VibromapFileError(f"{path}: no such file")
+    if os.path.isdir(path):
+        raise VibromapFileError(f"{path}: is a directory, not a file")
+    try:
+        if not h5py.is_hdf5(path):
+            raise VibromapFileError(f"{path}: not an HDF5 file")
+        f = h5py.File(path, "r")
+    except READ_ERRORS as exc:
+        if isinstance(exc, VibromapFileError):
+            raise
+        raise VibromapFileError(f"{path}: cannot open ({_one_line(exc)})") from exc
+    try:
+        sealed = check_seal(f)
+    except DamagedAttributes as exc:
+        f.close()
+        raise VibromapFileError(f"{path}: damaged: {exc}; make it again with vibromap --overwrite") from None
+    return OpenFile(f, path, sealed)
+
+
+def _flag_meanings(dataset: h5py.Dataset, default_values, default_meanings: str, path: str) -> dict[int, str]:
+    """code -> meaning from a dataset's CF flag_values / flag_meanings (defaults if absent)."""
+    values = dataset.attrs.get("flag_values", default_values)
+    meanings = _text(dataset.attrs.get("flag_meanings", default_meanings)).split()
+    values = [int(v) for v in np.asarray(values).ravel()]
+    if len(values) != len(meanings):
+        raise VibromapFileError(
+            f"{path}: dataset '{dataset.name.lstrip('/')}' has {len(values)} flag_values but {len(meanings)} flag_meanings"
+        )
+    return dict(zip(values, meanings))
+
+
+def _attribute_value(value):
+    """A root attribute as str, int, float or (for arrays) a numpy array."""
+    if isinstance(value, (bytes, str)):
+        return _text(value)
+    array = np.asarray(value)
+    if array.dtype.kind in "SUO":
+        return _text(value)
+    if array.size == 1 and array.ndim <= 1:
+        return array.reshape(()).item()
+    return array
+
+
+def _missing_chunk(dataset: h5py.Dataset):
+    """The offset of a chunk missing from the chunk index of a dataset whose chunks are all made
+    with it (a map's: HDF5 would read fill values there without an error); None when none is.
+    Each chunk is looked up as a read looks it up (read_direct_chunk; get_chunk_info_by_coord
+    does not compare the whole key, and can find a chunk that a read then misses)."""
+    if dataset.chunks is None or dataset.id.get_create_plist().get_alloc_time() != h5py.h5d.ALLOC_TIME_EARLY:
+        return None
+    for offset in itertools.product(*(range(0, n, c) for n, c in zip(dataset.shape, dataset.chunks))):
+        try:
+            dataset.id.read_direct_chunk(offset)
+        except READ_ERRORS:
+            return offset
+    return None
+
+
+def read_dataset(dataset: h5py.Dataset, path: str) -> np.ndarray:
+    """The whole dataset as a numpy array, or VibromapFileError naming it when a chunk of it fails
+    to read (vibromap's maps checksum every chunk: a damaged byte fails instead of reading wrong)
+    or is missing from its chunk index."""
+    name = dataset.name.lstrip("/")
+    try:
+        missing = _missing_chunk(dataset)
+    except READ_ERRORS as exc:
+        raise VibromapFileError(f"{path}: dataset '{name}' is damaged: its chunk index cannot be read ({_one_line(exc)})") from exc
+    if missing is not None:
+        raise VibromapFileError(f"{path}: dataset '{name}' is damaged: its chunk at {tuple(int(i) for i in missing)} is "
+                                "missing from its chunk index; vibromap sweep --resume recomputes the damaged cells")
+    try:
+        return np.asarray(dataset[()])
+    except OSError as exc:
+        name = dataset.name.lstrip("/")
+        raise VibromapFileError(
+            f"{path}: dataset '{name}' is damaged: a chunk of it fails its checksum or cannot be read ({exc}); "
+            "vibromap sweep --resume recomputes the damaged cells"
+        ) from exc
+
+
+def save_figure(fig, path: str, dpi: int) -> None:
+    """Writes a matplotlib figure and closes it; VibromapFileError names the path on failure."""
+    import matplotlib.pyplot as plt  # only the plotting scripts need matplotlib
+
+    try:
+        fig.savefig(path, dpi=dpi)
+    except OSError as exc:
+        raise VibromapFileError(f"{path}: cannot write ({exc.strerror or exc})") from exc
+    finally:
+        plt.close(fig)
+
+
+def write_plot(prog: str, make_figure, output: str, dpi: int, errors: tuple = (VibromapFileError,),
+               notes: list[str] | None = None) -> int:  # fmt: skip
+    """A plotting script's end: draws make_figure() into output and says so (exit status 0), or
+    prints the one-line error of an unreadable input or unwritable output (2). `notes`, which
+    make_figure may fill, are printed before the "wrote" line."""
+    import sys
+
+    try:
+        save_figure(make_figure(), output, dpi)
+    except errors as exc:
+        print(f"{prog}: error: {exc}", file=sys.stderr)
+        return 2
+    for note in notes or []:
+        print(f"{prog}: note: {note}")
+    print(f"{prog}: wrote {output}")
+    return 0
