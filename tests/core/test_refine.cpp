@@ -393,6 +393,24 @@ TEST(Refine, BlockByBlockDecisionsAgreeWithTheReferenceRun) {
     for (std::size_t id = 0; id < g.block_count(l); ++id)
       ASSERT_EQ(block_is_refined(g, g.block(l, id), differ), flags[static_cast<std::size_t>(l)][id] != 0) << id;
   }
+  // The plan of each level from local reads only (a block's chain of corners, its face
+  // neighbours' decisions), as a streaming planner makes it: the points the reference solved.
+  const BlockPredicate local = [&](const RefineBlock& b) { return block_is_refined(g, b, differ); };
+  std::vector<std::size_t> fresh;
+  for (int l = 1; l <= 2; ++l) {
+    std::vector<std::size_t> planned, reference;
+    for (std::size_t id = 0; id < g.block_count(l); ++id) {
+      const RefineBlock b = g.block(l, id);
+      if (!local(b)) continue;
+      g.new_points(b, fresh);
+      for (std::size_t p : fresh)
+        if (owns(g, b, g.unravel(p), local)) planned.push_back(p);
+    }
+    std::sort(planned.begin(), planned.end());
+    for (std::size_t p = 0; p < g.fine_size(); ++p)
+      if (r.out.decision[p].solved && r.out.decision[p].level == l) reference.push_back(p);
+    EXPECT_EQ(planned, reference) << "level " << l;
+  }
   EXPECT_EQ(asked_unsolved, 0u);
   EXPECT_GT(r.out.refined_per_level[2], 0u);
   // An inherited point has the same source in every candidate block of its level that holds it.
