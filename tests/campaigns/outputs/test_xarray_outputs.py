@@ -146,7 +146,7 @@ def h5_layout(path, group):
 def open_with(path, engine, group=None):
     xr = pytest.importorskip("xarray")
     pytest.importorskip(ENGINES[engine])
-    # No decoding: the values exactly as stored, integer codes with a _FillValue included.
+    # No decoding: the values exactly as stored (h5py's), the float fill values included.
     with xr.open_dataset(path, engine=engine, group=group, mask_and_scale=False, decode_times=False) as ds:
         return ds.load()
 
