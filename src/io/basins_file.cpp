@@ -10,6 +10,7 @@
 #include "vibromap/core/quantities.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "attribute_seal.hpp"
+#include "index_scale.hpp"
 #include "regime_flags.hpp"
 
 // The layout is documented in basins_file.hpp.
@@ -141,8 +142,12 @@ void write_attractors(Hdf5File& f, const BasinsContent& c) {
   attach(f.write_dataset("pixels", std::span<const std::int64_t>(pixels)), "pixels in the basin");
   attach(f.write_dataset("first_pixel", std::span<const std::int64_t>(c.first_pixel)), "first pixel (flat) in the basin");
   attach(f.write_dataset("strobe_points", std::span<const int>(points)), "stroboscopic states of the orbit");
+  const Dataset period_start = detail::write_index_scale(f, "period_start", S, "period start within the orbit");
+  const Dataset state = detail::write_flag_scale(f, "state", {"x1", "x2", "v1", "v2"}, "state variable");
   Dataset sd = f.write_dataset("strobe", std::span<const double>(strobe), {A, S, 4});
   sd.attach_dimension_scale(coordinate, 0);
+  sd.attach_dimension_scale(period_start, 1);
+  sd.attach_dimension_scale(state, 2);
   sd.set_attribute("long_name", "stroboscopic states (x1, x2, v1, v2) at period starts, m and m/s");
 }
 

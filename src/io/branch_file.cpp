@@ -6,20 +6,14 @@
 #include <span>
 
 #include "attribute_seal.hpp"
+#include "index_scale.hpp"
 #include "provenance.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
 namespace vibromap {
 namespace {
 
-Dataset coordinate(Hdf5File& file, const std::string& name, std::size_t n, const std::string& long_name) {
-  std::vector<int> index(n);
-  for (std::size_t i = 0; i < n; ++i) index[i] = static_cast<int>(i);
-  Dataset d = file.write_dataset(name, std::span<const int>(index));
-  d.make_dimension_scale(name);
-  d.set_attribute("long_name", long_name);
-  return d;
-}
+using detail::write_index_scale;
 
 void column(Hdf5File& file, const Dataset& scale, const std::string& name, const std::vector<double>& values,
             const std::string& units, const std::string& long_name) {
@@ -69,7 +63,7 @@ FlatBranches flatten(const BranchData& data) {
 // The per-point columns over the "point" dimension, which it returns.
 Dataset write_points(Hdf5File& file, const BranchData& data, const FlatBranches& f) {
   const std::size_t P = f.pts.size();
-  Dataset point = coordinate(file, "point", P, "branch point, by branch, each in arclength order");
+  Dataset point = write_index_scale(file, "point", P, "branch point, by branch, each in arclength order");
   const auto per_point = [&](const std::string& name, auto get, const std::string& units, const std::string& what) {
     std::vector<double> v;
     for (std::size_t i = 0; i < P; ++i) v.push_back(get(i));
@@ -103,7 +97,7 @@ Dataset write_points(Hdf5File& file, const BranchData& data, const FlatBranches&
 // Per point: x1 at each period start of the cycle, and the Floquet multipliers.
 void write_cycles(Hdf5File& file, const FlatBranches& f, const Dataset& point) {
   const std::size_t P = f.pts.size(), S = f.strobes;
-  const Dataset strobe = coordinate(file, "strobe", S, "period start within the cycle");
+  const Dataset strobe = write_index_scale(file, "strobe", S, "period start within the cycle");
   std::vector<double> x1(P * S, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < P; ++i)
     for (std::size_t k = 0; k < f.pts[i]->strobe.size() && k < S; ++k) x1[i * S + k] = f.pts[i]->strobe[k][0];
@@ -112,7 +106,7 @@ void write_cycles(Hdf5File& file, const FlatBranches& f, const Dataset& point) {
   d.attach_dimension_scale(strobe, 1);
   d.set_attribute("units", "m");
   d.set_attribute("long_name", "x1 at the period starts of the cycle (NaN beyond the branch's period)");
-  const Dataset multiplier = coordinate(file, "multiplier", 4, "Floquet multiplier, largest |mu| first");
+  const Dataset multiplier = write_index_scale(file, "multiplier", 4, "Floquet multiplier, largest |mu| first");
   for (const bool imag : {false, true}) {
     std::vector<double> v(P * 4, 0.0);
     for (std::size_t i = 0; i < P; ++i)
@@ -128,7 +122,7 @@ void write_cycles(Hdf5File& file, const FlatBranches& f, const Dataset& point) {
 // The per-branch columns; returns the branches' stop reasons, one line each.
 std::string write_branches(Hdf5File& file, const BranchData& data) {
   const Dataset branch =
-      coordinate(file, "branch", data.branches.size(), "branch: 0 followed from the start, then the switched ones");
+      write_index_scale(file, "branch", data.branches.size(), "branch: 0 followed from the start, then the switched ones");
   std::vector<int> bn, bp, bb;
   std::string stops;
   for (const Branch& b : data.branches) {
@@ -146,7 +140,7 @@ std::string write_branches(Hdf5File& file, const BranchData& data) {
 
 void write_bifurcations(Hdf5File& file, const BranchData& data, const FlatBranches& f) {
   const std::size_t B = f.bif.size();
-  const Dataset bifurcation = coordinate(file, "bifurcation", B, "located bifurcation, by branch, in the order found");
+  const Dataset bifurcation = write_index_scale(file, "bifurcation", B, "located bifurcation, by branch, in the order found");
   std::vector<std::int8_t> type;
   for (const Bifurcation* b : f.bif) type.push_back(static_cast<std::int8_t>(b->type));
   Dataset ty = file.write_dataset("bifurcation_type", std::span<const std::int8_t>(type));

@@ -10,6 +10,7 @@
 
 #include "vibromap/io/hdf5_file.hpp"
 #include "attribute_seal.hpp"
+#include "index_scale.hpp"
 #include "regime_flags.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 
@@ -67,10 +68,18 @@ void write_root(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o, 
   f.set_attribute("trajectory", r.trajectory_file);
 }
 
-void write_seeds(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o) {
+// One dimension scale per axis of every dataset (netCDF-4, xarray): /variable is the free
+// parameters' (the root attribute `variables` names them), shared by the groups below.
+Dataset write_seeds(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o) {
+  Dataset variable = detail::write_index_scale(f, "variable", o.variables.size(),
+                                               "free parameter, in the order of the root attribute 'variables'");
+  const Dataset bound = detail::write_flag_scale(f, "bound", {"min", "max"}, "lower and upper bound");
+  const Dataset seed = detail::write_index_scale(f, "seed", r.seeds.size(), "seed, in start order");
   std::vector<double> bounds;
   for (const FreeVariable& v : o.variables) bounds.insert(bounds.end(), {v.min, v.max});
-  f.write_dataset("bounds", bounds, {o.variables.size(), 2});
+  Dataset bd = f.write_dataset("bounds", bounds, {o.variables.size(), 2});
+  bd.attach_dimension_scale(variable, 0);
+  bd.attach_dimension_scale(bound, 1);
   std::vector<double> x, objective;
   std::vector<std::int64_t> cell;
   for (const Seed& s : r.seeds) {
@@ -78,9 +87,12 @@ void write_seeds(Hdf5File& f, const OptimiseReport& r, const OptimiseOptions& o)
     cell.push_back(s.cell);
     objective.push_back(s.cell >= 0 ? objective_sense(o.objective) * s.value : kNaN);
   }
-  f.write_dataset("seeds", x, {r.seeds.size(), o.variables.size()});
-  f.write_dataset("seed_cell", cell);
-  f.write_dataset("seed_objective", objective);
+  Dataset sd = f.write_dataset("seeds", x, {r.seeds.size(), o.variables.size()});
+  sd.attach_dimension_scale(seed, 0);
+  sd.attach_dimension_scale(variable, 1);
+  f.write_dataset("seed_cell", cell).attach_dimension_scale(seed, 0);
+  f.write_dataset("seed_objective", objective).attach_dimension_scale(seed, 0);
+  return variable;
 }
 
 void write_start_attributes(Group& g, const StartRecord& s, double sense) {
@@ -99,7 +111,7 @@ void write_start_attributes(Group& g, const StartRecord& s, double sense) {
   g.set_attribute("best_objective", r.best ? sense * r.evaluations[*r.best].result.value : kNaN);
 }
 
-void write_start(Group& g, const StartRecord& s, std::size_t variables, const std::vector<std::string>& measures,
+void write_start(Group& g, const StartRecord& s, const Dataset& variable, const std::vector<std::string>& measures,
                  double sense) {
   write_start_attributes(g, s, sense);
   const auto& ev = s.result.evaluations;
@@ -122,18 +134,26 @@ void write_start(Group& g, const StartRecord& s, std::size_t variables, const st
       measure[m].push_back(m < e.result.measures.size() ? e.result.measures[m] : kNaN);
     wall.push_back(e.wall_s);
   }
-  g.write_dataset("x", x, {ev.size(), variables});
-  g.write_dataset("objective", objective);
-  g.write_dataset("value", value);
-  g.write_dataset("violation", violation);
-  g.write_dataset("feasible", feasible);
-  Dataset rd = g.write_dataset("regime", regime);
+  const Dataset evaluation = detail::write_index_scale(g, "evaluation", ev.size(), "distinct evaluation, in order");
+  const auto column = [&](const std::string& name, const auto& values) {
+    Dataset d = g.write_dataset(name, values);
+    d.attach_dimension_scale(evaluation, 0);
+    return d;
+  };
+  Dataset xd = g.write_dataset("x", x, {ev.size(), variable.shape().at(0)});
+  xd.attach_dimension_scale(evaluation, 0);
+  xd.attach_dimension_scale(variable, 1);
+  column("objective", objective);
+  column("value", value);
+  column("violation", violation);
+  column("feasible", feasible);
+  Dataset rd = column("regime", regime);
   detail::set_regime_flags(rd);
-  g.write_dataset("n", n);
-  g.write_dataset("k", k);
-  g.write_dataset("stable", stable);
-  for (std::size_t m = 0; m < measures.size(); ++m) g.write_dataset(measures[m], measure[m]);
-  g.write_dataset("wall_s", wall).set_attribute("units", "s");
+  column("n", n);
+  column("k", k);
+  column("stable", stable);
+  for (std::size_t m = 0; m < measures.size(); ++m) column(measures[m], measure[m]);
+  column("wall_s", wall).set_attribute("units", "s");
 }
 
 void write_solve(Group g, const PointSummary& s) {
@@ -157,7 +177,11 @@ void write_solve(Group g, const PointSummary& s) {
   if (s.floquet.empty()) return;
   std::vector<double> mu;
   for (const auto& m : s.floquet) mu.insert(mu.end(), {m.real(), m.imag()});
-  g.write_dataset("floquet", mu, {s.floquet.size(), 2});
+  const Dataset multiplier = detail::write_index_scale(g, "multiplier", s.floquet.size(), "Floquet multiplier");
+  const Dataset part = detail::write_flag_scale(g, "part", {"real", "imaginary"}, "part of the complex multiplier");
+  Dataset fd = g.write_dataset("floquet", mu, {s.floquet.size(), 2});
+  fd.attach_dimension_scale(multiplier, 0);
+  fd.attach_dimension_scale(part, 1);
 }
 
 // The re-check census of a best point: its verdict as attributes, its attractors as columns.
@@ -190,19 +214,25 @@ void write_soft_check(Group g, const SoftCheck& c, const OptimiseOptions& o) {
     stable.push_back(static_cast<std::int8_t>(a.stable));
     soft.push_back(a.soft ? 1 : 0);
   }
-  Dataset rd = g.write_dataset("regime", regime);
+  const Dataset attractor = detail::write_index_scale(g, "attractor", regime.size(), "attractor of the census");
+  const auto column = [&](const std::string& name, const auto& values) {
+    Dataset d = g.write_dataset(name, values);
+    d.attach_dimension_scale(attractor, 0);
+    return d;
+  };
+  Dataset rd = column("regime", regime);
   detail::set_regime_flags(rd);
-  g.write_dataset("n", n);
-  g.write_dataset("k", k);
-  g.write_dataset("k_con", k_con);
-  g.write_dataset("T_con", T_con).set_attribute("units", "s");
-  g.write_dataset("fraction", fraction);
-  g.write_dataset("fraction_stderr", stderr_);
-  g.write_dataset("stable", stable);
-  g.write_dataset("soft", soft);
+  column("n", n);
+  column("k", k);
+  column("k_con", k_con);
+  column("T_con", T_con).set_attribute("units", "s");
+  column("fraction", fraction);
+  column("fraction_stderr", stderr_);
+  column("stable", stable);
+  column("soft", soft);
 }
 
-void write_best(Group& g, const VerifiedPoint& v, const OptimiseOptions& o) {
+void write_best(Group& g, const VerifiedPoint& v, const OptimiseOptions& o, const Dataset& variable) {
   const double sense = objective_sense(o.objective);
   g.set_attribute("start", v.start);
   g.set_attribute("evaluation", static_cast<std::int64_t>(v.evaluation));
@@ -210,7 +240,7 @@ void write_best(Group& g, const VerifiedPoint& v, const OptimiseOptions& o) {
   g.set_attribute("soft_fraction", v.soft_fraction);
   for (const std::string_view name : free_parameter_names()) g.set_attribute(name, get_parameter(v.params, name));
   g.set_attribute("law", to_string(v.params.law));
-  g.write_dataset("x", v.x);
+  g.write_dataset("x", v.x).attach_dimension_scale(variable, 0);
   write_solve(g.create_group("integrate"), v.integrate);
   write_solve(g.create_group("shooting"), v.shooting);
   if (v.soft_check) write_soft_check(g.create_group("soft_check"), *v.soft_check, o);
@@ -223,16 +253,16 @@ void write_optimise_file(const std::string& path, const OptimiseReport& report, 
   const double sense = objective_sense(options.objective);
   write_hdf5_atomically(path, [&](Hdf5File& f) {
     write_root(f, report, options, scene_text);
-    write_seeds(f, report, options);
+    const Dataset variable = write_seeds(f, report, options);
     Group starts = f.create_group("starts");
     for (std::size_t i = 0; i < report.starts.size(); ++i) {
       Group g = starts.create_group(padded(i, 3));
-      write_start(g, report.starts[i], options.variables.size(), report.measures, sense);
+      write_start(g, report.starts[i], variable, report.measures, sense);
     }
     Group best = f.create_group("best");
     for (std::size_t i = 0; i < report.best.size(); ++i) {
       Group g = best.create_group(padded(i, 2));
-      write_best(g, report.best[i], options);
+      write_best(g, report.best[i], options, variable);
     }
     detail::seal_attributes(f);  // last: over every attribute above (attribute_seal.hpp)
   });

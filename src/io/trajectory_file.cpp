@@ -1,6 +1,7 @@
 #include "vibromap/io/trajectory_file.hpp"
 
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "attribute_seal.hpp"
@@ -28,13 +29,23 @@ constexpr std::array<TrajectoryColumn, 7> kTrajectoryColumns = {{
     {"F", "N", "external force lambda F0 cos(omega t + phi0)", &TrajectorySample::F},
 }};
 
+// The first column, /t, is the dimension scale "t" of every other column (netCDF-4 and xarray
+// read it as the time coordinate).
 void write_columns(Hdf5File& file, const std::vector<TrajectorySample>& samples) {
   std::vector<double> values(samples.size());
-  for (const TrajectoryColumn& column : kTrajectoryColumns) {
+  Dataset time;
+  for (std::size_t c = 0; c < kTrajectoryColumns.size(); ++c) {
+    const TrajectoryColumn& column = kTrajectoryColumns[c];
     for (std::size_t i = 0; i < samples.size(); ++i) values[i] = samples[i].*column.member;
     Dataset dataset = file.write_dataset(column.name, values);
+    if (c == 0) {
+      dataset.make_dimension_scale(column.name);
+    } else {
+      dataset.attach_dimension_scale(time, 0);
+    }
     dataset.set_attribute("units", column.units);
     dataset.set_attribute("description", column.description);
+    if (c == 0) time = std::move(dataset);
   }
 }
 

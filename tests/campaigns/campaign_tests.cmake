@@ -70,5 +70,7 @@ endfunction()
 vibromap_campaign_pytest(sweep_mpi sweep)
 vibromap_campaign_pytest(optimise_mpi multistart)
 vibromap_campaign_pytest(basins_mpi basins)
+# outputs: every output written the one safe way (test_outputs.py), and every HDF5 file kind
+# opening in xarray with both netCDF-4 engines, group by group (test_xarray_outputs.py).
 vibromap_campaign_pytest(outputs outputs)
 vibromap_campaign_pytest(stop_mpi stop)

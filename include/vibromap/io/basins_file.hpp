@@ -20,7 +20,10 @@
 //       k_con, F_max (N), z_ratio, z_max (m), v_in (m/s), impulse (N s), max_floquet,
 //       pixels (int64), fraction (pixels / pixels followed, overlap excluded), first_pixel
 //       (int64, flat: j N0 + i), strobe_points (int32, n or 0), strobe (A, S, 4) float64: the
-//       stroboscopic states (x1, x2, v1, v2), NaN past strobe_points
+//       stroboscopic states (x1, x2, v1, v2), NaN past strobe_points, over the coordinates
+//       /period_start (S) int32 0..S-1 and /state (4) int8 0..3 (flag_meanings "x1 x2 v1 v2")
+// Every axis of every dataset carries a dimension scale: xarray opens the file with either
+// netCDF-4 engine (netcdf4, h5netcdf).
 // Attractors are numbered by pixel count, descending, ties by first pixel: the file does not
 // depend on the number of MPI ranks. Written atomically (write_hdf5_atomically), with the root
 // attribute attribute_checksum last: the CRC-32 of every attribute (src/io/attribute_seal.hpp),
