@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plot a vibromap accuracy study as a work-precision diagram: error against cost.
 
-Input: the CSV of `vibromap accuracy SCENE --csv FILE.csv` (src/cli/accuracy_command.cpp),
+Input: the CSV of `vibromap accuracy SCENE --csv FILE.csv` (src/campaigns/accuracy/accuracy_run.cpp),
 one row per case: columns method (rk4, dopri5, hybrid+shooting, reference), setting ("rtol 1e-8"
 or "2^11 steps/T"), status, regime, regime_matches (1/0), wall_s (solve time of one point, s),
 rel_err_T_con, rel_err_F_max, rel_err_k_con (|x - x_ref|/|x_ref|, "nan" when undefined), ...

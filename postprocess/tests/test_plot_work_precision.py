@@ -1,5 +1,5 @@
 """Tests of postprocess/plot_work_precision.py on a synthetic accuracy-study CSV in the layout of
-src/cli/accuracy_command.cpp (vibromap accuracy --csv)."""
+src/campaigns/accuracy/accuracy_run.cpp (vibromap accuracy --csv)."""
 
 from __future__ import annotations
 

@@ -1,24 +1,16 @@
-// `vibromap accuracy`: the scene's point solved by every case of the default accuracy study
-// (analysis/accuracy.hpp), printed as a table or JSON, and written as CSV for
-// postprocess/plot_work_precision.py.
+// `vibromap accuracy`: the arguments, the progress lines and the report as a table or JSON; the
+// study and its CSV are campaigns/accuracy/accuracy_run.hpp.
 
-#include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
-#include "vibromap/core/analysis/accuracy.hpp"
+#include "vibromap/campaigns/accuracy/accuracy_run.hpp"
 #include "vibromap/core/text.hpp"
-#include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/output_file.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
@@ -34,30 +26,9 @@ std::string num(double x, const char* spec) {
   return buf.data();
 }
 
-// The shortest text that reads back to the same double; "nan" and "inf" for the others.
-std::string exact(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  std::array<char, 64> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), x);
-  return std::string(buf.data(), res.ptr);
-}
-
 std::string pad(std::string s, std::size_t width, bool left_align) {
   if (s.size() < width) s.insert(left_align ? s.size() : 0, width - s.size(), ' ');
   return s;
-}
-
-// A CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  out += '"';
-  return out;
 }
 
 // "shooting (4)" (Newton iterations) or "integrate".
@@ -128,7 +99,7 @@ void write_table(std::ostream& out, const AccuracyReport& report, const Scene& s
   for (const AccuracyRow& r : report.rows) write_table_line(out, table_cells(r), r.note);
 }
 
-// ---- JSON and CSV ---------------------------------------------------------------------
+// ---- JSON ---------------------------------------------------------------------
 
 void write_row_json(JsonWriter& w, const AccuracyRow& r) {
   w.begin_object()
@@ -168,52 +139,7 @@ void write_json(std::ostream& out, const AccuracyReport& report, const Scene& sc
   out << "\n";
 }
 
-constexpr const char* kCsvHeader =
-    "method,setting,integrator,steady,rtol,atol,rk4_steps,status,regime,regime_matches,steady_used,"
-    "newton_iterations,wall_s,rhs_evals,steps,periods,T_con,F_max,k_con,rel_err_T_con,rel_err_F_max,"
-    "rel_err_k_con,note";
-
-std::string csv_line(const AccuracyRow& r) {
-  const std::vector<std::string> fields = {
-      r.label, r.setting, to_string(r.method), to_string(r.steady), exact(r.rtol), exact(r.atol),
-      std::to_string(r.rk4_steps), to_string(r.status), r.regime, r.regime_matches ? "1" : "0",
-      to_string(r.steady_used), std::to_string(r.newton_iterations), exact(r.wall_s), std::to_string(r.rhs_evals),
-      std::to_string(r.steps), std::to_string(r.periods), exact(r.T_con), exact(r.F_max), exact(r.k_con),
-      exact(r.rel_err_T_con), exact(r.rel_err_F_max), exact(r.rel_err_k_con), r.note};
-  std::string line;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    if (i > 0) line += ',';
-    line += csv_field(fields[i]);
-  }
-  return line;
-}
-
-// The CSV text: header, the reference row (method "reference"), then the cases.
-std::string csv_text(const AccuracyReport& report) {
-  std::string text = cat(kCsvHeader, "\n", csv_line(report.reference), "\n");
-  for (const AccuracyRow& r : report.rows) text += csv_line(r) + "\n";
-  return text;
-}
-
-// ---- the study ------------------------------------------------------------------------
-
-// The cases' options must be valid (what solve_point would reject as invalid_input; the
-// scene's parameters passed validate() when it was read), checked before hours of solving.
-void check_cases(const Scene& scene, const std::vector<AccuracyCase>& cases) {
-  for (const AccuracyCase& c : cases) {
-    for (const std::string& err : {validate(c.options.integrator), validate(c.options.analysis)}) {
-      if (err.empty()) continue;
-      std::string msg = scene.path;
-      msg += ": accuracy case ";
-      msg += c.method_label;
-      msg += " ";
-      msg += setting_label(c.options.integrator);
-      msg += ": ";
-      msg += err;
-      throw SceneError(msg);
-    }
-  }
-}
+// ---- progress ---------------------------------------------------------------------
 
 void print_progress(const AccuracyRow& r, std::size_t done, std::size_t total) {
   std::cerr << "vibromap: accuracy " << done << "/" << total << ": " << r.label << " " << r.setting << ": "
@@ -224,33 +150,20 @@ void print_progress(const AccuracyRow& r, std::size_t done, std::size_t total) {
 
 int accuracy_command(const AccuracyArgs& args, std::ostream& out) {
   const Scene scene = load_scene(args.scene, args.sets);
-  // The CSV's new file is made before the (long) study, so that a bad --csv is known at once;
-  // it replaces the named file only when the study is done.
-  std::optional<NewFile> csv;
-  if (!args.csv.empty()) {
-    check_output(args.csv, {.option = "--csv", .overwrite = args.overwrite});
-    csv.emplace(args.csv);
-  }
-  const std::vector<AccuracyCase> cases = default_accuracy_cases(scene.options);
-  const AccuracyCase reference = default_accuracy_reference(scene.options);
-  check_cases(scene, cases);
-  check_cases(scene, {reference});
+  AccuracyStudy study(scene, args.csv, args.overwrite);
   if (scene.sweep && !args.quiet) {
     std::cerr << "vibromap: note: " << scene.path << ": [sweep] is ignored; the study solves the scene's base point\n";
   }
   AccuracyProgress progress;
   if (!args.quiet) progress = print_progress;
-  const AccuracyReport report = run_accuracy(scene.params, cases, reference, progress);
+  const AccuracyReport report = study.run(progress);
   if (args.format == "json") {
     write_json(out, report, scene);
   } else {
     write_table(out, report, scene);
   }
   out.flush();
-  if (csv) {
-    csv->write(csv_text(report));
-    csv->commit();
-  }
+  study.write_csv(report);
   return code(ExitCode::ok);
 }
 

@@ -1,4 +1,5 @@
-// `vibromap continue`: see commands.hpp and include/vibromap/core/analysis/continuation.hpp.
+// `vibromap continue`: the arguments and the printing; the campaign is
+// campaigns/continuation/continuation_run.hpp (see commands.hpp).
 
 #include <cmath>
 #include <filesystem>
@@ -7,22 +8,15 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "vibromap/core/analysis/continuation.hpp"
+#include "vibromap/campaigns/continuation/continuation_run.hpp"
 #include "vibromap/core/text.hpp"
-#include "vibromap/io/output_file.hpp"
-#include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
 namespace {
 
-// What continue prints of a branch point: the orbit measured as `run` measures it.
-struct Measured {
-  BranchPoint point;
-  PointSummary orbit;
-};
+using Measured = MeasuredPoint;  // a branch point and its orbit, measured as `run` measures it
 
 void multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu) {
   w.key("multipliers").begin_array();
@@ -127,6 +121,27 @@ void print_table(std::ostream& out, const ContinueArgs& args, const std::string&
   if (args.points) points_table(out, branches, measured);
 }
 
+void print_json(std::ostream& out, const std::string& key, const ContinuationReport& report) {
+  const std::vector<Branch>& branches = report.branches;
+  const Branch& branch = branches.front();
+  JsonWriter w(out);
+  w.begin_object().field("key", key).field("n", report.n).field("stop", branch.stop);
+  points_json(w, report.measured.front());
+  bifurcations_json(w, branch.bifurcations);
+  w.key("branches").begin_array();
+  for (std::size_t i = 1; i < branches.size(); ++i) {
+    const Branch& s = branches[i];
+    w.begin_object().field("n", s.n).field("parent", s.parent).field("born_at", s.born_at);
+    w.field("born_at_param", born_at_param(branches, s));
+    w.field("stop", s.stop);
+    points_json(w, report.measured[i]);
+    bifurcations_json(w, s.bifurcations);
+    w.end_object();
+  }
+  w.end_array().end_object();
+  out << "\n";
+}
+
 }  // namespace
 
 int continue_command(const ContinueArgs& args, std::ostream& out) {
@@ -139,74 +154,20 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
                                          args.param,
                                          cat("{values=[", exact_number(std::min(args.from, args.to)), ",",
                                              exact_number(std::max(args.from, args.to)), "]}"));
-  const Scene& scene = ps.scene;
-  if (!args.output.empty()) check_output(args.output, {.overwrite = args.overwrite});
-  const std::string& key = ps.axis.key;
-  const PointSetter set = point_setter(key);
-  const PointAt at = [&](double lambda) {
-    std::pair<Parameters, PointOptions> point{scene.params, scene.options};
-    set(point.first, point.second, lambda);
-    return point;
-  };
-  // The start: the motion from rest at KEY = from (analysis.steady); where that is not periodic,
-  // a branch may still start from the stable orbit shooting finds there (continuation follows
-  // orbits that exist, reached from rest or not).
-  auto [p0, o0] = at(args.from);
-  const auto is_periodic = [](const PointSummary& s) {
-    return s.status == SolveStatus::ok &&
-           (s.regime.kind == RegimeKind::periodic || s.regime.kind == RegimeKind::no_contact);
-  };
-  PointSummary start = solve_point(p0, o0);
-  if (!is_periodic(start) && o0.analysis.steady == SteadyMethod::follow) {
-    o0.analysis.steady = SteadyMethod::shooting;
-    start = solve_point(p0, o0);
-  }
-  if (!is_periodic(start))
-    throw SceneError(cat(args.scene, ": at ", key, " = ", short_number(args.from), " neither the motion from rest nor ",
-                         "shooting gives a periodic orbit (", start.regime.label(), ", ", to_string(start.status),
-                         "); start elsewhere (--from)"));
-  ContinuationOptions co;
-  co.n = std::max(start.regime.n, 1);  // a motion without contact repeats every period
-  co.ds_max = args.ds_max;
-  co.ds = std::min(co.ds, co.ds_max);
-  co.max_points = args.max_points;
-  if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
-  co.pd_depth = args.pd_depth;
-  const std::vector<Branch> branches = continue_branches(at, args.from, args.to, start.final_state, co);
-  std::vector<std::vector<Measured>> measured;
-  BranchData data{ps.axis, branches, {}, scene.text};
-  for (const Branch& branch : branches) {
-    measured.emplace_back();
-    data.cycles.emplace_back();
-    for (const BranchPoint& q : branch.points) {
-      const auto [p, o] = at(q.param);
-      measured.back().push_back({q, measure_orbit(p, o, q.y, branch.n)});
-      const PointSummary& m = measured.back().back().orbit;
-      data.cycles.back().push_back({m.T_con, m.k_con, m.F_max, static_cast<int>(m.impacts.size())});
-    }
-  }
-  if (!args.output.empty()) write_branch(args.output, data);
-  const Branch& branch = branches.front();
+  ContinuationConfig config;
+  config.from = args.from;
+  config.to = args.to;
+  config.ds_max = args.ds_max;
+  config.max_points = args.max_points;
+  config.pd_depth = args.pd_depth;
+  config.output = args.output;
+  config.overwrite = args.overwrite;
+  const ContinuationReport report = run_continuation(ps.scene, ps.axis, config);
   if (args.format == "json") {
-    JsonWriter w(out);
-    w.begin_object().field("key", key).field("n", co.n).field("stop", branch.stop);
-    points_json(w, measured.front());
-    bifurcations_json(w, branch.bifurcations);
-    w.key("branches").begin_array();
-    for (std::size_t i = 1; i < branches.size(); ++i) {
-      const Branch& s = branches[i];
-      w.begin_object().field("n", s.n).field("parent", s.parent).field("born_at", s.born_at);
-      w.field("born_at_param", born_at_param(branches, s));
-      w.field("stop", s.stop);
-      points_json(w, measured[i]);
-      bifurcations_json(w, s.bifurcations);
-      w.end_object();
-    }
-    w.end_array().end_object();
-    out << "\n";
+    print_json(out, ps.axis.key, report);
     return code(ExitCode::ok);
   }
-  print_table(out, args, key, co.n, start.regime.label(), branches, measured);
+  print_table(out, args, ps.axis.key, report.n, report.start_regime, report.branches, report.measured);
   return code(ExitCode::ok);
 }
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "vibromap/campaigns/basins/point_census_run.hpp"
+#include "vibromap/campaigns/census/point_census_run.hpp"
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/text.hpp"

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "basins_sink.hpp"
-#include "pixel_codec.hpp"
+#include "vibromap/campaigns/census/follow_state.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/grid.hpp"

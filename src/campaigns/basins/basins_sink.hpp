@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "pixel_codec.hpp"
+#include "vibromap/campaigns/census/state_codec.hpp"
 #include "vibromap/io/basins_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 

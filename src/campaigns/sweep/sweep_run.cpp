@@ -9,6 +9,7 @@
 
 #include "cell_codec.hpp"
 #include "map_sink.hpp"
+#include "vibromap/campaigns/census/census_cell.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
@@ -117,7 +118,7 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
 CellResult solve_cell(const CellMaker& cells, const std::optional<CensusOptions>& census, std::uint64_t flat) {
   try {
     const CellPoint point = cells(static_cast<std::size_t>(flat));
-    if (census) return summarize(census_point(point.params, point.options, *census));
+    if (census) return solve_census_cell(point.params, point.options, *census);
     return summarize(solve_point(point.params, point.options));
   } catch (const std::exception&) {  // a cell's trouble is its status, never the run's
     CellResult c;

@@ -108,115 +108,184 @@ using Followed = CensusFollower::Outcome;
 
 // One initial state followed to its attractor (census.hpp says how it is decided), for at most
 // `budget` forcing periods (analysis.max_periods, or a round of the follow past it); `exact`:
-// integrated at the scene's tolerance (brute force's path) rather than census.rtol.
-Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
-                long budget, bool exact, IntegrationCounters& work) {
-  const Model& model = set.model();
-  const PointOptions& follow_options = exact ? o : set.follow_options();
-  const auto integ = make_integrator(model, follow_options.integrator);
-  State u = Model::to_internal(x0);
-  integ->reset(u);
-  ImpactRecorder impacts(model, 2L * o.analysis.n_max + 2);
+// integrated at the scene's tolerance (brute force's path) rather than census.rtol. The state of
+// the follow and its named steps; run() is the driver.
+class StateFollow {
+ public:
+  StateFollow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0, long budget,
+              bool exact, IntegrationCounters& work);
+  Followed run();
+
+ private:
+  void track_attractors();  // the per-attractor records grown to the attractors found so far
+  void remember(const State& u);  // the sample kept for describing a non-periodic attractor
+  std::optional<std::size_t> decided_early();  // captured by an orbit, or staying on a set
+  Followed settle(long j);                     // settled: the orbit it settled on (Newton)
+  void search_orbits(long j);                  // Newton searches for new orbits from here
+  Followed failed(long j);                     // the integration failed: unresolved
+  Followed at_budget_end();                    // still settling, or on a non-periodic set
+  Followed done(std::optional<std::size_t> index, bool early, long periods);
+
+  AttractorSet& set_;
+  const PointOptions& o_;
+  const CensusOptions& c_;
+  long budget_;
+  IntegrationCounters& work_;
+  const Model& model_;
+  const PointOptions& follow_options_;
+  std::unique_ptr<Integrator> integ_;
+  State u_;
+  ImpactRecorder impacts_;
   // Deciding a state needs its impacts' times only (the Newton section); the peaks, forces and
   // impulses describe a non-periodic attractor from the budget's last n_max periods, so they
   // are measured from the period before those on (an impact begun earlier is not used).
-  const long measure_from = budget - o.analysis.n_max - 1;
-  impacts.set_measuring(measure_from <= 0);
-  SteadyStateDetector steady(model, o.analysis.n_max, steady_tolerance(follow_options));
-  PhaseSampler sampler;
-  ObserverList observers{&impacts, &steady, &sampler};
-  std::vector<Offsets> offsets;
-  std::vector<int> in_row;
-  std::deque<State> recent;  // stroboscopic samples that describe a non-periodic attractor
-  const std::size_t window = 2 * static_cast<std::size_t>(c.recurrences);
-  std::size_t known = static_cast<std::size_t>(-1);
-  long discovery = kFirstDiscovery;
-  Followed f;
-  std::vector<int> longest;  // per attractor: the longest run of recurrences on it (non-periodic ones)
-  auto done = [&](std::optional<std::size_t> index, bool early, long periods) {
-    for (std::size_t i = 0; i < longest.size(); ++i)
-      if (longest[i] >= c.recurrences) set.observe_stay(i, index);
-    f.label = index ? static_cast<int>(*index) : kUnlistedLabel;
-    f.early = early;
-    f.periods = periods;
-    f.end_state = Model::to_physical(u);
-    work += integ->counters();
-    return f;
-  };
+  long measure_from_;
+  SteadyStateDetector steady_;
+  PhaseSampler sampler_;
+  ObserverList observers_;
+  std::vector<Offsets> offsets_;
+  std::vector<int> in_row_;
+  std::deque<State> recent_;  // stroboscopic samples that describe a non-periodic attractor
+  std::size_t window_;
+  std::size_t known_ = static_cast<std::size_t>(-1);
+  long discovery_ = kFirstDiscovery;
+  Followed f_;
+  std::vector<int> longest_;  // per attractor: the longest run of recurrences on it (non-periodic ones)
+};
 
-  for (long j = 0; j < budget; ++j) {
-    if (set.size() != known) {
-      known = set.size();
-      sampler.set_phases(set.phases());
-      offsets.resize(known);
-      in_row.resize(known, 0);
-      longest.resize(known, 0);
-    }
-    if (j == measure_from) impacts.set_measuring(true);
-    if (integ->advance_period(u, observers) != IntegrationStatus::ok) {
-      f.periods = j;
-      f.failed = true;
-      work += integ->counters();
-      return f;  // unresolved: the integration failed
-    }
-    const bool settled = observers.on_period_end(j, u);
-    recent.push_back(u);
-    if (recent.size() > window) recent.pop_front();
-    if (c.early_stop) {
-      const census_detail::Cell cell = set.cell(u);
-      bool approaching = false;  // close to a stable orbit: no recurrence decision (below)
-      for (std::size_t i = 0; i < known; ++i) {
-        if (!sampler.sampled(i)) continue;
-        offsets[i].push_back(set.offset(i, sampler.state(i)));
-        if (offsets[i].size() > 2 * static_cast<std::size_t>(set.record(i).strobe.size()) + 1) offsets[i].pop_front();
-        if (set.captured(i, offsets[i])) return done(i, true, j + 1);
-        approaching = approaching || set.level_ratio(i, offsets[i].back()) < kApproaching;
-      }
-      // Stays on a non-periodic set: `recurrences` stroboscopic points in a row in its cells. A
-      // state that stays and then ends elsewhere flags the set transient (observe_stay). Such a
-      // set is found by a state that ran out of budget without settling, and here it is often
-      // a chaotic saddle that states leave after hundreds to thousands of periods, so a stay
-      // does not decide a state unless census.decide_by_recurrence asks for it (Attractors.jl's
-      // rule), and never on a set seen to leak. Measured: at m2 275.2 kg, omega2 4.2607 rad/s
-      // (Table 2's moduli) brute force settles 90 % on (1,1) and deciding after 100 recurrences
-      // called 52 % non-periodic; at the demo cell (20, 9), where no state was seen to leave in
-      // time, a census that decided only after 8 states had stayed to the budget's end called
-      // 20 of 32 states non-periodic against brute force's 7. Not deciding costs the demo map
-      // 3 % more time: labels at the budget's end need the state followed there, as brute
-      // force does. A state closing in on a stable orbit is that orbit's to decide: its run
-      // starts again.
-      for (std::size_t i = 0; i < known; ++i) {
-        if (sampler.sampled(i) || set.record(i).periodic) continue;
-        in_row[i] = !approaching && set.visits(i, cell) ? in_row[i] + 1 : 0;
-        longest[i] = std::max(longest[i], in_row[i]);
-        if (in_row[i] >= c.recurrences && set.recurrence_decides(i)) return done(i, true, j + 1);
-      }
-    }
-    if (settled) {
-      const int n = steady.period_n();
-      const std::optional<State> y = set.shoot_from(u, n, impacts.impacts(), impacts.open_impact(), j, work);
-      return done(set.add_periodic(y ? *y : u, n, work), false, j + 1);
-    }
-    if (c.early_stop && j + 1 == discovery && discovery <= kLastDiscovery && !set.full()) {
-      discovery *= 3;
-      bool approaching = false;  // a state closing in on a known orbit needs no Newton search
-      for (std::size_t i = 0; i < known && !approaching; ++i)
-        approaching = !offsets[i].empty() && set.level_ratio(i, offsets[i].back()) < kApproaching;
-      if (!approaching)
-        for (int n : steady.candidate_periods(kCandidates))
-          if (set.discover(u, n, impacts.impacts(), impacts.open_impact(), j, work)) break;
-    }
+StateFollow::StateFollow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
+                         long budget, bool exact, IntegrationCounters& work)
+    : set_(set),
+      o_(o),
+      c_(c),
+      budget_(budget),
+      work_(work),
+      model_(set.model()),
+      follow_options_(exact ? o : set.follow_options()),
+      integ_(make_integrator(model_, follow_options_.integrator)),
+      u_(Model::to_internal(x0)),
+      impacts_(model_, 2L * o.analysis.n_max + 2),
+      measure_from_(budget - o.analysis.n_max - 1),
+      steady_(model_, o.analysis.n_max, steady_tolerance(follow_options_)),
+      observers_{&impacts_, &steady_, &sampler_},
+      window_(2 * static_cast<std::size_t>(c.recurrences)) {
+  integ_->reset(u_);
+  impacts_.set_measuring(measure_from_ <= 0);
+}
+
+Followed StateFollow::run() {
+  for (long j = 0; j < budget_; ++j) {
+    track_attractors();
+    if (j == measure_from_) impacts_.set_measuring(true);
+    if (integ_->advance_period(u_, observers_) != IntegrationStatus::ok) return failed(j);
+    const bool settled = observers_.on_period_end(j, u_);
+    remember(u_);
+    if (c_.early_stop)
+      if (const std::optional<std::size_t> i = decided_early()) return done(*i, true, j + 1);
+    if (settled) return settle(j);
+    if (c_.early_stop && j + 1 == discovery_ && discovery_ <= kLastDiscovery && !set_.full()) search_orbits(j);
   }
-  const long last = budget - 1;
-  f.budget = true;
-  if (steady.still_converging()) {
-    f.periods = last + 1;
-    f.end_state = Model::to_physical(u);
-    work += integ->counters();
-    return f;
+  return at_budget_end();
+}
+
+void StateFollow::track_attractors() {
+  if (set_.size() == known_) return;
+  known_ = set_.size();
+  sampler_.set_phases(set_.phases());
+  offsets_.resize(known_);
+  in_row_.resize(known_, 0);
+  longest_.resize(known_, 0);
+}
+
+void StateFollow::remember(const State& u) {
+  recent_.push_back(u);
+  if (recent_.size() > window_) recent_.pop_front();
+}
+
+std::optional<std::size_t> StateFollow::decided_early() {
+  const census_detail::Cell cell = set_.cell(u_);
+  bool approaching = false;  // close to a stable orbit: no recurrence decision (below)
+  for (std::size_t i = 0; i < known_; ++i) {
+    if (!sampler_.sampled(i)) continue;
+    offsets_[i].push_back(set_.offset(i, sampler_.state(i)));
+    if (offsets_[i].size() > 2 * static_cast<std::size_t>(set_.record(i).strobe.size()) + 1) offsets_[i].pop_front();
+    if (set_.captured(i, offsets_[i])) return i;
+    approaching = approaching || set_.level_ratio(i, offsets_[i].back()) < kApproaching;
   }
-  const long first = last - std::min<long>(o.analysis.n_max, last + 1) + 1;
-  return done(set.add_recurrent({recent.begin(), recent.end()}, impacts.impacts(), first, last), false, last + 1);
+  // Stays on a non-periodic set: `recurrences` stroboscopic points in a row in its cells. A
+  // state that stays and then ends elsewhere flags the set transient (observe_stay). Such a
+  // set is found by a state that ran out of budget without settling, and here it is often
+  // a chaotic saddle that states leave after hundreds to thousands of periods, so a stay
+  // does not decide a state unless census.decide_by_recurrence asks for it (Attractors.jl's
+  // rule), and never on a set seen to leak. Measured: at m2 275.2 kg, omega2 4.2607 rad/s
+  // (Table 2's moduli) brute force settles 90 % on (1,1) and deciding after 100 recurrences
+  // called 52 % non-periodic; at the demo cell (20, 9), where no state was seen to leave in
+  // time, a census that decided only after 8 states had stayed to the budget's end called
+  // 20 of 32 states non-periodic against brute force's 7. Not deciding costs the demo map
+  // 3 % more time: labels at the budget's end need the state followed there, as brute
+  // force does. A state closing in on a stable orbit is that orbit's to decide: its run
+  // starts again.
+  for (std::size_t i = 0; i < known_; ++i) {
+    if (sampler_.sampled(i) || set_.record(i).periodic) continue;
+    in_row_[i] = !approaching && set_.visits(i, cell) ? in_row_[i] + 1 : 0;
+    longest_[i] = std::max(longest_[i], in_row_[i]);
+    if (in_row_[i] >= c_.recurrences && set_.recurrence_decides(i)) return i;
+  }
+  return std::nullopt;
+}
+
+Followed StateFollow::settle(long j) {
+  const int n = steady_.period_n();
+  const std::optional<State> y = set_.shoot_from(u_, n, impacts_.impacts(), impacts_.open_impact(), j, work_);
+  return done(set_.add_periodic(y ? *y : u_, n, work_), false, j + 1);
+}
+
+void StateFollow::search_orbits(long j) {
+  discovery_ *= 3;
+  bool approaching = false;  // a state closing in on a known orbit needs no Newton search
+  for (std::size_t i = 0; i < known_ && !approaching; ++i)
+    approaching = !offsets_[i].empty() && set_.level_ratio(i, offsets_[i].back()) < kApproaching;
+  if (approaching) return;
+  for (int n : steady_.candidate_periods(kCandidates))
+    if (set_.discover(u_, n, impacts_.impacts(), impacts_.open_impact(), j, work_)) break;
+}
+
+Followed StateFollow::failed(long j) {
+  f_.periods = j;
+  f_.failed = true;
+  work_ += integ_->counters();
+  return f_;  // unresolved: the integration failed
+}
+
+Followed StateFollow::at_budget_end() {
+  const long last = budget_ - 1;
+  f_.budget = true;
+  if (steady_.still_converging()) {
+    f_.periods = last + 1;
+    f_.end_state = Model::to_physical(u_);
+    work_ += integ_->counters();
+    return f_;
+  }
+  const long first = last - std::min<long>(o_.analysis.n_max, last + 1) + 1;
+  return done(set_.add_recurrent({recent_.begin(), recent_.end()}, impacts_.impacts(), first, last), false, last + 1);
+}
+
+Followed StateFollow::done(std::optional<std::size_t> index, bool early, long periods) {
+  for (std::size_t i = 0; i < longest_.size(); ++i)
+    if (longest_[i] >= c_.recurrences) set_.observe_stay(i, index);
+  f_.label = index ? static_cast<int>(*index) : kUnlistedLabel;
+  f_.early = early;
+  f_.periods = periods;
+  f_.end_state = Model::to_physical(u_);
+  work_ += integ_->counters();
+  return f_;
+}
+
+// One initial state followed to its attractor: see StateFollow.
+Followed follow(AttractorSet& set, const PointOptions& o, const CensusOptions& c, const Eigen::Vector4d& x0,
+                long budget, bool exact, IntegrationCounters& work) {
+  StateFollow state(set, o, c, x0, budget, exact, work);
+  return state.run();
 }
 
 }  // namespace

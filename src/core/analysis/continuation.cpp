@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "continuation_problem.hpp"
 #include "vibromap/core/analysis/orbit_extent.hpp"
 #include "vibromap/core/analysis/shooting.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
@@ -37,136 +38,12 @@ std::string to_string(BifurcationType t) {
 
 namespace {
 
-using Vector5d = Eigen::Matrix<double, 5, 1>;
+using continuation_detail::Eval;
+using continuation_detail::Problem;
+using continuation_detail::Vector5d;
 
 // A point whose closest approach is within this many motion scales of zero is at a grazing.
 constexpr double kGrazingTolerance = 1e-6;
-using Matrix5d = Eigen::Matrix<double, 5, 5>;
-
-// G and its Jacobian at one point z = (y scaled by the motion's scale, l): lambda = from + l span.
-struct Eval {
-  Eigen::Vector4d F = Eigen::Vector4d::Zero();   // (P^n(y) - y) / unit
-  Eigen::Matrix4d Jy = Eigen::Matrix4d::Zero();  // dF/dy_scaled
-  Eigen::Vector4d Jl = Eigen::Vector4d::Zero();  // dF/dl (forward difference)
-  Eigen::Matrix4d M = Eigen::Matrix4d::Identity();  // monodromy dP^n/dy
-};
-
-class Problem {
- public:
-  Problem(const PointAt& point_at, double from, double to, const ContinuationOptions& o)
-      : point_at_(point_at), from_(from), span_(to - from), o_(o) {
-    const auto [p, opt] = point_at_(from);
-    const StateScale scale{Model(p)};
-    unit_ = Eigen::Array4d(scale.length(), scale.length(), scale.speed(), scale.speed());
-  }
-
-  double lambda(double l) const { return from_ + l * span_; }
-  State state(const Vector5d& z) const { return (z.head<4>().array() * unit_).matrix(); }
-  Vector5d scaled(const State& y, double l) const {
-    Vector5d z;
-    z.head<4>() = (y.array() / unit_).matrix();
-    z[4] = l;
-    return z;
-  }
-
-  std::optional<Eval> eval(const Vector5d& z) {
-    Eval e;
-    const State y = state(z);
-    State image;
-    {
-      const auto [p, opt] = point_at_(lambda(z[4]));
-      if (period_map(Model(p), opt.integrator, y, o_.n, image, e.M, counters) != IntegrationStatus::ok) return std::nullopt;
-    }
-    const Eigen::Matrix4d D = unit_.matrix().asDiagonal();
-    const Eigen::Matrix4d Dinv = unit_.inverse().matrix().asDiagonal();
-    e.F = ((image - y).array() / unit_).matrix();
-    e.Jy = Dinv * (e.M - Eigen::Matrix4d::Identity()) * D;
-    const auto [p2, opt2] = point_at_(lambda(z[4] + kDl));
-    const Model m2(p2);
-    const auto integ = make_integrator(m2, opt2.integrator);
-    State u = y;
-    integ->reset(u);
-    Observer none;
-    for (int i = 0; i < o_.n; ++i)
-      if (integ->advance_period(u, none) != IntegrationStatus::ok) return std::nullopt;
-    counters += integ->counters();
-    e.Jl = ((u - image).array() / unit_).matrix() / kDl;
-    return e;
-  }
-
-  // Newton on [G(z) = 0, t.(z - z_pred) = 0] from z_pred.
-  std::optional<std::pair<Vector5d, Eval>> correct(const Vector5d& z_pred, const Vector5d& t, int* iterations = nullptr) {
-    Vector5d z = z_pred;
-    for (int it = 0; it <= o_.max_corrections; ++it) {
-      const std::optional<Eval> e = eval(z);
-      if (!e) return std::nullopt;
-      if (e->F.cwiseAbs().maxCoeff() <= o_.tol) {
-        if (iterations) *iterations = it;
-        return std::make_pair(z, *e);
-      }
-      Matrix5d A;
-      A.topLeftCorner<4, 4>() = e->Jy;
-      A.topRightCorner<4, 1>() = e->Jl;
-      A.bottomRows<1>() = t.transpose();
-      Vector5d r;
-      r.head<4>() = e->F;
-      r[4] = t.dot(z - z_pred);
-      const Vector5d dz = A.fullPivLu().solve(-r);
-      if (!dz.allFinite() || dz.norm() > 0.5) return std::nullopt;  // far from the predictor: a smaller step
-      z += dz;
-    }
-    return std::nullopt;
-  }
-
-  // The unit tangent at a point, oriented along `previous`.
-  static Vector5d tangent(const Eval& e, const Vector5d& previous) {
-    Matrix5d A;
-    A.topLeftCorner<4, 4>() = e.Jy;
-    A.topRightCorner<4, 1>() = e.Jl;
-    A.bottomRows<1>() = previous.transpose();
-    Vector5d rhs = Vector5d::Zero();
-    rhs[4] = 1.0;
-    Vector5d t = A.fullPivLu().solve(rhs);
-    return t / t.norm();
-  }
-
-  BranchPoint point(const Vector5d& z, const Eval& e) {
-    BranchPoint b;
-    b.param = lambda(z[4]);
-    b.y = Model::to_physical(state(z));
-    b.multipliers = floquet_multipliers(e.M);
-    b.stable = std::abs(b.multipliers.front()) < 1.0;
-    b.residual = e.F.cwiseAbs().maxCoeff();
-    const OrbitExtent x = extent(z);
-    b.x1_max = x.x1_max;
-    b.x2_max = x.x2_max;
-    b.clearance_min = x.clearance_min;
-    b.strobe = x.strobe;
-    b.contacts = x.contacts;
-    b.graze_gap = x.graze_gap;
-    return b;
-  }
-
-  OrbitExtent extent(const Vector5d& z) {
-    const auto [p, opt] = point_at_(lambda(z[4]));
-    return orbit_extent(Model(p), opt.integrator, state(z), o_.n, counters);
-  }
-
-  double length_scale() const { return unit_[0]; }
-  double from() const { return from_; }
-  double span() const { return span_; }
-  // A physical state difference in the scaled units.
-  Eigen::Vector4d scaled_difference(const Eigen::Vector4d& d) const { return (d.array() / unit_).matrix(); }
-
-  IntegrationCounters counters;
-
- private:
-  static constexpr double kDl = 1e-7;  // finite-difference step in the scaled parameter
-  PointAt point_at_;
-  double from_, span_;
-  ContinuationOptions o_;
-  Eigen::Array4d unit_;
-};
 
 // The test functions, each a value whose sign (or count) changes at its bifurcation.
 double pd_test(const Eval& e) { return (e.M + Eigen::Matrix4d::Identity()).determinant(); }
@@ -224,180 +101,285 @@ bool has_critical_multiplier(BifurcationType type, const std::vector<std::comple
 }
 
 
-// Follows the branch from its last point z (evaluated: e) along t, appending to b.
-// half > 0: a doubled branch, which ends where P^half(y) - y changes sign (it rejoined a period-half
-// orbit at a period doubling of it, see continuation.hpp).
-void trace(Problem& pb, Vector5d z, Eval e, Vector5d t, const ContinuationOptions& o, int half, Branch& b) {
-  const double from = pb.from(), to = pb.from() + pb.span();
-  const auto half_difference = [&](const BranchPoint& q) {
-    return half > 0 && static_cast<int>(q.strobe.size()) > half ? pb.scaled_difference(q.strobe[half] - q.strobe[0])
-                                                                : Eigen::Vector4d::Zero().eval();
+// A corrected point on the branch and its evaluation.
+using Corrected = std::pair<Vector5d, Eval>;
+
+// The walk along one branch from its last point: the point z (evaluated: e), the tangent t and
+// the step ds, and the named steps of one move. trace() below is the walk itself.
+class Tracer {
+ public:
+  // half > 0: a doubled branch, which ends where P^half(y) - y changes sign (it rejoined a
+  // period-half orbit at a period doubling of it, see continuation.hpp).
+  Tracer(Problem& pb, const Vector5d& z, const Eval& e, const Vector5d& t, const ContinuationOptions& o, int half,
+         Branch& b)
+      : pb_(pb), o_(o), half_(half), b_(b), z_(z), e_(e), t_(t), ds_(o.ds),
+        span_(std::abs((pb.from() + pb.span()) - pb.from())) {}
+
+  // One move along the branch: a point appended, or a smaller step to try; false when the
+  // branch stopped (b.stop says why).
+  bool step();
+
+ private:
+  struct Next {
+    Corrected at;
+    Vector5d t;      // the tangent there
+    int iterations;  // Newton's
   };
-  double ds = o.ds;
-  int stalled = 0;
-  int crossings = 0;  // crossings of the last grazing marked
-  while (static_cast<int>(b.points.size()) < o.max_points) {
-    int iterations = 0;
-    auto next = pb.correct(z + ds * t, t, &iterations);
-    std::optional<Vector5d> t_next;
-    if (next) {
-      t_next = Problem::tangent(next->second, t);
-      if (t.dot(*t_next) < std::cos(kMaxTurn)) next.reset();  // too sharp a turn: a smaller step
-    }
-    if (!next) {
-      ds /= 2.0;
-      if (ds >= o.ds_min) continue;
-      // Steps that fail down to ds_min: at a grazing the map stops being smooth (an impact
-      // appears), and Newton converges up to it from this side only, so the last point is the
-      // grazing point to within ds_min. It is marked, and the branch is continued across with
-      // steps from ds_min up, each accepted once Newton converges on the far side.
-      const BranchPoint& last = b.points.back();
-      const double touching = kGrazingTolerance * pb.length_scale();
-      if (!(last.graze_gap <= touching)) {
-        b.stop = "the step fell below ds_min (Newton does not converge: a nonsmooth point?)";
-        return;
-      }
-      const bool known = std::any_of(b.bifurcations.begin(), b.bifurcations.end(), [&](const Bifurcation& g) {
-        return g.type == BifurcationType::grazing && std::abs(g.at.param - last.param) <= 1e-6 * std::abs(to - from);
-      });
-      if (!known) {
-        b.bifurcations.push_back({BifurcationType::grazing, last});
-        crossings = 0;
-      } else if (++crossings > kMaxCrossings) {
-        b.stop = "grazing: the branch crosses it back and forth (Newton converges only next to it)";
-        return;
-      }
-      std::optional<std::pair<Vector5d, Eval>> across;
-      double jump = o.ds_min;
-      // Predictors: along the tangent (the branch goes on straight), then the parameter alone
-      // stepped on, then back (the far side is another branch through the grazing point, whose
-      // tangent has nothing to do with this side's); accepted on the far side only.
-      Vector5d along_l = Vector5d::Zero();
-      along_l[4] = t[4] >= 0.0 ? 1.0 : -1.0;
-      for (; jump <= o.ds_max && !across; jump *= 4.0)
-        for (const Vector5d& d : {t, along_l, Vector5d(-along_l)}) {
-          const auto far = pb.correct(z + jump * d, d);
-          if (far && pb.extent(far->first).contacts != last.contacts) {
-            across = far;
-            break;
-          }
-        }
-      if (!across) {
-        b.stop = "grazing: Newton does not converge beyond it";
-        return;
-      }
-      // The far side's tangent, oriented away from the grazing point.
-      const Vector5d away = (across->first - z).normalized();
-      z = across->first;
-      e = across->second;
-      t = Problem::tangent(e, away);
-      b.points.push_back(pb.point(z, e));
-      ds = std::max(jump, o.ds);
-      continue;
-    }
-    const auto& [z1, e1] = *next;
-    const Vector5d t1 = *t_next;
-    BranchPoint p1 = pb.point(z1, e1);  // its extent once: the grazing test and the branch use it
-    if (half > 0 && half_difference(p1).dot(half_difference(b.points.back())) < 0.0) {
-      // Through the period doubling where it rejoins: located by bisection on the sign of
-      // P^half(y) - y, the last point is that period doubling.
-      const Eigen::Vector4d g0 = half_difference(b.points.back());
-      double lo = 0.0, hi = ds;
-      std::optional<BranchPoint> tip;
-      while (hi - lo > o.locate_tol) {
-        const double mid = 0.5 * (lo + hi);
-        const auto m = pb.correct(z + mid * t, t);
-        if (!m) break;
-        BranchPoint q = pb.point(m->first, m->second);
-        if (half_difference(q).dot(g0) < 0.0) {
-          hi = mid;
-          tip = std::move(q);
-        } else {
-          lo = mid;
-        }
-      }
-      // Through a period doubling, P^half(y) - y goes through zero; a corrector that landed on
-      // the orbit's other half (y and P^half(y) swapped) flips it without: a smaller step.
-      if (!tip || half_difference(*tip).norm() > kRejoinGap) {
-        ds /= 2.0;
-        if (ds >= o.ds_min) continue;
-        b.stop = "the step fell below ds_min (the doubled branch lands on its own other half)";
-        return;
-      }
-      b.points.push_back(std::move(*tip));
-      b.stop = "rejoined the period-" + std::to_string(half) + " orbit at a period doubling of it";
-      return;
-    }
-    // Bifurcations between z and z1: bisection in the arclength s from z along t, on a test
-    // `changed(z_m, eval at z_m, tangent at z_m)` that is false at z and true at z1; the point
-    // located is the first one found with it true, within locate_tol of the change.
-    std::vector<Bifurcation> found;
-    const auto locate = [&](auto changed, BifurcationType type) {
-      double lo = 0.0, hi = ds;
-      std::optional<std::pair<Vector5d, Eval>> best = next;
-      while ((hi - lo) > o.locate_tol) {
-        const double mid = 0.5 * (lo + hi);
-        const auto m = pb.correct(z + mid * t, t);
-        if (!m) break;
-        if (changed(m->first, m->second, Problem::tangent(m->second, t))) {
-          hi = mid;
-          best = m;
-        } else {
-          lo = mid;
-        }
-      }
-      BranchPoint at = pb.point(best->first, best->second);
-      if (type != BifurcationType::grazing && !has_critical_multiplier(type, at.multipliers)) return;
-      found.push_back({type, at});
-    };
-    if ((t[4] > 0.0) != (t1[4] > 0.0))
-      locate([&](const Vector5d&, const Eval&, const Vector5d& tm) { return (tm[4] > 0.0) != (t[4] > 0.0); },
-             BifurcationType::fold);
-    const double pd0 = pd_test(e);
-    if ((pd0 > 0.0) != (pd_test(e1) > 0.0))
-      locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return (pd_test(em) > 0.0) != (pd0 > 0.0); },
-             BifurcationType::period_doubling);
-    const int ns0 = ns_count(e);
-    if (ns0 != ns_count(e1))
-      locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return ns_count(em) != ns0; },
-             BifurcationType::neimark_sacker);
-    const int contacts0 = b.points.back().contacts;
-    if (contacts0 != p1.contacts)
-      locate([&](const Vector5d& zm, const Eval&, const Vector5d&) { return pb.extent(zm).contacts != contacts0; },
-             BifurcationType::grazing);
-    for (const Bifurcation& f : found) {
-      const bool at_grazing = f.type != BifurcationType::grazing &&
-                              std::any_of(found.begin(), found.end(), [&](const Bifurcation& g) {
-                                return g.type == BifurcationType::grazing &&
-                                       std::abs(g.at.param - f.at.param) <= kAtGrazing * std::abs(to - from);
-                              });
-      if (!at_grazing) b.bifurcations.push_back(f);
-    }
-    if (z1[4] < -1e-12 || z1[4] > 1.0 + 1e-12) {
-      // The branch leaves the interval: its last point is at the end it crosses, corrected
-      // with the parameter fixed there.
-      const double end = z1[4] > 1.0 ? 1.0 : 0.0;
-      Vector5d fixed = Vector5d::Zero();
-      fixed[4] = 1.0;
-      const double s = (end - z[4]) / (z1[4] - z[4]);
-      Vector5d z_end = z + s * (z1 - z);
-      z_end[4] = end;
-      if (const auto last = pb.correct(z_end, fixed)) b.points.push_back(pb.point(last->first, last->second));
-      b.stop = end == 1.0 ? "reached the end of the interval" : "came back to the start of the interval";
-      return;
-    }
-    z = z1;
-    e = e1;
-    t = t1;
-    b.points.push_back(std::move(p1));
-    stalled = ds < kStallStep ? stalled + 1 : 0;
-    if (stalled >= kStallPoints) {
-      b.stop = "stalled: " + std::to_string(kStallPoints) + " steps in a row below " + std::to_string(kStallStep).substr(0, 7) +
-               " (Newton converges only on tiny steps)";
-      return;
-    }
-    if (iterations <= 3) ds = std::min(1.5 * ds, o.ds_max);
+
+  // Predictor-corrector: Newton from z + ds t; none when it fails or the tangent turns too sharply.
+  std::optional<Next> predict_correct();
+
+  // Halves the step; false once it is below ds_min.
+  bool smaller_step();
+
+  Eigen::Vector4d half_difference(const BranchPoint& q) const;
+
+  // Grazing crossing. Steps that fail down to ds_min: at a grazing the map stops being smooth
+  // (an impact appears), and Newton converges up to it from this side only, so the last point
+  // is the grazing point to within ds_min. It is marked, and the branch is continued across
+  // with steps from ds_min up, each accepted once Newton converges on the far side.
+  bool cross_grazing();
+
+  // The grazing at `last` among the branch's bifurcations (once); false when the branch has
+  // crossed it back and forth too often.
+  bool mark_grazing(const BranchPoint& last);
+
+  // A point beyond the grazing, from steps `jump` growing from ds_min. Predictors: along the
+  // tangent (the branch goes on straight), then the parameter alone stepped on, then back (the
+  // far side is another branch through the grazing point, whose tangent has nothing to do with
+  // this side's); accepted on the far side only.
+  std::optional<Corrected> far_side(const BranchPoint& last, double& jump);
+
+  // Branch switching's end: through the period doubling where a doubled branch rejoins its
+  // period-half orbit, located by bisection on the sign of P^half(y) - y; the last point is
+  // that period doubling.
+  bool rejoin();
+
+  // Event location: the bifurcations between z and the next point, each by a test function
+  // whose sign (or count) changes there, appended to the branch unless at a grazing.
+  void locate_bifurcations(const Next& next, const BranchPoint& p1);
+
+  // Bisection in the arclength s from z along t, on a test `changed(z_m, eval at z_m, tangent
+  // at z_m)` that is false at z and true at `end`; the point located is the first one found
+  // with it true, within locate_tol of the change.
+  template <class Changed>
+  void locate(Changed changed, BifurcationType type, const Corrected& end, std::vector<Bifurcation>& found);
+
+  // The branch leaves the interval: its last point is at the end it crosses, corrected with the
+  // parameter fixed there.
+  void end_at_interval(const Vector5d& z1);
+
+  // The next point becomes the branch's last; the step grows after an easy correction. False
+  // when the branch has stalled.
+  bool accept(const Next& next, BranchPoint p1);
+
+  Problem& pb_;
+  const ContinuationOptions& o_;
+  int half_;
+  Branch& b_;
+  Vector5d z_;
+  Eval e_;
+  Vector5d t_;
+  double ds_;
+  double span_;        // |to - from|, as the interval's ends give it
+  int stalled_ = 0;    // accepted steps in a row below kStallStep
+  int crossings_ = 0;  // crossings of the last grazing marked
+};
+
+bool Tracer::step() {
+  const std::optional<Next> next = predict_correct();
+  if (!next) return smaller_step() || cross_grazing();
+  BranchPoint p1 = pb_.point(next->at.first, next->at.second);  // its extent once: the tests and the branch use it
+  if (half_ > 0 && half_difference(p1).dot(half_difference(b_.points.back())) < 0.0) return rejoin();
+  locate_bifurcations(*next, p1);
+  if (next->at.first[4] < -1e-12 || next->at.first[4] > 1.0 + 1e-12) {
+    end_at_interval(next->at.first);
+    return false;
   }
+  return accept(*next, std::move(p1));
+}
+
+std::optional<Tracer::Next> Tracer::predict_correct() {
+  int iterations = 0;
+  const std::optional<Corrected> corrected = pb_.correct(z_ + ds_ * t_, t_, &iterations);
+  if (!corrected) return std::nullopt;
+  const Vector5d t1 = Problem::tangent(corrected->second, t_);
+  if (t_.dot(t1) < std::cos(kMaxTurn)) return std::nullopt;  // too sharp a turn: a smaller step
+  return Next{*corrected, t1, iterations};
+}
+
+bool Tracer::smaller_step() {
+  ds_ /= 2.0;
+  return ds_ >= o_.ds_min;
+}
+
+Eigen::Vector4d Tracer::half_difference(const BranchPoint& q) const {
+  return half_ > 0 && static_cast<int>(q.strobe.size()) > half_ ? pb_.scaled_difference(q.strobe[half_] - q.strobe[0])
+                                                                : Eigen::Vector4d::Zero().eval();
+}
+
+bool Tracer::cross_grazing() {
+  const BranchPoint& last = b_.points.back();
+  const double touching = kGrazingTolerance * pb_.length_scale();
+  if (!(last.graze_gap <= touching)) {
+    b_.stop = "the step fell below ds_min (Newton does not converge: a nonsmooth point?)";
+    return false;
+  }
+  if (!mark_grazing(last)) return false;
+  double jump = o_.ds_min;
+  const std::optional<Corrected> across = far_side(last, jump);
+  if (!across) {
+    b_.stop = "grazing: Newton does not converge beyond it";
+    return false;
+  }
+  // The far side's tangent, oriented away from the grazing point.
+  const Vector5d away = (across->first - z_).normalized();
+  z_ = across->first;
+  e_ = across->second;
+  t_ = Problem::tangent(e_, away);
+  b_.points.push_back(pb_.point(z_, e_));
+  ds_ = std::max(jump, o_.ds);
+  return true;
+}
+
+bool Tracer::mark_grazing(const BranchPoint& last) {
+  const bool known = std::any_of(b_.bifurcations.begin(), b_.bifurcations.end(), [&](const Bifurcation& g) {
+    return g.type == BifurcationType::grazing && std::abs(g.at.param - last.param) <= 1e-6 * span_;
+  });
+  if (!known) {
+    b_.bifurcations.push_back({BifurcationType::grazing, last});
+    crossings_ = 0;
+  } else if (++crossings_ > kMaxCrossings) {
+    b_.stop = "grazing: the branch crosses it back and forth (Newton converges only next to it)";
+    return false;
+  }
+  return true;
+}
+
+std::optional<Corrected> Tracer::far_side(const BranchPoint& last, double& jump) {
+  std::optional<Corrected> across;
+  Vector5d along_l = Vector5d::Zero();
+  along_l[4] = t_[4] >= 0.0 ? 1.0 : -1.0;
+  for (; jump <= o_.ds_max && !across; jump *= 4.0)
+    for (const Vector5d& d : {t_, along_l, Vector5d(-along_l)}) {
+      const auto far = pb_.correct(z_ + jump * d, d);
+      if (far && pb_.extent(far->first).contacts != last.contacts) {
+        across = far;
+        break;
+      }
+    }
+  return across;
+}
+
+bool Tracer::rejoin() {
+  const Eigen::Vector4d g0 = half_difference(b_.points.back());
+  double lo = 0.0, hi = ds_;
+  std::optional<BranchPoint> tip;
+  while (hi - lo > o_.locate_tol) {
+    const double mid = 0.5 * (lo + hi);
+    const auto m = pb_.correct(z_ + mid * t_, t_);
+    if (!m) break;
+    BranchPoint q = pb_.point(m->first, m->second);
+    if (half_difference(q).dot(g0) < 0.0) {
+      hi = mid;
+      tip = std::move(q);
+    } else {
+      lo = mid;
+    }
+  }
+  // Through a period doubling, P^half(y) - y goes through zero; a corrector that landed on
+  // the orbit's other half (y and P^half(y) swapped) flips it without: a smaller step.
+  if (!tip || half_difference(*tip).norm() > kRejoinGap) {
+    if (smaller_step()) return true;
+    b_.stop = "the step fell below ds_min (the doubled branch lands on its own other half)";
+    return false;
+  }
+  b_.points.push_back(std::move(*tip));
+  b_.stop = "rejoined the period-" + std::to_string(half_) + " orbit at a period doubling of it";
+  return false;
+}
+
+void Tracer::locate_bifurcations(const Next& next, const BranchPoint& p1) {
+  const Eval& e1 = next.at.second;
+  std::vector<Bifurcation> found;
+  if ((t_[4] > 0.0) != (next.t[4] > 0.0))
+    locate([&](const Vector5d&, const Eval&, const Vector5d& tm) { return (tm[4] > 0.0) != (t_[4] > 0.0); },
+           BifurcationType::fold, next.at, found);
+  const double pd0 = pd_test(e_);
+  if ((pd0 > 0.0) != (pd_test(e1) > 0.0))
+    locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return (pd_test(em) > 0.0) != (pd0 > 0.0); },
+           BifurcationType::period_doubling, next.at, found);
+  const int ns0 = ns_count(e_);
+  if (ns0 != ns_count(e1))
+    locate([&](const Vector5d&, const Eval& em, const Vector5d&) { return ns_count(em) != ns0; },
+           BifurcationType::neimark_sacker, next.at, found);
+  const int contacts0 = b_.points.back().contacts;
+  if (contacts0 != p1.contacts)
+    locate([&](const Vector5d& zm, const Eval&, const Vector5d&) { return pb_.extent(zm).contacts != contacts0; },
+           BifurcationType::grazing, next.at, found);
+  for (const Bifurcation& f : found) {
+    const bool at_grazing = f.type != BifurcationType::grazing &&
+                            std::any_of(found.begin(), found.end(), [&](const Bifurcation& g) {
+                              return g.type == BifurcationType::grazing &&
+                                     std::abs(g.at.param - f.at.param) <= kAtGrazing * span_;
+                            });
+    if (!at_grazing) b_.bifurcations.push_back(f);
+  }
+}
+
+template <class Changed>
+void Tracer::locate(Changed changed, BifurcationType type, const Corrected& end, std::vector<Bifurcation>& found) {
+  double lo = 0.0, hi = ds_;
+  std::optional<Corrected> best = end;
+  while ((hi - lo) > o_.locate_tol) {
+    const double mid = 0.5 * (lo + hi);
+    const auto m = pb_.correct(z_ + mid * t_, t_);
+    if (!m) break;
+    if (changed(m->first, m->second, Problem::tangent(m->second, t_))) {
+      hi = mid;
+      best = m;
+    } else {
+      lo = mid;
+    }
+  }
+  BranchPoint at = pb_.point(best->first, best->second);
+  if (type != BifurcationType::grazing && !has_critical_multiplier(type, at.multipliers)) return;
+  found.push_back({type, at});
+}
+
+void Tracer::end_at_interval(const Vector5d& z1) {
+  const double end = z1[4] > 1.0 ? 1.0 : 0.0;
+  Vector5d fixed = Vector5d::Zero();
+  fixed[4] = 1.0;
+  const double s = (end - z_[4]) / (z1[4] - z_[4]);
+  Vector5d z_end = z_ + s * (z1 - z_);
+  z_end[4] = end;
+  if (const auto last = pb_.correct(z_end, fixed)) b_.points.push_back(pb_.point(last->first, last->second));
+  b_.stop = end == 1.0 ? "reached the end of the interval" : "came back to the start of the interval";
+}
+
+bool Tracer::accept(const Next& next, BranchPoint p1) {
+  z_ = next.at.first;
+  e_ = next.at.second;
+  t_ = next.t;
+  b_.points.push_back(std::move(p1));
+  stalled_ = ds_ < kStallStep ? stalled_ + 1 : 0;
+  if (stalled_ >= kStallPoints) {
+    b_.stop = "stalled: " + std::to_string(kStallPoints) + " steps in a row below " +
+              std::to_string(kStallStep).substr(0, 7) + " (Newton converges only on tiny steps)";
+    return false;
+  }
+  if (next.iterations <= 3) ds_ = std::min(1.5 * ds_, o_.ds_max);
+  return true;
+}
+
+// Follows the branch from its last point z (evaluated: e) along t, appending to b, until it
+// stops or has max_points points. half > 0: a doubled branch (Tracer).
+void trace(Problem& pb, const Vector5d& z, const Eval& e, const Vector5d& t, const ContinuationOptions& o, int half,
+           Branch& b) {
+  Tracer tracer(pb, z, e, t, o, half, b);
+  while (static_cast<int>(b.points.size()) < o.max_points)
+    if (!tracer.step()) return;
   b.stop = "max_points reached";
 }
 

@@ -5,7 +5,7 @@
 // with WireError (a truncated journal or message is never read as a record), and records
 // written back to back decode one after the other, as a sink reads a range.
 //   sweep:          CellResult (sweep/cell_codec.hpp), with and without a census
-//   basins, census: PixelResult (basins/pixel_codec.hpp)
+//   basins, census: PixelResult (campaigns/census/state_codec.hpp)
 //   optimise:       StartRecord (multistart/start_codec.hpp)
 //   orbit diagram:  the steps of one direction (orbit_diagram/steps_codec.hpp)
 #include <gtest/gtest.h>
@@ -15,10 +15,10 @@
 #include <limits>
 #include <vector>
 
-#include "basins/pixel_codec.hpp"
 #include "multistart/start_codec.hpp"
 #include "orbit_diagram/steps_codec.hpp"
 #include "sweep/cell_codec.hpp"
+#include "vibromap/campaigns/census/state_codec.hpp"
 #include "vibromap/core/analysis/basins_plane.hpp"  // kOverlapLabel
 
 using namespace vibromap;
@@ -242,7 +242,7 @@ PixelResult sample_pixel() {
   return r;
 }
 
-// The fields the layout carries (pixel_codec.hpp): the census fields (count, fraction,
+// The fields the layout carries (state_codec.hpp): the census fields (count, fraction,
 // from_rest, escapes) are the sink's, not a pixel's.
 void expect_same_pixel(const PixelResult& a, const PixelResult& b) {
   EXPECT_EQ(a.label, b.label);

@@ -6,7 +6,7 @@
 //          for the whole run (as the basins campaign's: captures by periodic orbits, never by
 //          recurrence, so that a label does not depend on what the rank followed before); an
 //          exception is the state's label kUnresolvedLabel, never the run's
-//   codec  the basins campaign's (pixel_codec.hpp): label, periods, early, budget, record
+//   codec  state_codec.hpp (basins uses it too): label, periods, early, budget, record
 //   sink   rank 0 keeps the K labels and the global attractor list in memory, matching the
 //          ranks' attractors with match_attractor; nothing is written (the summary is printed)
 // At the end rank 0 re-derives each attractor's record from the first initial state that

@@ -1,12 +1,12 @@
 // The point census on MPI ranks: see point_census_run.hpp.
 
-#include "vibromap/campaigns/basins/point_census_run.hpp"
+#include "vibromap/campaigns/census/point_census_run.hpp"
 
 #include <algorithm>
 #include <optional>
 #include <string>
 
-#include "pixel_codec.hpp"
+#include "vibromap/campaigns/census/follow_state.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"

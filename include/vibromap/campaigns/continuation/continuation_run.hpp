@@ -1,0 +1,50 @@
+#pragma once
+// The continuation campaign (`vibromap continue`): one process, no farm.
+//   start     the motion from rest at KEY = from (analysis.steady); where that is not periodic,
+//             the stable orbit shooting finds there (continuation follows orbits that exist,
+//             reached from rest or not)
+//   branches  pseudo-arclength continuation of that orbit to KEY = to, and of the doubled
+//             branches born at its period doublings (core/analysis/continuation.hpp)
+//   measure   every point's cycle measured as `run` measures an orbit (measure_orbit)
+//   output    the branch file (io/branch_file.hpp), when asked
+// The command (src/cli/continue_command.cpp) reads the arguments and prints the report.
+
+#include <string>
+#include <vector>
+
+#include "vibromap/core/analysis/continuation.hpp"
+#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/grid.hpp"
+#include "vibromap/io/scene/scene.hpp"
+
+namespace vibromap {
+
+struct ContinuationConfig {
+  double from = 0.0, to = 0.0;  // the key's range (finite, different)
+  double ds_max = 0.05;         // largest step along a branch (scaled arclength; --ds-max)
+  int max_points = 5000;        // per branch (--max-points)
+  int pd_depth = 1;             // period-doubling generations switched onto (0: none)
+  std::string output;           // branch file (HDF5); empty: none
+  bool overwrite = false;       // replace an existing branch file
+};
+
+// A branch point with its cycle measured as `run` measures the orbit.
+struct MeasuredPoint {
+  BranchPoint point;
+  PointSummary orbit;
+};
+
+struct ContinuationReport {
+  int n = 1;                       // the start orbit's period, in forcing periods
+  std::string start_regime;        // its regime's label at the start
+  std::vector<Branch> branches;    // continue_branches: the first, then the switched ones
+  std::vector<std::vector<MeasuredPoint>> measured;  // per branch, one per point
+};
+
+// Follows the scene's orbit along `axis` (a numeric scene key, as a one-axis [sweep] names it)
+// over [config.from, config.to] and writes the branch file when config.output is set (checked
+// before any solve). Throws SceneError (no periodic orbit at the start; bad --ds-max or
+// --max-points) and IoError (the file).
+ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const ContinuationConfig& config);
+
+}  // namespace vibromap
