@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/core/analysis/restitution.hpp"
 #include "vibromap/core/text.hpp"
@@ -14,6 +17,17 @@
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap restitution [--law L]... [--e E]... [--format table|json]`: the effective restitution
+// of a free two-body impact for each law (default: every dissipative law) and target e
+// (default 0.1, 0.2, ..., 1). Throws SceneError for an unknown law or an e outside (0, 1].
+struct RestitutionArgs {
+  std::vector<std::string> laws;  // contact law names
+  std::vector<double> e;          // target restitutions
+  std::string format = "table";   // "table" or "json" (a list of {law, e, chi, e_effective})
+};
+int restitution_command(const RestitutionArgs& args, std::ostream& out);
+
 
 namespace {
 
@@ -102,6 +116,43 @@ int restitution_command(const RestitutionArgs& args, std::ostream& out) {
   else
     write_table(rows, out);
   return code(ExitCode::ok);
+}
+
+namespace {
+
+// The footer, with the lower limits of e (restitution.hpp).
+std::string restitution_footer() {
+  std::ostringstream os;
+  os << "Each law's force is K z^1.5 (1 + chi w / v_in), chi calibrated from e (docs/model.md, 'Dissipative\n"
+        "contact laws'). For two free bodies one impact depends on chi alone, so the effective\n"
+        "restitution |v_out / v_in| is a property of the law and e: this command integrates that\n"
+        "impact at rtol 1e-12, until the bodies part. postprocess/vmpy plot_restitution draws the\n"
+        "JSON output.\n\n"
+        "Lower limit: the slow separation of a heavily damped impact lasts about chi^0.6 contact\n"
+        "times, so chi(e) must be at most "
+     << kMaxImpactDamping << ": e >= " << min_restitution(ContactLawKind::flores) << " for flores, e >= "
+     << min_restitution(ContactLawKind::gonthier) << " for gonthier,\nany e > 0 for hunt-crossley and "
+        "lankarani-nikravesh (chi <= 1.5). A smaller e is refused.";
+  return os.str();
+}
+
+}  // namespace
+
+Command declare_restitution(CLI::App& app) {
+  auto args = std::make_shared<RestitutionArgs>();
+  CLI::App* r = app.add_subcommand("restitution", "Effective restitution of each contact law for a target e");
+  r->add_option("--law", args->laws, "Contact law (repeatable; default: every dissipative law)")
+      ->allow_extra_args(false)
+      ->type_name("hunt-crossley|lankarani-nikravesh|flores|gonthier|hertz");
+  r->add_option("--e", args->e,
+                 "Target restitution in (0, 1] (repeatable; default 0.1, 0.2, ..., 1; flores and gonthier have a lower "
+                 "limit, below)")
+      ->check(kNumber)
+      ->allow_extra_args(false)
+      ->type_name("E");
+  add_format_option(*r, args->format, "Output on stdout: a table, or JSON (a list of {law, e, chi, e_effective})");
+  return {.app = r, .footer = restitution_footer(), .topic = "the contact laws' effective restitution", .campaign = {},
+          .run = [args](std::ostream& out) { return restitution_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli
