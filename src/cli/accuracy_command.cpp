@@ -14,6 +14,7 @@
 #include "vibromap/campaigns/accuracy/accuracy_run.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
@@ -37,17 +38,8 @@ namespace {
 
 // ---- text helpers ---------------------------------------------------------------------
 
-std::string num(double x, const char* spec) {
-  if (std::isnan(x)) return "nan";
-  std::array<char, 64> buf{};
-  std::snprintf(buf.data(), buf.size(), spec, x);
-  return buf.data();
-}
-
-std::string pad(std::string s, std::size_t width, bool left_align) {
-  if (s.size() < width) s.insert(left_align ? s.size() : 0, width - s.size(), ' ');
-  return s;
-}
+// "nan" for any NaN (printf writes "-nan" for some).
+std::string num(double x, const char* spec) { return std::isnan(x) ? "nan" : printf_number(x, spec); }
 
 // "shooting (4)" (Newton iterations) or "integrate".
 std::string steady_text(const AccuracyRow& r) {
@@ -61,12 +53,6 @@ std::string steady_text(const AccuracyRow& r) {
 }
 
 // ---- the table ------------------------------------------------------------------------
-
-struct Column {
-  const char* head;
-  std::size_t width;
-  bool left;
-};
 
 constexpr std::array kColumns = {
     Column{"method", 15, true},        Column{"setting", 13, true},      Column{"status", 7, true},
@@ -90,11 +76,7 @@ std::vector<std::string> table_cells(const AccuracyRow& r) {
 }
 
 void write_table_line(std::ostream& out, const std::vector<std::string>& cells, const std::string& note) {
-  std::string line;
-  for (std::size_t c = 0; c < kColumns.size(); ++c) {
-    line += "  ";
-    line += pad(cells[c], kColumns[c].width, kColumns[c].left);
-  }
+  std::string line = table_line(kColumns, cells);
   if (!note.empty()) {
     line += "  ";
     line += note;
@@ -110,9 +92,7 @@ void write_table(std::ostream& out, const AccuracyReport& report, const Scene& s
       << num(ref.T_con, "%.10g") << " s, F_max " << num(ref.F_max, "%.10g") << " N, k_con "
       << num(ref.k_con, "%.10g") << "\n"
       << "errors: |x - x_ref| / |x_ref|; wall s: solve time of one point on one core\n\n";
-  std::vector<std::string> heads;
-  for (const Column& c : kColumns) heads.push_back(c.head);
-  write_table_line(out, heads, "note");
+  out << table_head(kColumns) << "  note\n";
   write_table_line(out, table_cells(ref), ref.note);
   for (const AccuracyRow& r : report.rows) write_table_line(out, table_cells(r), r.note);
 }
@@ -218,9 +198,7 @@ Command declare_accuracy(CLI::App& app) {
   auto args = std::make_shared<AccuracyArgs>();
   CLI::App* acc = app.add_subcommand("accuracy", "Error against run time of rk4, dopri5 and hybrid+shooting on one point");
   add_scene_options(*acc, args->scene, args->sets, "Scene file (TOML)");
-  acc->add_option("--csv", args->csv, "Also write the rows to FILE.csv (one line per case, reference first)")
-      ->check(kOutputName)
-      ->type_name("FILE.csv");
+  add_output_option(*acc, "--csv", args->csv, "Also write the rows to FILE.csv (one line per case, reference first)", "FILE.csv");
   acc->add_flag("--overwrite", args->overwrite, "Replace an existing CSV file");
   add_format_option(*acc, args->format, "Output on stdout: a table for people or JSON for scripts");
   acc->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");

@@ -17,6 +17,7 @@
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/mpi_session.hpp"
 #include "vibromap/parallel/signals.hpp"
@@ -147,10 +148,7 @@ void print_json(std::ostream& out, const BasinsReport& r, const std::string& out
         .field("soft", a.soft)
         .field("pixels", a.count)
         .field("fraction", a.fraction);
-    w.key("stable");
-    if (a.stable < 0) w.null();
-    else w.value(a.stable == 1);
-    w.end_object();
+    write_stable_json(w.key("stable"), a.stable).end_object();
   }
   w.end_array().end_object();
   out << "\n";
@@ -159,8 +157,7 @@ void print_json(std::ostream& out, const BasinsReport& r, const std::string& out
 void print_table(std::ostream& out, const BasinsReport& r, const std::string& output) {
   const BasinsContent& c = r.content;
   const FarmReport& f = r.farm;
-  out << "basins         " << output
-      << (f.stop_signal ? "  (stopped by " + signal_name(f.stop_signal) + ": go on with --resume)" : "") << "\n"
+  out << "basins         " << output << stopped_note(f) << "\n"
       << "plane          " << c.plane.name() << ", " << c.plane.axes[0].size() << " x " << c.plane.axes[1].size()
       << " pixels (" << f.items_resumed << " from the resumed file, " << f.items_computed << " computed now)\n"
       << "ranks          " << f.ranks << "\n"
@@ -242,11 +239,9 @@ Command declare_basins(CLI::App& app) {
   b->add_option("--at", args->at, "Fix a variable outside the plane (repeatable; default: the rest state)")
       ->allow_extra_args(false)
       ->type_name("VAR=VALUE");
-  b->add_option("-o,--output", args->output, "File to write (default: the scene's name with _basins.h5)")
-      ->check(kOutputName)
-      ->type_name("FILE.h5");
-  auto* resume = b->add_flag("--resume", args->resume, "Continue an existing file of the same run");
-  b->add_flag("--overwrite", args->overwrite, "Replace an existing file")->excludes(resume);
+  add_output_option(*b, "-o,--output", args->output, "File to write (default: the scene's name with _basins.h5)");
+  add_resume_options(*b, args->resume, args->overwrite, "Continue an existing file of the same run",
+                     "Replace an existing file");
   b->add_option("--checkpoint", args->checkpoint, "Seconds between rewrites of the file")
       ->check(kNumber)
       ->type_name("SECONDS")

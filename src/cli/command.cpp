@@ -21,6 +21,17 @@ void add_scene_options(CLI::App& app, std::string& scene, std::vector<std::strin
       ->type_name("SECTION.KEY=VALUE");
 }
 
+void add_output_option(CLI::App& app, const std::string& names, std::string& file, const std::string& help,
+                       const std::string& type) {
+  app.add_option(names, file, help)->check(kOutputName)->type_name(type);
+}
+
+void add_resume_options(CLI::App& app, bool& resume, bool& overwrite, const std::string& resume_help,
+                        const std::string& overwrite_help) {
+  CLI::Option* r = app.add_flag("--resume", resume, resume_help);
+  app.add_flag("--overwrite", overwrite, overwrite_help)->excludes(r);
+}
+
 void add_format_option(CLI::App& app, std::string& format, const std::string& help) {
   app.add_option("-f,--format", format, help)
       ->check(CLI::IsMember({"table", "json"}))

@@ -43,6 +43,14 @@ extern const CLI::Validator kNumber;
 // The positional SCENE (with `help`) and -s,--set, the same for every command that reads a scene.
 void add_scene_options(CLI::App& app, std::string& scene, std::vector<std::string>& sets, const std::string& help);
 
+// An output file option (`names`, e.g. "-o,--output", with `help`) of type name `type`.
+void add_output_option(CLI::App& app, const std::string& names, std::string& file, const std::string& help,
+                       const std::string& type = "FILE.h5");
+
+// --resume and --overwrite, which exclude each other.
+void add_resume_options(CLI::App& app, bool& resume, bool& overwrite, const std::string& resume_help,
+                        const std::string& overwrite_help);
+
 // -f,--format table|json, with `help`.
 void add_format_option(CLI::App& app, std::string& format, const std::string& help);
 

@@ -42,6 +42,10 @@ ParamScene scene_with_param(const SceneLoader& load, std::vector<std::string> se
 std::string short_number(double x);  // 12 digits: 7.23, for messages
 std::string exact_number(double x);  // 17 digits: the double itself, for overrides
 
+// "  (stopped by SIGUSR1: go on with --resume)" after the output's name in a campaign's table
+// when a signal stopped it; empty otherwise.
+std::string stopped_note(const FarmReport& farm);
+
 // Rank 0, after a campaign's summary: ExitCode::ok, or (stopped by a signal) a line on stderr
 // saying what `output` holds and that --resume goes on, and ExitCode::stopped.
 int campaign_exit(const FarmReport& farm, const std::string& output, const char* noun);

@@ -13,6 +13,7 @@
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
@@ -47,12 +48,6 @@ void multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu
 
 double largest(const std::vector<std::complex<double>>& mu) { return mu.empty() ? NAN : std::abs(mu.front()); }
 
-void state_json(JsonWriter& w, const char* name, const Eigen::Vector4d& y) {
-  w.key(name).begin_array();
-  for (int i = 0; i < 4; ++i) w.value(y[i]);
-  w.end_array();
-}
-
 void points_json(JsonWriter& w, const std::vector<Measured>& points) {
   w.key("points").begin_array();
   for (const Measured& m : points) {
@@ -62,7 +57,7 @@ void points_json(JsonWriter& w, const std::vector<Measured>& points) {
     w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
     w.field("x1_max", m.point.x1_max).field("x2_max", m.point.x2_max).field("clearance_min", m.point.clearance_min);
     w.field("regime", m.orbit.regime.label());
-    state_json(w, "y", m.point.y);
+    write_state_json(w.key("y"), m.point.y);
     w.key("strobe_x1").begin_array();
     for (const Eigen::Vector4d& x : m.point.strobe) w.value(x[0]);
     w.end_array().end_object();
@@ -75,7 +70,7 @@ void bifurcations_json(JsonWriter& w, const std::vector<Bifurcation>& bifurcatio
   for (const Bifurcation& b : bifurcations) {
     w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
     multipliers_json(w, b.at.multipliers);
-    state_json(w, "y", b.at.y);
+    write_state_json(w.key("y"), b.at.y);
     w.end_object();
   }
   w.end_array();
@@ -233,9 +228,7 @@ Command declare_continue(CLI::App& app) {
                 "Period-doubling generations to switch onto: 0 none, 1 the doubled branches of the first, 2 also theirs, ...")
       ->check(kNumber & CLI::Range(0, 8))
       ->capture_default_str();
-  c->add_option("-o,--output", args->output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)")
-      ->check(kOutputName)
-      ->type_name("FILE.h5");
+  add_output_option(*c, "-o,--output", args->output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)");
   c->add_flag("--overwrite", args->overwrite, "Replace an existing branch file");
   c->add_flag("--points", args->points,
               "Table: print every point of every branch too (by default a summary: branches and bifurcations)");

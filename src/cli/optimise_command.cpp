@@ -12,6 +12,7 @@
 #include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/campaigns/multistart/optimise_run.hpp"
@@ -90,13 +91,9 @@ bool solves_agree(const VerifiedPoint& v) {
          std::abs(v.integrate.k_con - v.shooting.k_con) <= kAgreeTol * std::abs(v.integrate.k_con);
 }
 
-JsonWriter& stable_value(JsonWriter& w, int stable) { return stable < 0 ? w.null() : w.value(stable == 1); }
-
-std::string stable_text(int stable) { return stable < 0 ? "unknown" : stable == 1 ? "stable" : "unstable"; }
-
 void write_solve_json(JsonWriter& w, const PointSummary& s) {
   w.begin_object().field("status", to_string(s.status)).field("regime", s.regime.label());
-  stable_value(w.key("stable"), s.stable);
+  write_stable_json(w.key("stable"), s.stable);
   w.field("k_con", s.k_con).field("T_con", s.T_con).field("F_max", s.F_max).field("z_ratio", s.z_ratio);
   w.field("max_multiplier", max_multiplier(s)).field("periods", s.periods).field("wall_s", s.wall_s).end_object();
 }
@@ -125,7 +122,7 @@ void write_soft_check_json(JsonWriter& w, const VerifiedPoint& v, const Optimise
   for (const Attractor& a : c.census.attractors) {
     w.begin_object().field("regime", a.regime.label()).field("k_con", a.k_con).field("fraction", a.fraction);
     w.field("fraction_stderr", a.fraction_stderr).field("hertz_valid", a.hertz_valid);
-    stable_value(w.key("stable"), a.stable).field("soft", a.soft).end_object();
+    write_stable_json(w.key("stable"), a.stable).field("soft", a.soft).end_object();
   }
   w.end_array().end_object();
 }
@@ -141,7 +138,7 @@ void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint
   for (const std::string_view name : {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"})
     w.field(name, get_parameter(v.params, name));
   w.end_object().field("k_con", s.k_con).field("T_con", s.T_con).field("F_max", s.F_max).field("regime", s.regime.label());
-  stable_value(w.key("stable"), s.stable);
+  write_stable_json(w.key("stable"), s.stable);
   w.field("z_ratio", s.z_ratio).field("hertz_valid", s.hertz_valid).field("soft", s.soft);
   w.field("objective_found", objective_sense(o.objective) * v.value).field("start", v.start);
   w.field("algorithm", to_string(r.starts.at(static_cast<std::size_t>(v.start)).spec.algorithm));
@@ -204,17 +201,10 @@ void print_json(std::ostream& out, const OptimiseRun& run, const OptimiseOptions
   out << "\n";
 }
 
-std::string cell(const std::string& s, std::size_t width) {
-  std::string out = s;
-  if (out.size() < width) out.append(width - out.size(), ' ');
-  return out + " ";
-}
+// A cell of the starts' tables: padded to `width`, then one space.
+std::string cell(const std::string& s, std::size_t width) { return pad_right(s, width) + " "; }
 
-std::string number(double v, int digits = 6) {
-  std::ostringstream os;
-  os << std::setprecision(digits) << v;
-  return os.str();
-}
+std::string number(double v, int digits = 6) { return precision_number(v, digits); }
 
 void print_starts_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o) {
   const std::string q = objective_quantity(o.objective);
@@ -301,8 +291,8 @@ void print_best_table(std::ostream& out, const OptimiseReport& r, const Optimise
     const VerifiedPoint& v = r.best[i];
     const PointSummary& s = v.integrate;
     out << "#" << i << "  k_con " << number(s.k_con) << "  T_con " << number(s.T_con) << " s  F_max " << number(s.F_max)
-        << " N  regime " << s.regime.label() << " " << stable_text(s.stable) << "  (shooting: k_con "
-        << number(v.shooting.k_con) << ", " << v.shooting.regime.label() << " " << stable_text(v.shooting.stable)
+        << " N  regime " << s.regime.label() << " " << stability_text(s.stable) << "  (shooting: k_con "
+        << number(v.shooting.k_con) << ", " << v.shooting.regime.label() << " " << stability_text(v.shooting.stable)
         << (solves_agree(v) ? ", agrees" : ", DISAGREES") << ")  start " << v.start << "\n    ";
     if (!s.hertz_valid)
       out << "HERTZ-INVALID: z_max/R* = " << number(s.z_ratio, 3)
@@ -415,12 +405,9 @@ Command declare_optimise(CLI::App& app) {
   auto args = std::make_shared<OptimiseArgs>();
   CLI::App* opt = app.add_subcommand("optimise", "Multistart optimisation of the softest impact on MPI ranks (NLopt)");
   add_scene_options(*opt, args->scene, args->sets, "Scene file (TOML) with an [optimise] section");
-  opt->add_option("-o,--output", args->output, "Result file to write (default: the scene's name with _optimise.h5)")
-      ->check(kOutputName)
-      ->type_name("FILE.h5");
-  auto* resume = opt->add_flag("--resume", args->resume, "Finish a stopped or killed run from its journal (FILE.h5.journal)");
-  opt->add_flag("--overwrite", args->overwrite, "Replace an existing result file and recompute the seeding sweep")
-      ->excludes(resume);
+  add_output_option(*opt, "-o,--output", args->output, "Result file to write (default: the scene's name with _optimise.h5)");
+  add_resume_options(*opt, args->resume, args->overwrite, "Finish a stopped or killed run from its journal (FILE.h5.journal)",
+                     "Replace an existing result file and recompute the seeding sweep");
   opt->add_flag("-q,--quiet", args->quiet, "No progress lines");
   add_format_option(*opt, args->format, "Output on stdout: a table for people or JSON for scripts");
   return {.app = opt, .footer = optimise_footer(), .topic = "the optimisation", .campaign = always_campaign,

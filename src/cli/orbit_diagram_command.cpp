@@ -171,8 +171,7 @@ Command declare_orbit_diagram(CLI::App& app) {
       ->check(kNumber)
       ->capture_default_str();
   od->add_option("--keep", args->keep, "Stroboscopic states kept at each point")->check(kNumber)->capture_default_str();
-  od->add_option("-o,--output", args->output, "HDF5 file of the kept states (none by default)")
-      ->check(kOutputName)->type_name("FILE.h5");
+  add_output_option(*od, "-o,--output", args->output, "HDF5 file of the kept states (none by default)");
   od->add_flag("--overwrite", args->overwrite, "Replace an existing file");
   od->add_flag("-q,--quiet", args->quiet, "No progress lines");
   add_format_option(*od, args->format, "Output on stdout: table or json");

@@ -14,6 +14,7 @@
 #include "vibromap/core/analysis/restitution.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
@@ -55,20 +56,14 @@ std::vector<double> targets_of(const RestitutionArgs& args) {
   return e;
 }
 
-std::string fixed(double x, const char* format) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
-
 // Every (law, e) within the law's lower limit (min_restitution), checked before any impact.
 void check_limits(const std::vector<ContactLawKind>& laws, const std::vector<double>& targets) {
   for (const ContactLawKind law : laws)
     for (const double e : targets)
       if (const double least = min_restitution(law); e < least)
         throw SceneError(cat("--e ", short_number(e), ": below the lower limit of ", to_string(law), ", e >= ",
-                             short_number(least), " (its damping chi(e) = ", fixed(contact_law(law).chi(e), "%.3g"),
-                             " must be <= ", fixed(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
+                             short_number(least), " (its damping chi(e) = ", printf_number(contact_law(law).chi(e), "%.3g"),
+                             " must be <= ", printf_number(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
 }
 
 void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) {
@@ -77,8 +72,8 @@ void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) 
     const double miss = std::abs(r.e_effective - r.e) < 5e-7 ? 0.0 : r.e_effective - r.e;  // no "-0.000000"
     std::string law = to_string(r.law);
     law.resize(20, ' ');
-    out << law << " " << fixed(r.e, "%-6.3g") << " " << fixed(r.chi, "%-10.5g") << " " << fixed(r.e_effective, "%-12.6f")
-        << " " << fixed(miss, "%+-16.6f") << " " << (r.clipped ? "yes" : "no") << "\n";
+    out << law << " " << printf_number(r.e, "%-6.3g") << " " << printf_number(r.chi, "%-10.5g") << " " << printf_number(r.e_effective, "%-12.6f")
+        << " " << printf_number(miss, "%+-16.6f") << " " << (r.clipped ? "yes" : "no") << "\n";
   }
   out << "(two free bodies, one impact integrated at rtol 1e-12; the result depends on the law and e only)\n";
 }

@@ -19,6 +19,7 @@
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/output_file.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/census_output.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
@@ -78,11 +79,7 @@ std::uint64_t available_memory() {
   return 0;
 }
 
-std::string gigabytes(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
-  return text;
-}
+std::string gigabytes(double bytes) { return printf_number(bytes / 1e9, "%.3g GB"); }
 
 // Checks the trajectory file before the (possibly long) solve: its directory exists, an
 // existing file is a regular one and may be replaced, and the trajectory fits in memory and on
@@ -243,9 +240,7 @@ Command declare_run(CLI::App& app) {
           ""))
       ->type_name("table|json")
       ->capture_default_str();
-  run->add_option("-t,--trajectory", args->trajectory, "Also write the steady motion's trajectory to FILE.h5")
-      ->check(kOutputName)
-      ->type_name("FILE.h5");
+  add_output_option(*run, "-t,--trajectory", args->trajectory, "Also write the steady motion's trajectory to FILE.h5");
   run->add_flag("--overwrite", args->overwrite, "Replace an existing trajectory file");
   run->add_flag("--census", args->census, "Find every attractor of the point with its basin fraction ([census])");
   run->add_flag("--labels", args->labels, "With --census: also print each initial state and its attractor's index");

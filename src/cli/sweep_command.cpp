@@ -72,8 +72,7 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
 
 void print_table(std::ostream& out, const SweepReport& r, const std::string& output) {
   const FarmReport& f = r.farm;
-  out << "map            " << output
-      << (f.stop_signal ? "  (stopped by " + signal_name(f.stop_signal) + ": go on with --resume)" : "") << "\n"
+  out << "map            " << output << stopped_note(f) << "\n"
       << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
       << " computed now)\n"
       << "ranks          " << f.ranks << "\n"
@@ -123,6 +122,10 @@ int sweep_command(const SweepArgs& args, std::ostream& out) {
   return campaign_exit(report.farm, config.output, "cells");
 }
 
+std::string stopped_note(const FarmReport& farm) {
+  return farm.stop_signal ? "  (stopped by " + signal_name(farm.stop_signal) + ": go on with --resume)" : "";
+}
+
 int campaign_exit(const FarmReport& farm, const std::string& output, const char* noun) {
   if (farm.stop_signal == 0) return code(ExitCode::ok);
   std::cerr << "vibromap: stopped by " << signal_name(farm.stop_signal) << " after a checkpoint: " << output << " holds "
@@ -160,11 +163,9 @@ Command declare_sweep(CLI::App& app) {
   auto args = std::make_shared<SweepArgs>();
   CLI::App* sweep = app.add_subcommand("sweep", "Sweep a grid of parameter points on MPI ranks into an HDF5 map");
   add_scene_options(*sweep, args->scene, args->sets, "Scene file (TOML) with a [sweep] section");
-  sweep->add_option("-o,--output", args->output, "Map file to write (default: the scene's name with .h5)")
-      ->check(kOutputName)
-      ->type_name("FILE.h5");
-  auto* resume = sweep->add_flag("--resume", args->resume, "Continue an existing map of the same scene");
-  sweep->add_flag("--overwrite", args->overwrite, "Replace an existing map")->excludes(resume);
+  add_output_option(*sweep, "-o,--output", args->output, "Map file to write (default: the scene's name with .h5)");
+  add_resume_options(*sweep, args->resume, args->overwrite, "Continue an existing map of the same scene",
+                     "Replace an existing map");
   sweep->add_flag("-q,--quiet", args->quiet, "No progress lines");
   add_format_option(*sweep, args->format, "Final summary on stdout: table or json");
   return {.app = sweep, .footer = sweep_footer(), .topic = "a sweep", .campaign = always_campaign,
