@@ -5,31 +5,41 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/campaigns/accuracy/accuracy_run.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap accuracy SCENE [--set section.key=value]... [--csv FILE.csv] [--format table|json]`
+struct AccuracyArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string csv;               // CSV file of the rows; empty: none
+  bool overwrite = false;        // replace an existing CSV file
+  std::string format = "table";  // stdout: "table" or "json"
+  bool quiet = false;            // no progress lines on stderr
+};
+
+// Solves the scene's point with every case of the default accuracy study (accuracy.hpp) and
+// prints error against cost; writes the CSV when asked. Throws SceneError on a bad scene,
+// IoError when the CSV cannot be written (checked before the solves, too).
+int accuracy_command(const AccuracyArgs& args, std::ostream& out);
+
 namespace {
 
 // ---- text helpers ---------------------------------------------------------------------
 
-std::string num(double x, const char* spec) {
-  if (std::isnan(x)) return "nan";
-  std::array<char, 64> buf{};
-  std::snprintf(buf.data(), buf.size(), spec, x);
-  return buf.data();
-}
-
-std::string pad(std::string s, std::size_t width, bool left_align) {
-  if (s.size() < width) s.insert(left_align ? s.size() : 0, width - s.size(), ' ');
-  return s;
-}
+// "nan" for any NaN (printf writes "-nan" for some).
+std::string num(double x, const char* spec) { return std::isnan(x) ? "nan" : printf_number(x, spec); }
 
 // "shooting (4)" (Newton iterations) or "integrate".
 std::string steady_text(const AccuracyRow& r) {
@@ -43,12 +53,6 @@ std::string steady_text(const AccuracyRow& r) {
 }
 
 // ---- the table ------------------------------------------------------------------------
-
-struct Column {
-  const char* head;
-  std::size_t width;
-  bool left;
-};
 
 constexpr std::array kColumns = {
     Column{"method", 15, true},        Column{"setting", 13, true},      Column{"status", 7, true},
@@ -72,11 +76,7 @@ std::vector<std::string> table_cells(const AccuracyRow& r) {
 }
 
 void write_table_line(std::ostream& out, const std::vector<std::string>& cells, const std::string& note) {
-  std::string line;
-  for (std::size_t c = 0; c < kColumns.size(); ++c) {
-    line += "  ";
-    line += pad(cells[c], kColumns[c].width, kColumns[c].left);
-  }
+  std::string line = table_line(kColumns, cells);
   if (!note.empty()) {
     line += "  ";
     line += note;
@@ -92,9 +92,7 @@ void write_table(std::ostream& out, const AccuracyReport& report, const Scene& s
       << num(ref.T_con, "%.10g") << " s, F_max " << num(ref.F_max, "%.10g") << " N, k_con "
       << num(ref.k_con, "%.10g") << "\n"
       << "errors: |x - x_ref| / |x_ref|; wall s: solve time of one point on one core\n\n";
-  std::vector<std::string> heads;
-  for (const Column& c : kColumns) heads.push_back(c.head);
-  write_table_line(out, heads, "note");
+  out << table_head(kColumns) << "  note\n";
   write_table_line(out, table_cells(ref), ref.note);
   for (const AccuracyRow& r : report.rows) write_table_line(out, table_cells(r), r.note);
 }
@@ -165,6 +163,47 @@ int accuracy_command(const AccuracyArgs& args, std::ostream& out) {
   out.flush();
   study.write_csv(report);
   return code(ExitCode::ok);
+}
+
+namespace {
+
+std::string accuracy_footer() {
+  return "The study solves the scene's point (a [sweep] section is ignored) once per case below,\n"
+         "one case at a time, and compares each with a reference solve of the same point:\n"
+         "  reference        dopri5 at rtol 1e-13, steady state by brute-force integration: the most\n"
+         "                   conservative combination (no closed form, no Newton)\n"
+         "  rk4              the source paper's classical fixed-step RK4 (contact force always in the\n"
+         "                   right-hand side), 2^11 ... 2^15 steps per forcing period; steady state by\n"
+         "                   integration. Its order collapses at contact.\n"
+         "  dopri5           adaptive Dormand-Prince 5(4) with located contact events, rtol 1e-6, 1e-8,\n"
+         "                   1e-10, 1e-12; steady state by integration (hundreds of periods at xi = 0.01)\n"
+         "  hybrid+shooting  closed-form free flight between impacts, dopri5 only in contact; steady\n"
+         "                   state by Newton's method on the stroboscopic map (shooting, falling back to\n"
+         "                   integration), rtol 1e-6, 1e-8, 1e-10, 1e-12\n"
+         "atol scales with rtol (the scene's atol/rtol ratio is kept); steady_tol and newton_tol follow\n"
+         "each tolerance (auto). The scene's other keys (budgets, n_max, max_step, ...) apply to every\n"
+         "case; its method and tolerances are replaced by the cases'.\n\n"
+         "Columns: the method and its setting, status, regime, the steady-state method that gave the\n"
+         "answer (Newton iterations), wall s (the solve time of that one point on one core, so the\n"
+         "run takes about the sum of the column), right-hand side evaluations, forcing periods\n"
+         "integrated, and the relative errors |x - x_ref|/|x_ref| of T_con (duration of the longest\n"
+         "impact), F_max (peak contact force) and k_con = T/T_con. nan: undefined (no impact, or a\n"
+         "failed solve). A regime other than the reference's is noted. --csv writes the same rows for\n"
+         "scripts; postprocess/vmpy plot_work_precision FILE.csv draws error against time.";
+}
+
+}  // namespace
+
+Command declare_accuracy(CLI::App& app) {
+  auto args = std::make_shared<AccuracyArgs>();
+  CLI::App* acc = app.add_subcommand("accuracy", "Error against run time of rk4, dopri5 and hybrid+shooting on one point");
+  add_scene_options(*acc, args->scene, args->sets, "Scene file (TOML)");
+  add_output_option(*acc, "--csv", args->csv, "Also write the rows to FILE.csv (one line per case, reference first)", "FILE.csv");
+  acc->add_flag("--overwrite", args->overwrite, "Replace an existing CSV file");
+  add_format_option(*acc, args->format, "Output on stdout: a table for people or JSON for scripts");
+  acc->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
+  return {.app = acc, .footer = accuracy_footer(), .topic = "the accuracy study", .campaign = {},
+          .run = [args](std::ostream& out) { return accuracy_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

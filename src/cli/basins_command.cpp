@@ -9,17 +9,41 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/campaigns/basins/basins_run.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/mpi_session.hpp"
 #include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap basins SCENE --plane A,B --grid NxM [--at V=X]... [-o FILE.h5] [--resume | --overwrite]`
+// Collective under mpirun: every rank runs it; only rank 0 prints.
+struct BasinsArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string plane = "x1,v1";    // two of x1, x2, v1, v2
+  std::string grid = "200x200";   // points along each plane variable
+  std::vector<std::string> at;    // fixed values "x2=0.05" of the variables outside the plane
+  std::string output;             // file; empty: the scene's name with _basins.h5, in the current directory
+  bool resume = false;
+  bool overwrite = false;
+  bool quiet = false;
+  double checkpoint = 30.0;       // s between rewrites of the file
+  std::string format = "table";
+};
+
+// Labels every pixel of the plane with its attractor on all ranks and prints the attractors.
+// Throws SceneError on bad options (before any MPI or file work). Returns the exit code.
+int basins_command(const BasinsArgs& args, std::ostream& out);
+
 namespace {
 
 constexpr int kMinPoints = 2, kMaxPoints = 4096;  // points along each plane variable
@@ -124,10 +148,7 @@ void print_json(std::ostream& out, const BasinsReport& r, const std::string& out
         .field("soft", a.soft)
         .field("pixels", a.count)
         .field("fraction", a.fraction);
-    w.key("stable");
-    if (a.stable < 0) w.null();
-    else w.value(a.stable == 1);
-    w.end_object();
+    write_stable_json(w.key("stable"), a.stable).end_object();
   }
   w.end_array().end_object();
   out << "\n";
@@ -136,8 +157,7 @@ void print_json(std::ostream& out, const BasinsReport& r, const std::string& out
 void print_table(std::ostream& out, const BasinsReport& r, const std::string& output) {
   const BasinsContent& c = r.content;
   const FarmReport& f = r.farm;
-  out << "basins         " << output
-      << (f.stop_signal ? "  (stopped by " + signal_name(f.stop_signal) + ": go on with --resume)" : "") << "\n"
+  out << "basins         " << output << stopped_note(f) << "\n"
       << "plane          " << c.plane.name() << ", " << c.plane.axes[0].size() << " x " << c.plane.axes[1].size()
       << " pixels (" << f.items_resumed << " from the resumed file, " << f.items_computed << " computed now)\n"
       << "ranks          " << f.ranks << "\n"
@@ -180,6 +200,56 @@ int basins_command(const BasinsArgs& args, std::ostream& out) {
   else print_table(out, report, config.output);
   out.flush();
   return campaign_exit(report.farm, config.output, "pixels");
+}
+
+namespace {
+
+std::string basins_footer() {
+  return "A plane of initial states: the two --plane variables (of x1, x2, v1, v2: positions of the\n"
+         "bodies in m, velocities in m/s) on an evenly spaced NxM grid (--grid, N along the first\n"
+         "variable, 2..4096 each) spanning the scene's [census] box of each (census.x1 = [lo, hi], ...;\n"
+         "by default the rest state +- the motion's scale, 'vibromap keys'); the other two variables\n"
+         "are the rest state's (x1 = 0, x2 = D, v1 = v2 = 0) unless --at gives them (--at x2=0.06).\n"
+         "Each pixel's state is followed to the attractor its motion settles into, as 'run --census'\n"
+         "follows its initial states ([census] and [analysis] set the numerics): one follower per MPI\n"
+         "rank keeps every attractor it found, so later pixels are decided early against them. A pixel\n"
+         "with the bodies overlapping (x1 > x2) is not followed (label -3).\n\n"
+         "FILE.h5 (CF-1.8, opens in xarray): label (the attractor index of each pixel; -1 unresolved,\n"
+         "-2 unlisted, -3 overlap, -4 not computed), done, the two coordinates, and per attractor its\n"
+         "regime, n, k, k_con, T_con, F_max, max_floquet, stable, soft, pixels, fraction and\n"
+         "stroboscopic states. Attractors are numbered by pixel count, so the file does not depend on\n"
+         "the number of ranks. postprocess/vmpy plot_basins FILE.h5 -o FILE.png draws it.\n\n"
+         "The file is rewritten atomically every --checkpoint seconds; a run stopped (SIGINT, SIGTERM,\n"
+         "SIGUSR1: exit code 3) or killed leaves the file of its last checkpoint, and --resume computes\n"
+         "the rest. An existing FILE.h5 is replaced only with --overwrite.";
+}
+
+}  // namespace
+
+Command declare_basins(CLI::App& app) {
+  auto args = std::make_shared<BasinsArgs>();
+  CLI::App* b = app.add_subcommand("basins", "Basins of attraction on a plane of initial states, on MPI ranks");
+  add_scene_options(*b, args->scene, args->sets, "Scene file (TOML)");
+  b->add_option("--plane", args->plane, "The two state variables of the plane (of x1, x2, v1, v2)")
+      ->type_name("A,B")
+      ->capture_default_str();
+  b->add_option("--grid", args->grid, "Points along the first and the second plane variable (2..4096 each)")
+      ->type_name("NxM")
+      ->capture_default_str();
+  b->add_option("--at", args->at, "Fix a variable outside the plane (repeatable; default: the rest state)")
+      ->allow_extra_args(false)
+      ->type_name("VAR=VALUE");
+  add_output_option(*b, "-o,--output", args->output, "File to write (default: the scene's name with _basins.h5)");
+  add_resume_options(*b, args->resume, args->overwrite, "Continue an existing file of the same run",
+                     "Replace an existing file");
+  b->add_option("--checkpoint", args->checkpoint, "Seconds between rewrites of the file")
+      ->check(kNumber)
+      ->type_name("SECONDS")
+      ->capture_default_str();
+  b->add_flag("-q,--quiet", args->quiet, "No progress lines");
+  add_format_option(*b, args->format, "Summary on stdout: table or json");
+  return {.app = b, .footer = basins_footer(), .topic = "the basin pictures", .campaign = always_campaign,
+          .run = [args](std::ostream& out) { return basins_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

@@ -4,16 +4,38 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap continue SCENE --param KEY --from A --to B [--format table|json] [--set ...]`: the
+// periodic orbit the scene's point settles into from rest at KEY = A, followed to B by
+// pseudo-arclength continuation (core/analysis/continuation.hpp). One process.
+struct ContinueArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string param;
+  double from = 0.0, to = 0.0;
+  double ds_max = 0.05;          // largest step along the branch (scaled arclength)
+  int max_points = 5000;         // per branch
+  int pd_depth = 1;              // period-doubling generations switched onto (0: none)
+  std::string output;            // branch file (HDF5); empty: none
+  bool overwrite = false;        // replace an existing branch file
+  bool points = false;           // table: every point of every branch too (json always has them)
+  std::string format = "table";
+};
+int continue_command(const ContinueArgs& args, std::ostream& out);
+
 namespace {
 
 using Measured = MeasuredPoint;  // a branch point and its orbit, measured as `run` measures it
@@ -26,12 +48,6 @@ void multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu
 
 double largest(const std::vector<std::complex<double>>& mu) { return mu.empty() ? NAN : std::abs(mu.front()); }
 
-void state_json(JsonWriter& w, const char* name, const Eigen::Vector4d& y) {
-  w.key(name).begin_array();
-  for (int i = 0; i < 4; ++i) w.value(y[i]);
-  w.end_array();
-}
-
 void points_json(JsonWriter& w, const std::vector<Measured>& points) {
   w.key("points").begin_array();
   for (const Measured& m : points) {
@@ -41,7 +57,7 @@ void points_json(JsonWriter& w, const std::vector<Measured>& points) {
     w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
     w.field("x1_max", m.point.x1_max).field("x2_max", m.point.x2_max).field("clearance_min", m.point.clearance_min);
     w.field("regime", m.orbit.regime.label());
-    state_json(w, "y", m.point.y);
+    write_state_json(w.key("y"), m.point.y);
     w.key("strobe_x1").begin_array();
     for (const Eigen::Vector4d& x : m.point.strobe) w.value(x[0]);
     w.end_array().end_object();
@@ -54,7 +70,7 @@ void bifurcations_json(JsonWriter& w, const std::vector<Bifurcation>& bifurcatio
   for (const Bifurcation& b : bifurcations) {
     w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
     multipliers_json(w, b.at.multipliers);
-    state_json(w, "y", b.at.y);
+    write_state_json(w.key("y"), b.at.y);
     w.end_object();
   }
   w.end_array();
@@ -169,6 +185,56 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   }
   print_table(out, args, ps.axis.key, report.n, report.start_regime, report.branches, report.measured);
   return code(ExitCode::ok);
+}
+
+namespace {
+
+std::string continue_footer() {
+  return
+      "The scene's point with KEY = A is solved from rest; its periodic orbit (period n T) is\n"
+      "followed by pseudo-arclength continuation on the shooting equations P^n(y) - y = 0, the\n"
+      "state scaled by the motion's scale and the key by |B - A|, with step-size control. The\n"
+      "branch goes through folds (it turns back in the key) and ends when it leaves [A, B]. At\n"
+      "every point: Floquet multipliers and stability, the orbit's regime, k_con and F_max.\n"
+      "Bifurcations are detected and located by bisection along the branch: fold (the branch\n"
+      "turns), period-doubling (a multiplier through -1), neimark-sacker (a complex pair through\n"
+      "the unit circle), grazing (the number of contacts per cycle changes: an impact appears\n"
+      "or vanishes; the map is not smooth there, and the branch goes on across it with the new\n"
+      "count). At each period doubling the doubled branch (period 2n T) is switched onto and\n"
+      "followed until it leaves [A, B] or rejoins the period-n orbit, to --pd-depth generations.";
+}
+
+}  // namespace
+
+Command declare_continue(CLI::App& app) {
+  auto args = std::make_shared<ContinueArgs>();
+  CLI::App* c = app.add_subcommand("continue", "Follow a periodic orbit in one key: branch, stability, bifurcations");
+  add_scene_options(*c, args->scene, args->sets, "Scene file (TOML)");
+  c->add_option("-p,--param", args->param, "The scene key to follow the orbit in: forcing.omega, omega, m2, ...")
+      ->required()
+      ->type_name("KEY");
+  c->add_option("--from", args->from, "Start value of the key (SI units): the orbit from rest there is followed")
+      ->check(kNumber)
+      ->required()
+      ->type_name("A");
+  c->add_option("--to", args->to, "End value (either side of A)")->check(kNumber)->required()->type_name("B");
+  c->add_option("--ds-max", args->ds_max, "Largest step along the branch (scaled arclength)")
+      ->check(kNumber)
+      ->capture_default_str();
+  c->add_option("--max-points", args->max_points, "Points on each branch at most (2..1000000)")
+      ->check(kNumber)
+      ->capture_default_str();
+  c->add_option("--pd-depth", args->pd_depth,
+                "Period-doubling generations to switch onto: 0 none, 1 the doubled branches of the first, 2 also theirs, ...")
+      ->check(kNumber & CLI::Range(0, 8))
+      ->capture_default_str();
+  add_output_option(*c, "-o,--output", args->output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)");
+  c->add_flag("--overwrite", args->overwrite, "Replace an existing branch file");
+  c->add_flag("--points", args->points,
+              "Table: print every point of every branch too (by default a summary: branches and bifurcations)");
+  add_format_option(*c, args->format, "Output on stdout: table or json");
+  return {.app = c, .footer = continue_footer(), .topic = "the continuation of a periodic orbit", .campaign = {},
+          .run = [args](std::ostream& out) { return continue_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

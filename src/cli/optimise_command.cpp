@@ -6,10 +6,13 @@
 #include <limits>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/campaigns/multistart/optimise_run.hpp"
@@ -18,6 +21,31 @@
 #include "vibromap/core/optimise/point_objective.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap optimise SCENE [--set section.key=value]... [--output FILE.h5] [--resume | --overwrite]
+// [--format table|json] [-q]`. Collective under mpirun: every rank runs it; only rank 0 prints.
+struct OptimiseArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string output;            // result file; empty: the scene's name with _optimise.h5, in the current directory
+  bool resume = false;           // finish a killed run from its journal FILE.h5.journal
+  bool overwrite = false;        // replace an existing result file (and recompute the seeding sweep's map)
+  bool quiet = false;            // no progress lines
+  std::string format = "table";  // stdout: "table" or "json"
+};
+
+// The files of an optimisation with result file `output` (FILE.h5): the seeding sweep's map
+// FILE_map.h5, the best point's trajectory FILE_trajectory.h5 and, while it runs, the journal of
+// its finished starts FILE.h5.journal.
+std::string optimise_map_path(const std::string& output);
+std::string optimise_trajectory_path(const std::string& output);
+std::string optimise_journal_path(const std::string& output);
+
+// Runs the scene's [optimise] on all ranks and prints the starts and the best points.
+// Returns the exit code (stopped when a signal stopped the seeding sweep or the starts, with
+// the map or the journal checkpointed).
+int optimise_command(const OptimiseArgs& args, std::ostream& out);
+
 namespace {
 
 constexpr double kAgreeTol = 1e-6;  // relative k_con difference under which the two re-solves agree
@@ -63,13 +91,9 @@ bool solves_agree(const VerifiedPoint& v) {
          std::abs(v.integrate.k_con - v.shooting.k_con) <= kAgreeTol * std::abs(v.integrate.k_con);
 }
 
-JsonWriter& stable_value(JsonWriter& w, int stable) { return stable < 0 ? w.null() : w.value(stable == 1); }
-
-std::string stable_text(int stable) { return stable < 0 ? "unknown" : stable == 1 ? "stable" : "unstable"; }
-
 void write_solve_json(JsonWriter& w, const PointSummary& s) {
   w.begin_object().field("status", to_string(s.status)).field("regime", s.regime.label());
-  stable_value(w.key("stable"), s.stable);
+  write_stable_json(w.key("stable"), s.stable);
   w.field("k_con", s.k_con).field("T_con", s.T_con).field("F_max", s.F_max).field("z_ratio", s.z_ratio);
   w.field("max_multiplier", max_multiplier(s)).field("periods", s.periods).field("wall_s", s.wall_s).end_object();
 }
@@ -98,7 +122,7 @@ void write_soft_check_json(JsonWriter& w, const VerifiedPoint& v, const Optimise
   for (const Attractor& a : c.census.attractors) {
     w.begin_object().field("regime", a.regime.label()).field("k_con", a.k_con).field("fraction", a.fraction);
     w.field("fraction_stderr", a.fraction_stderr).field("hertz_valid", a.hertz_valid);
-    stable_value(w.key("stable"), a.stable).field("soft", a.soft).end_object();
+    write_stable_json(w.key("stable"), a.stable).field("soft", a.soft).end_object();
   }
   w.end_array().end_object();
 }
@@ -114,7 +138,7 @@ void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint
   for (const std::string_view name : {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"})
     w.field(name, get_parameter(v.params, name));
   w.end_object().field("k_con", s.k_con).field("T_con", s.T_con).field("F_max", s.F_max).field("regime", s.regime.label());
-  stable_value(w.key("stable"), s.stable);
+  write_stable_json(w.key("stable"), s.stable);
   w.field("z_ratio", s.z_ratio).field("hertz_valid", s.hertz_valid).field("soft", s.soft);
   w.field("objective_found", objective_sense(o.objective) * v.value).field("start", v.start);
   w.field("algorithm", to_string(r.starts.at(static_cast<std::size_t>(v.start)).spec.algorithm));
@@ -177,17 +201,10 @@ void print_json(std::ostream& out, const OptimiseRun& run, const OptimiseOptions
   out << "\n";
 }
 
-std::string cell(const std::string& s, std::size_t width) {
-  std::string out = s;
-  if (out.size() < width) out.append(width - out.size(), ' ');
-  return out + " ";
-}
+// A cell of the starts' tables: padded to `width`, then one space.
+std::string cell(const std::string& s, std::size_t width) { return pad_right(s, width) + " "; }
 
-std::string number(double v, int digits = 6) {
-  std::ostringstream os;
-  os << std::setprecision(digits) << v;
-  return os.str();
-}
+std::string number(double v, int digits = 6) { return precision_number(v, digits); }
 
 void print_starts_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o) {
   const std::string q = objective_quantity(o.objective);
@@ -274,8 +291,8 @@ void print_best_table(std::ostream& out, const OptimiseReport& r, const Optimise
     const VerifiedPoint& v = r.best[i];
     const PointSummary& s = v.integrate;
     out << "#" << i << "  k_con " << number(s.k_con) << "  T_con " << number(s.T_con) << " s  F_max " << number(s.F_max)
-        << " N  regime " << s.regime.label() << " " << stable_text(s.stable) << "  (shooting: k_con "
-        << number(v.shooting.k_con) << ", " << v.shooting.regime.label() << " " << stable_text(v.shooting.stable)
+        << " N  regime " << s.regime.label() << " " << stability_text(s.stable) << "  (shooting: k_con "
+        << number(v.shooting.k_con) << ", " << v.shooting.regime.label() << " " << stability_text(v.shooting.stable)
         << (solves_agree(v) ? ", agrees" : ", DISAGREES") << ")  start " << v.start << "\n    ";
     if (!s.hertz_valid)
       out << "HERTZ-INVALID: z_max/R* = " << number(s.z_ratio, 3)
@@ -355,6 +372,46 @@ int optimise_command(const OptimiseArgs& args, std::ostream& out) {
     print_table(out, run.report, *scene.optimise, config.output);
   }
   return code(ExitCode::ok);
+}
+
+namespace {
+
+std::string optimise_footer() {
+  return "The scene's [optimise] section names the free parameters and their box (any of E1, E2, R1,\n"
+         "R2, m2, k2|omega2; log-scaled where it says so), the objective (min_k_con, max_T_con of one\n"
+         "impact, min_F_max), the regime to keep (a constraint, default a stable (1,1)), the local\n"
+         "algorithm(s) (bobyqa, cobyla, sbplx, slsqp, mma through NLopt; gradient_projection, the source\n"
+         "paper's method) and their stopping rules ('vibromap keys' documents them).\n\n"
+         "Seeds: the best cells of [optimise] map; without it, the scene's [sweep] runs first into\n"
+         "FILE_map.h5 (reused, or resumed, by the next run of the same scene; --overwrite recomputes it);\n"
+         "without either, the scene's point. Every seed is started with every algorithm; starts are\n"
+         "handed out to the MPI ranks dynamically (mpirun -n N vibromap optimise SCENE), and the answer\n"
+         "does not depend on the number of ranks. A line per finished start goes to stderr.\n\n"
+         "The best distinct points are re-solved from scratch at [optimise] verify_rtol, by brute-force\n"
+         "integration from rest and by shooting, with regime, Floquet stability, T_con, k_con and F_max.\n"
+         "FILE.h5 holds every evaluation of every start (postprocess/vmpy plot_optimise FILE.h5 draws\n"
+         "them), FILE_trajectory.h5 the best point's steady motion. --format json prints one object\n"
+         "whose 'best' lists those points, best first. An existing FILE.h5 is replaced only with\n"
+         "--overwrite.\n\n"
+         "Finished starts go to the journal FILE.h5.journal as they arrive (synced every 10 s). SIGINT,\n"
+         "SIGTERM or SIGUSR1 stop the run after a final checkpoint (exit code 3), during the seeding\n"
+         "sweep or the starts; --resume then finishes it with the same answer, computing only what is\n"
+         "missing. The journal is removed once FILE.h5 is written.";
+}
+
+}  // namespace
+
+Command declare_optimise(CLI::App& app) {
+  auto args = std::make_shared<OptimiseArgs>();
+  CLI::App* opt = app.add_subcommand("optimise", "Multistart optimisation of the softest impact on MPI ranks (NLopt)");
+  add_scene_options(*opt, args->scene, args->sets, "Scene file (TOML) with an [optimise] section");
+  add_output_option(*opt, "-o,--output", args->output, "Result file to write (default: the scene's name with _optimise.h5)");
+  add_resume_options(*opt, args->resume, args->overwrite, "Finish a stopped or killed run from its journal (FILE.h5.journal)",
+                     "Replace an existing result file and recompute the seeding sweep");
+  opt->add_flag("-q,--quiet", args->quiet, "No progress lines");
+  add_format_option(*opt, args->format, "Output on stdout: a table for people or JSON for scripts");
+  return {.app = opt, .footer = optimise_footer(), .topic = "the optimisation", .campaign = always_campaign,
+          .run = [args](std::ostream& out) { return optimise_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

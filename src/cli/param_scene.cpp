@@ -1,25 +1,15 @@
 // The scene of a command that steps one key (`orbit-diagram`, `continue`): see commands.hpp.
 
-#include <iomanip>
-#include <sstream>
-
 #include "commands.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
 
-std::string short_number(double x) {
-  std::ostringstream os;
-  os << std::setprecision(12) << x;
-  return os.str();
-}
+std::string short_number(double x) { return precision_number(x, 12); }
 
-std::string exact_number(double x) {
-  std::ostringstream os;
-  os << std::setprecision(17) << x;
-  return os.str();
-}
+std::string exact_number(double x) { return precision_number(x, 17); }
 
 ParamScene scene_with_param(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
                             const std::string& axis) {

@@ -4,16 +4,31 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/core/analysis/restitution.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap restitution [--law L]... [--e E]... [--format table|json]`: the effective restitution
+// of a free two-body impact for each law (default: every dissipative law) and target e
+// (default 0.1, 0.2, ..., 1). Throws SceneError for an unknown law or an e outside (0, 1].
+struct RestitutionArgs {
+  std::vector<std::string> laws;  // contact law names
+  std::vector<double> e;          // target restitutions
+  std::string format = "table";   // "table" or "json" (a list of {law, e, chi, e_effective})
+};
+int restitution_command(const RestitutionArgs& args, std::ostream& out);
+
 
 namespace {
 
@@ -41,20 +56,14 @@ std::vector<double> targets_of(const RestitutionArgs& args) {
   return e;
 }
 
-std::string fixed(double x, const char* format) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, format, x);
-  return buf;
-}
-
 // Every (law, e) within the law's lower limit (min_restitution), checked before any impact.
 void check_limits(const std::vector<ContactLawKind>& laws, const std::vector<double>& targets) {
   for (const ContactLawKind law : laws)
     for (const double e : targets)
       if (const double least = min_restitution(law); e < least)
         throw SceneError(cat("--e ", short_number(e), ": below the lower limit of ", to_string(law), ", e >= ",
-                             short_number(least), " (its damping chi(e) = ", fixed(contact_law(law).chi(e), "%.3g"),
-                             " must be <= ", fixed(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
+                             short_number(least), " (its damping chi(e) = ", printf_number(contact_law(law).chi(e), "%.3g"),
+                             " must be <= ", printf_number(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
 }
 
 void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) {
@@ -63,8 +72,8 @@ void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) 
     const double miss = std::abs(r.e_effective - r.e) < 5e-7 ? 0.0 : r.e_effective - r.e;  // no "-0.000000"
     std::string law = to_string(r.law);
     law.resize(20, ' ');
-    out << law << " " << fixed(r.e, "%-6.3g") << " " << fixed(r.chi, "%-10.5g") << " " << fixed(r.e_effective, "%-12.6f")
-        << " " << fixed(miss, "%+-16.6f") << " " << (r.clipped ? "yes" : "no") << "\n";
+    out << law << " " << printf_number(r.e, "%-6.3g") << " " << printf_number(r.chi, "%-10.5g") << " " << printf_number(r.e_effective, "%-12.6f")
+        << " " << printf_number(miss, "%+-16.6f") << " " << (r.clipped ? "yes" : "no") << "\n";
   }
   out << "(two free bodies, one impact integrated at rtol 1e-12; the result depends on the law and e only)\n";
 }
@@ -102,6 +111,43 @@ int restitution_command(const RestitutionArgs& args, std::ostream& out) {
   else
     write_table(rows, out);
   return code(ExitCode::ok);
+}
+
+namespace {
+
+// The footer, with the lower limits of e (restitution.hpp).
+std::string restitution_footer() {
+  std::ostringstream os;
+  os << "Each law's force is K z^1.5 (1 + chi w / v_in), chi calibrated from e (docs/model.md, 'Dissipative\n"
+        "contact laws'). For two free bodies one impact depends on chi alone, so the effective\n"
+        "restitution |v_out / v_in| is a property of the law and e: this command integrates that\n"
+        "impact at rtol 1e-12, until the bodies part. postprocess/vmpy plot_restitution draws the\n"
+        "JSON output.\n\n"
+        "Lower limit: the slow separation of a heavily damped impact lasts about chi^0.6 contact\n"
+        "times, so chi(e) must be at most "
+     << kMaxImpactDamping << ": e >= " << min_restitution(ContactLawKind::flores) << " for flores, e >= "
+     << min_restitution(ContactLawKind::gonthier) << " for gonthier,\nany e > 0 for hunt-crossley and "
+        "lankarani-nikravesh (chi <= 1.5). A smaller e is refused.";
+  return os.str();
+}
+
+}  // namespace
+
+Command declare_restitution(CLI::App& app) {
+  auto args = std::make_shared<RestitutionArgs>();
+  CLI::App* r = app.add_subcommand("restitution", "Effective restitution of each contact law for a target e");
+  r->add_option("--law", args->laws, "Contact law (repeatable; default: every dissipative law)")
+      ->allow_extra_args(false)
+      ->type_name("hunt-crossley|lankarani-nikravesh|flores|gonthier|hertz");
+  r->add_option("--e", args->e,
+                 "Target restitution in (0, 1] (repeatable; default 0.1, 0.2, ..., 1; flores and gonthier have a lower "
+                 "limit, below)")
+      ->check(kNumber)
+      ->allow_extra_args(false)
+      ->type_name("E");
+  add_format_option(*r, args->format, "Output on stdout: a table, or JSON (a list of {law, e, chi, e_effective})");
+  return {.app = r, .footer = restitution_footer(), .topic = "the contact laws' effective restitution", .campaign = {},
+          .run = [args](std::ostream& out) { return restitution_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

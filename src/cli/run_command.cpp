@@ -1,20 +1,25 @@
-// `vibromap run` and `vibromap keys`.
+// `vibromap run`: one parameter point, or its census of attractors (--census).
 
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/campaigns/census/point_census_run.hpp"
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/point_solver.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/output_file.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/census_output.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
@@ -25,6 +30,25 @@
 #include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
+
+// Forcing periods kept by `run --trajectory` when the scene's [analysis] trajectory_periods is 0.
+inline constexpr int kDefaultTrajectoryPeriods = 2;
+
+// `vibromap run SCENE [--set section.key=value]... [--format table|json] [--trajectory FILE.h5]`
+struct RunArgs {
+  std::string scene;              // scene file (TOML)
+  std::vector<std::string> sets;  // overrides "section.key=value", in command-line order
+  std::string format = "table";   // "table" or "json"
+  std::string trajectory;         // HDF5 file for the kept trajectory; empty: none
+  bool overwrite = false;         // replace an existing trajectory file
+  bool census = false;            // look for every attractor ([census]) instead of the one from rest
+  bool labels = false;            // with census: also print each initial state and its attractor
+};
+
+// Solves the scene's point and prints its summary to `out`; writes the trajectory file when
+// asked. Throws SceneError on a bad scene, IoError when a file cannot be written.
+int run_command(const RunArgs& args, std::ostream& out);
+
 namespace {
 
 // The scene with the command line's overrides. A trajectory is computed only when it will be
@@ -55,11 +79,7 @@ std::uint64_t available_memory() {
   return 0;
 }
 
-std::string gigabytes(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
-  return text;
-}
+std::string gigabytes(double bytes) { return printf_number(bytes / 1e9, "%.3g GB"); }
 
 // Checks the trajectory file before the (possibly long) solve: its directory exists, an
 // existing file is a regular one and may be replaced, and the trajectory fits in memory and on
@@ -172,16 +192,60 @@ int run_command(const RunArgs& args, std::ostream& out) {
   return code(ExitCode::ok);
 }
 
-int keys_command(bool as_toml, std::ostream& out) {
-  if (as_toml) {
-    write_reference_scene(out);
-  } else {
-    write_scene_keys(out);
-    out << "\nGive a key in a scene as `key = value` under its [section], or on the command line as\n"
-           "`--set section.key=value` (or `--set key=value` when only one section has the key). Keys\n"
-           "marked 'or give ...' form a pair: give one of the two.\n";
-  }
-  return code(ExitCode::ok);
+namespace {
+
+std::string run_footer() {
+  std::ostringstream os;
+  os << "Scene: a TOML file with the sections and keys below, in SI units. Every key is\n"
+        "optional and defaults to Table 1 of docs/model.md. 'vibromap keys' lists each key's\n"
+        "default, unit, allowed values and meaning; jobs/reference.toml gives every key\n"
+        "with its default and a comment. Unknown sections and keys are errors. A scene is a\n"
+        "regular file of at most " << kMaxSceneText << ": anything else (a directory, a\n"
+        "FIFO, a device) is refused at once, the same for every command that reads a scene.\n";
+  write_scene_key_summary(os);
+  os << "\n--set section.key=value overrides one key after the file is read, with the same\n"
+        "checks. The value is read as TOML (310, 1e-8, \"rk4\") or else as a string (rk4).\n"
+        "Setting one key of a pair (k1|omega1, xi1|c1, ...) replaces the other one.\n\n"
+        "--trajectory keeps [analysis] trajectory_periods forcing periods of the steady\n"
+        "motion (" << cli::kDefaultTrajectoryPeriods << " when the scene gives 0), sampled "
+        "trajectory_samples times per period,\nand writes them to an HDF5 file (read by "
+        "postprocess/). Without --trajectory no\ntrajectory is computed. An existing FILE.h5 is replaced "
+        "only with --overwrite, and\nnever when it is not a regular file; a trajectory too big for the "
+        "memory or the disk is\nrefused before the solve, with its size.\n\n"
+        "--census follows [census] initial_conditions (K) states to their attractors. Under\n"
+        "mpirun -n N (or srun) the K states are shared out over the N ranks, one follower each\n"
+        "(captures by periodic orbits only: census.decide_by_recurrence is not used there), and\n"
+        "rank 0 prints the census, the same for any N; SIGUSR1 to mpirun stops it (exit 3, no\n"
+        "census printed). Without --census, rank 0 alone solves and prints the point.";
+  return os.str();
+}
+
+// Under an MPI launcher `run --census` shares its initial states out over the ranks.
+bool census_under_launcher(int argc, char** argv) {
+  if (!launched_by_mpi()) return false;
+  for (int i = 2; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--census") return true;
+  return false;
+}
+
+}  // namespace
+
+Command declare_run(CLI::App& app) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* run = app.add_subcommand("run", "Solve one parameter point: steady motion, impacts, regime");
+  add_scene_options(*run, args->scene, args->sets, "Scene file (TOML)");
+  run->add_option("-f,--format", args->format, "Output on stdout: a table for people or JSON for scripts")
+      ->check(CLI::Validator(
+          [](const std::string& s) { return s == "table" || s == "json" ? std::string() : "must be table or json"; },
+          ""))
+      ->type_name("table|json")
+      ->capture_default_str();
+  add_output_option(*run, "-t,--trajectory", args->trajectory, "Also write the steady motion's trajectory to FILE.h5");
+  run->add_flag("--overwrite", args->overwrite, "Replace an existing trajectory file");
+  run->add_flag("--census", args->census, "Find every attractor of the point with its basin fraction ([census])");
+  run->add_flag("--labels", args->labels, "With --census: also print each initial state and its attractor's index");
+  return {.app = run, .footer = run_footer(), .topic = "a run", .campaign = census_under_launcher,
+          .run = [args](std::ostream& out) { return run_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
+#include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
@@ -12,6 +14,23 @@
 #include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
+
+// `vibromap sweep SCENE [--set section.key=value]... [--output FILE.h5] [--resume | --overwrite]`
+// Collective under mpirun: every rank runs it; only rank 0 prints.
+struct SweepArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string output;        // map file; empty: the scene's name with .h5, in the current directory
+  bool resume = false;       // continue an existing map
+  bool overwrite = false;    // replace an existing map
+  bool quiet = false;        // no progress lines
+  std::string format = "table";  // final summary: "table" or "json"
+};
+
+// Runs the sweep on all ranks. Returns the exit code (stopped when a signal stopped it, with
+// a checkpoint written).
+int sweep_command(const SweepArgs& args, std::ostream& out);
+
 namespace {
 
 std::string default_output(const std::string& scene_path) {
@@ -53,8 +72,7 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
 
 void print_table(std::ostream& out, const SweepReport& r, const std::string& output) {
   const FarmReport& f = r.farm;
-  out << "map            " << output
-      << (f.stop_signal ? "  (stopped by " + signal_name(f.stop_signal) + ": go on with --resume)" : "") << "\n"
+  out << "map            " << output << stopped_note(f) << "\n"
       << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
       << " computed now)\n"
       << "ranks          " << f.ranks << "\n"
@@ -104,12 +122,54 @@ int sweep_command(const SweepArgs& args, std::ostream& out) {
   return campaign_exit(report.farm, config.output, "cells");
 }
 
+std::string stopped_note(const FarmReport& farm) {
+  return farm.stop_signal ? "  (stopped by " + signal_name(farm.stop_signal) + ": go on with --resume)" : "";
+}
+
 int campaign_exit(const FarmReport& farm, const std::string& output, const char* noun) {
   if (farm.stop_signal == 0) return code(ExitCode::ok);
   std::cerr << "vibromap: stopped by " << signal_name(farm.stop_signal) << " after a checkpoint: " << output << " holds "
             << farm.items_resumed + farm.items_computed << " of " << farm.items << " " << noun
             << "; run the same command with --resume to go on\n";
   return code(ExitCode::stopped);
+}
+
+namespace {
+
+std::string sweep_footer() {
+  return "The scene's [sweep] section gives the axes, the quantities to store and the checkpoint\n"
+         "interval ('vibromap keys' documents them). An axis can be any real or integer scene key,\n"
+         "up to 8: \"forcing.omega\" = { from = 5, to = 9, n = 41 } (or forcing.omega = ..., or\n"
+         "omega = ... when only one section has the key), E1 = { values = [...] }.\n"
+         "Run on MPI ranks with: mpirun -n N vibromap sweep SCENE (as root add --allow-run-as-root,\n"
+         "and --oversubscribe for more ranks than cores). Cells are handed out dynamically; rank 0\n"
+         "computes too and writes the map. Progress goes to stderr: a live line on a terminal,\n"
+         "plain lines every [sweep] progress_interval seconds otherwise.\n\n"
+         "The map is made (every chunk allocated, its size checked against the disk) before any\n"
+         "cell is computed, and cells are written into it as they arrive. Every [sweep]\n"
+         "checkpoint_interval seconds the new cells are synced and then marked done, so a run\n"
+         "killed at any moment (kill -9 included) leaves a map that opens; --resume continues it,\n"
+         "verifying every chunk's checksum and computing the cells of a damaged one again. The\n"
+         "run must be the same, judged key by key from the parsed scenes: formatting, comments and\n"
+         "the checkpoint and progress intervals may differ, and an error names the keys that do.\n"
+         "A run holds FILE.h5.lock: a second run on the same map is refused. SIGINT, SIGTERM or\n"
+         "SIGUSR1 to any rank write a final checkpoint and stop (exit code 3); through mpirun send\n"
+         "SIGUSR1 (mpirun turns SIGINT and SIGTERM into a kill 2 s later and exits 1).";
+}
+
+}  // namespace
+
+Command declare_sweep(CLI::App& app) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* sweep = app.add_subcommand("sweep", "Sweep a grid of parameter points on MPI ranks into an HDF5 map");
+  add_scene_options(*sweep, args->scene, args->sets, "Scene file (TOML) with a [sweep] section");
+  add_output_option(*sweep, "-o,--output", args->output, "Map file to write (default: the scene's name with .h5)");
+  add_resume_options(*sweep, args->resume, args->overwrite, "Continue an existing map of the same scene",
+                     "Replace an existing map");
+  sweep->add_flag("-q,--quiet", args->quiet, "No progress lines");
+  add_format_option(*sweep, args->format, "Final summary on stdout: table or json");
+  return {.app = sweep, .footer = sweep_footer(), .topic = "a sweep", .campaign = always_campaign,
+          .run = [args](std::ostream& out) { return sweep_command(*args, out); }};
 }
 
 }  // namespace vibromap::cli

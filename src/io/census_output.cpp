@@ -7,16 +7,11 @@
 
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 
 namespace vibromap {
 
 namespace {
-
-void write_state(JsonWriter& w, const Eigen::Vector4d& x) {
-  w.begin_array();
-  for (int i = 0; i < 4; ++i) w.value(x[i]);
-  w.end_array();
-}
 
 void write_attractor(JsonWriter& w, const Attractor& a) {
   w.begin_object();
@@ -30,9 +25,7 @@ void write_attractor(JsonWriter& w, const Attractor& a) {
   w.field("z_ratio", a.z_ratio);
   w.field("hertz_valid", a.hertz_valid);
   w.field("max_floquet", a.max_floquet);
-  w.key("stable");
-  if (a.stable < 0) w.null();
-  else w.value(a.stable == 1);
+  write_stable_json(w.key("stable"), a.stable);
   w.field("soft", a.soft);
   w.field("count", a.count);
   w.field("fraction", a.fraction);
@@ -44,15 +37,9 @@ void write_attractor(JsonWriter& w, const Attractor& a) {
   w.field("escape_exposure_periods", a.escape_exposure);
   w.field("escapes", a.escapes);
   w.key("strobe").begin_array();
-  for (const Eigen::Vector4d& x : a.strobe) write_state(w, x);
+  for (const Eigen::Vector4d& x : a.strobe) write_state_json(w, x);
   w.end_array();
   w.end_object();
-}
-
-std::string fmt(const char* format, double x) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, x);
-  return text;
 }
 
 }  // namespace
@@ -81,7 +68,7 @@ void write_census_json(std::ostream& os, const CensusSummary& s) {
   w.end_array();
   if (!s.labels.empty()) {
     w.key("initial_conditions").begin_array();
-    for (const Eigen::Vector4d& x : s.initial_conditions) write_state(w, x);
+    for (const Eigen::Vector4d& x : s.initial_conditions) write_state_json(w, x);
     w.end_array();
     w.key("labels").begin_array();
     for (int l : s.labels) w.value(l);
@@ -95,11 +82,11 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   os << "scene          " << scene.path << "\n"
      << "census         " << s.K << " initial states (the rest state and " << s.K - 1 << " drawn)\n"
      << "attractors     " << s.attractors.size() << "\n"
-     << "soft fraction  " << fmt("%.4f", s.soft_fraction) << "  (stable, Hertz-valid, k_con <= soft_kcon)\n";
+     << "soft fraction  " << printf_number(s.soft_fraction, "%.4f") << "  (stable, Hertz-valid, k_con <= soft_kcon)\n";
   if (s.unresolved > 0) os << "unresolved     " << s.unresolved << " initial states (budget ran out while settling)\n";
   if (s.unlisted > 0) os << "unlisted       " << s.unlisted << " initial states (attractors beyond max_attractors)\n";
   os << "work           " << s.periods << " forcing periods, " << s.decided_early << " states decided early, "
-     << fmt("%.3f", s.wall_s) << " s (" << fmt("%.0f", s.wall_s > 0.0 ? s.K / s.wall_s : 0.0)
+     << printf_number(s.wall_s, "%.3f") << " s (" << printf_number(s.wall_s > 0.0 ? s.K / s.wall_s : 0.0, "%.0f")
      << " initial states/s" << (s.ranks > 1 ? cat(", ", std::to_string(s.ranks), " MPI ranks") : std::string()) << ")\n";
   if (s.budget_states > 0)
     os << "budget         " << s.budget_states << " states undecided to the budget's end took " << s.budget_periods
@@ -126,9 +113,9 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
          << "     Its fraction is the share still on it when the follow past the budget stopped (census.cpp);"
          << " it falls as that grows.\n";
       if (a.escape_exposure > 0)
-        os << "     Escape rate " << fmt("%.3g", a.escape_rate) << " per period (" << a.escapes << " exits in "
+        os << "     Escape rate " << printf_number(a.escape_rate, "%.3g") << " per period (" << a.escapes << " exits in "
            << a.escape_exposure << " periods followed past the budget"
-           << (a.escape_rate > 0.0 ? ", mean lifetime " + fmt("%.0f", 1.0 / a.escape_rate) + " periods" : std::string())
+           << (a.escape_rate > 0.0 ? ", mean lifetime " + printf_number(1.0 / a.escape_rate, "%.0f") + " periods" : std::string())
            << ").\n";
     }
     ++i;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vibromap/io/json_writer.hpp"
+#include "vibromap/io/report.hpp"
 
 namespace vibromap {
 namespace {
@@ -31,27 +32,10 @@ void write_impact_json(JsonWriter& w, const Impact& im, double T) {
       .end_object();
 }
 
-// printf-style formatting of one number ("%.6g" unless told).
-std::string num(double x, const char* spec = "%.6g") {
-  std::array<char, 64> buf{};
-  std::snprintf(buf.data(), buf.size(), spec, x);
-  return buf.data();
-}
-
-std::string pad(std::string s, std::size_t width) {
-  if (s.size() < width) s.append(width - s.size(), ' ');
-  return s;
-}
-
-std::string pad_left(std::string s, std::size_t width) {
-  if (s.size() < width) s.insert(0, width - s.size(), ' ');
-  return s;
-}
-
 // One row of the summary: name, value, unit, note.
 void row(std::ostream& os, const std::string& name, const std::string& value, const std::string& unit,
          const std::string& note = {}) {
-  std::string line = "  " + pad(name, 17) + pad(value, 16) + pad(unit, 7) + note;
+  std::string line = "  " + pad_right(name, 17) + pad_right(value, 16) + pad_right(unit, 7) + note;
   line.erase(line.find_last_not_of(' ') + 1);
   os << line << "\n";
 }
@@ -62,24 +46,18 @@ void write_header(std::ostream& os, const PointSummary& s, const Scene& scene) {
   if (io.method == Method::rk4) {
     os << ", " << io.rk4_steps << " steps per period";
   } else {
-    os << ", rtol " << num(io.rtol) << ", atol " << num(io.atol);
+    os << ", rtol " << printf_number(io.rtol) << ", atol " << printf_number(io.atol);
   }
   os << "; steady state by " << to_string(scene.options.analysis.steady) << ")\n\n";
   row(os, "status", to_string(s.status), "");
-  if (!s.message.empty()) os << "  " << pad("message", 17) << s.message << "\n";
+  if (!s.message.empty()) os << "  " << pad_right("message", 17) << s.message << "\n";
 }
 
-std::string stability_text(int stable) {
-  if (stable == 1) return "stable";
-  if (stable == 0) return "unstable";
-  return "unknown";
-}
-
-// "0.912345 - 0.0123i" (numbers as num()).
+// "0.912345 - 0.0123i" (numbers as printf_number()).
 std::string complex_text(std::complex<double> mu) {
-  std::string out = num(mu.real());
+  std::string out = printf_number(mu.real());
   out += mu.imag() < 0.0 ? " - " : " + ";
-  out += num(std::abs(mu.imag()));
+  out += printf_number(std::abs(mu.imag()));
   out += "i";
   return out;
 }
@@ -98,10 +76,10 @@ void write_steady(std::ostream& os, const PointSummary& s) {
   std::string note = "no Floquet multipliers computed";
   if (!s.floquet.empty()) {
     note = "largest |mu| = ";
-    note += num(largest);
+    note += printf_number(largest);
   }
   row(os, "stability", stability_text(s.stable), "", note);
-  if (std::isfinite(s.lyapunov)) row(os, "lyapunov", num(s.lyapunov, "%.4g"), "1/s", "largest Lyapunov exponent");
+  if (std::isfinite(s.lyapunov)) row(os, "lyapunov", printf_number(s.lyapunov, "%.4g"), "1/s", "largest Lyapunov exponent");
 }
 
 void write_floquet(std::ostream& os, const PointSummary& s) {
@@ -111,18 +89,18 @@ void write_floquet(std::ostream& os, const PointSummary& s) {
   for (std::size_t i = 0; i < s.floquet.size(); ++i) {
     std::string name = "mu";
     name += std::to_string(i + 1);
-    os << "  " << pad_left(name, 5) << "  " << pad(complex_text(s.floquet[i]), 28) << "|mu| = "
-       << num(std::abs(s.floquet[i])) << "\n";
+    os << "  " << pad_left(name, 5) << "  " << pad_right(complex_text(s.floquet[i]), 28) << "|mu| = "
+       << printf_number(std::abs(s.floquet[i])) << "\n";
   }
 }
 
 // Why the motion is soft (is_soft), or the first condition it fails.
 std::string soft_note(const PointSummary& s, const AnalysisOptions& a) {
-  if (s.soft) return "periodic with impacts, stable, Hertz-valid, k_con <= " + num(a.soft_kcon);
+  if (s.soft) return "periodic with impacts, stable, Hertz-valid, k_con <= " + printf_number(a.soft_kcon);
   if (s.regime.kind != RegimeKind::periodic || s.regime.k == 0) return "not periodic with impacts";
   if (s.stable != 1) return s.stable == 0 ? "unstable" : "stability unknown";
-  if (!s.hertz_valid) return "Hertz-invalid: z_ratio " + num(s.z_ratio, "%.3g") + " > " + num(a.hertz_limit);
-  return "k_con " + num(s.k_con, "%.4g") + " > " + num(a.soft_kcon);
+  if (!s.hertz_valid) return "Hertz-invalid: z_ratio " + printf_number(s.z_ratio, "%.3g") + " > " + printf_number(a.hertz_limit);
+  return "k_con " + printf_number(s.k_con, "%.4g") + " > " + printf_number(a.soft_kcon);
 }
 
 void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) {
@@ -130,16 +108,16 @@ void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) 
                                               std::to_string(s.regime.k) + " impact(s)"
                                         : std::string();
   row(os, "regime", s.regime.label(), "", nk);
-  row(os, "T", num(s.T), "s", "forcing period 2 pi/omega");
-  row(os, "T_con", num(s.T_con), "s", "duration of the longest impact");
-  row(os, "k_con", num(s.k_con), "-", "T / T_con (~1000 rigid, ~1-10 soft)");
-  row(os, "F_max", num(s.F_max), "N", "largest peak contact force");
-  row(os, "z_max", num(s.z_max), "m", "largest peak penetration");
-  const std::string limit = num(scene.options.analysis.hertz_limit);
-  row(os, "z_ratio", num(s.z_ratio), "-",
+  row(os, "T", printf_number(s.T), "s", "forcing period 2 pi/omega");
+  row(os, "T_con", printf_number(s.T_con), "s", "duration of the longest impact");
+  row(os, "k_con", printf_number(s.k_con), "-", "T / T_con (~1000 rigid, ~1-10 soft)");
+  row(os, "F_max", printf_number(s.F_max), "N", "largest peak contact force");
+  row(os, "z_max", printf_number(s.z_max), "m", "largest peak penetration");
+  const std::string limit = printf_number(scene.options.analysis.hertz_limit);
+  row(os, "z_ratio", printf_number(s.z_ratio), "-",
       "z_max/R*: Hertz theory " + std::string(s.hertz_valid ? "valid" : "NOT valid") + " (limit " + limit + ")");
   row(os, "soft", s.soft ? "yes" : "no", "", soft_note(s, scene.options.analysis));
-  row(os, "steady_residual", num(s.steady_residual, "%.3g"), "-",
+  row(os, "steady_residual", printf_number(s.steady_residual, "%.3g"), "-",
       s.steady_method != SteadyMethod::integrate ? "scaled Newton residual |P^n(y) - y|"
                                                 : "scaled |y(jT) - y((j-n)T)| at the end");
   write_steady(os, s);
@@ -147,7 +125,7 @@ void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) 
   row(os, "steps", std::to_string(s.counters.steps), "",
       "accepted; " + std::to_string(s.counters.rejected) + " rejected, " + std::to_string(s.counters.rhs_evals) +
           " rhs evaluations, " + std::to_string(s.counters.events) + " events");
-  row(os, "wall time", num(s.wall_s, "%.3g"), "s");
+  row(os, "wall time", printf_number(s.wall_s, "%.3g"), "s");
 }
 
 // With a dissipative contact law (some impact lost energy): each impact's exit velocity,
@@ -155,17 +133,14 @@ void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) 
 void write_dissipation(std::ostream& os, const PointSummary& s) {
   if (std::none_of(s.impacts.begin(), s.impacts.end(), [](const Impact& im) { return im.energy_dissipated != 0.0; }))
     return;
-  static const std::vector<std::string> heads = {"#", "v_out (m/s)", "e_effective", "dissipated (J)", "clipped"};
-  static const std::vector<std::size_t> widths = {3, 11, 11, 14, 7};
-  os << "\n  dissipation per impact (e_effective = |v_out / v_in|):\n";
-  for (std::size_t c = 0; c < heads.size(); ++c) os << "  " << pad_left(heads[c], widths[c]);
-  os << "\n";
+  static constexpr Column columns[] = {{"#", 3}, {"v_out (m/s)", 11}, {"e_effective", 11}, {"dissipated (J)", 14},
+                                       {"clipped", 7}};
+  os << "\n  dissipation per impact (e_effective = |v_out / v_in|):\n" << table_head(columns) << "\n";
   for (std::size_t i = 0; i < s.impacts.size(); ++i) {
     const Impact& im = s.impacts[i];
-    const std::vector<std::string> cells = {std::to_string(i + 1), num(im.v_out), num(im.e_effective),
-                                            num(im.energy_dissipated), im.clipped ? "yes" : "no"};
-    for (std::size_t c = 0; c < cells.size(); ++c) os << "  " << pad_left(cells[c], widths[c]);
-    os << "\n";
+    const std::vector<std::string> cells = {std::to_string(i + 1), printf_number(im.v_out), printf_number(im.e_effective),
+                                            printf_number(im.energy_dissipated), im.clipped ? "yes" : "no"};
+    os << table_line(columns, cells) << "\n";
   }
 }
 
@@ -174,19 +149,17 @@ void write_impacts(std::ostream& os, const PointSummary& s) {
     os << "\n  no impacts in the steady cycle\n";
     return;
   }
-  static const std::vector<std::string> heads = {"#", "t_in (s)", "t_out (s)", "T_con (s)", "F_max (N)",
-                                                 "z_max (m)", "z_max/R*", "v_in (m/s)", "impulse (N s)"};
-  static const std::vector<std::size_t> widths = {3, 16, 16, 11, 11, 11, 9, 11, 13};
-  os << "\n  impacts of one steady cycle (" << s.impacts.size() << "; t since t = 0):\n";
-  for (std::size_t c = 0; c < heads.size(); ++c) os << "  " << pad_left(heads[c], widths[c]);
-  os << "\n";
+  static constexpr Column columns[] = {{"#", 3},          {"t_in (s)", 16},  {"t_out (s)", 16},
+                                       {"T_con (s)", 11},  {"F_max (N)", 11}, {"z_max (m)", 11},
+                                       {"z_max/R*", 9},    {"v_in (m/s)", 11}, {"impulse (N s)", 13}};
+  os << "\n  impacts of one steady cycle (" << s.impacts.size() << "; t since t = 0):\n" << table_head(columns) << "\n";
   for (std::size_t i = 0; i < s.impacts.size(); ++i) {
     const Impact& im = s.impacts[i];
-    const std::vector<std::string> cells = {std::to_string(i + 1), num(im.t_in(s.T), "%.10g"),
-                                            num(im.t_out(s.T), "%.10g"), num(im.T_con), num(im.F_max),
-                                            num(im.z_max), num(im.z_ratio, "%.3g"), num(im.v_in), num(im.impulse)};
-    for (std::size_t c = 0; c < cells.size(); ++c) os << "  " << pad_left(cells[c], widths[c]);
-    os << "\n";
+    const std::vector<std::string> cells = {std::to_string(i + 1), printf_number(im.t_in(s.T), "%.10g"),
+                                            printf_number(im.t_out(s.T), "%.10g"), printf_number(im.T_con), printf_number(im.F_max),
+                                            printf_number(im.z_max), printf_number(im.z_ratio, "%.3g"),
+                                            printf_number(im.v_in), printf_number(im.impulse)};
+    os << table_line(columns, cells) << "\n";
   }
   write_dissipation(os, s);
 }
@@ -198,11 +171,7 @@ void write_stability_json(JsonWriter& w, const PointSummary& s) {
     w.begin_object().field("re", mu.real()).field("im", mu.imag()).field("abs", std::abs(mu)).end_object();
   }
   w.end_array().key("stable");
-  if (s.stable < 0) {
-    w.null();
-  } else {
-    w.value(s.stable == 1);
-  }
+  write_stable_json(w, s.stable);
   w.field("lyapunov", s.lyapunov);  // NaN (not computed) is written as null
 }
 
@@ -238,9 +207,7 @@ void write_summary_json(std::ostream& os, const PointSummary& s) {
       .field("newton_iterations", s.newton_iterations);
   write_stability_json(w, s);
   w.field("wall_s", s.wall_s);
-  w.key("final_state").begin_array();
-  for (int i = 0; i < 4; ++i) w.value(s.final_state[i]);
-  w.end_array().end_object();
+  write_state_json(w.key("final_state"), s.final_state).end_object();
 }
 
 void write_summary_table(std::ostream& os, const PointSummary& s, const Scene& scene) {

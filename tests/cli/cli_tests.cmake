@@ -75,7 +75,13 @@ set(VIBROMAP_CLI_TYPO_SCENE ${CMAKE_CURRENT_BINARY_DIR}/cli_typo.toml)
 file(WRITE ${VIBROMAP_CLI_TYPO_SCENE} "[system]\nm1 = 1000.0\nomgea2 = 5.0\n")
 
 # Help and version: exit 0, text on stdout.
-vibromap_cli_test(help RC 0 ARGS --help OUT "Usage: vibromap.*run.*keys.*Exit codes")
+vibromap_cli_test(help RC 0 ARGS --help OUT "Usage: vibromap.*run.*keys.*Exit codes:\n  0  done")
+# The main help's list of commands is made from the registry: every command is in it, continue too.
+vibromap_cli_test(help_lists_every_command RC 0 ARGS --help
+                  OUT "'vibromap run --help' explains a run.*'vibromap orbit-diagram --help'.*'vibromap continue --help'.*'vibromap basins --help'.*'vibromap restitution --help'.*'vibromap keys --help'")
+# A command's help points to the exit codes in one line instead of repeating the table.
+vibromap_cli_test(sweep_help_exit_codes RC 0 ARGS sweep --help OUT "\nExit codes: 'vibromap --help' lists them\\.\nOutputs are written")
+vibromap_cli_test(keys_help_exit_codes RC 0 ARGS keys --help OUT "--toml.*\nExit codes: 'vibromap --help' lists them\\.\n")
 vibromap_cli_test(run_help RC 0 ARGS run --help
                   OUT "--set.*--format.*--trajectory.*vibromap keys.*jobs/reference.toml.*\\[system\\] +m1 m2.*mpirun -n N.*shared out over the N ranks")
 vibromap_cli_test(version RC 0 ARGS --version OUT "^vibromap [0-9]+\\.[0-9]+\\.[0-9]+")
@@ -233,8 +239,13 @@ vibromap_cli_test(orbit_diagram_json RC 0 ARGS orbit-diagram jobs/paper/table2.t
                   OUT "\"key\": \"forcing\.omega\".*\"param\": 7\.8,[^}]*\"direction\": \"up\",[^}]*\"status\": \"ok\".*\"param\": 8,[^}]*\"direction\": \"down\"")
 vibromap_cli_test(orbit_diagram_bad_key RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param omeg --from 7 --to 8
                   ERR "--param omeg: unknown key 'omeg' in \\[sweep\\] \\(did you mean 'omega'\\?\\)")
-vibromap_cli_test(orbit_diagram_bad_range RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param omega --from 8 --to 7
-                  ERR "--from 8 --to 7: need finite values with from < to")
+vibromap_cli_test(orbit_diagram_bad_range RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param omega --from 8 --to 8
+                  ERR "--from 8 --to 8: need finite, different values")
+# --from and --to in either order (as for continue): the same points, "up" still the key
+# increasing, so the JSON is the one of --from 7.8 --to 8 above.
+vibromap_cli_test(orbit_diagram_either_order RC 0 ARGS orbit-diagram jobs/paper/table2.toml --param omega --from 8 --to 7.8
+                  --steps 2 --keep 2 --format json -q
+                  OUT "\"param\": 7\\.8,[^}]*\"direction\": \"up\",[^}]*\"status\": \"ok\".*\"param\": 8,[^}]*\"direction\": \"up\".*\"param\": 8,[^}]*\"direction\": \"down\".*\"param\": 7\\.8,[^}]*\"direction\": \"down\"")
 vibromap_cli_test(orbit_diagram_out_of_range RC 2 ARGS orbit-diagram jobs/paper/table2.toml --param m2 --from -1 --to 8
                   ERR "--param m2: .*must be > 0")
 vibromap_cli_test(orbit_diagram_help RC 0 ARGS orbit-diagram --help OUT "--param.*--from.*--transient.*--keep.*hysteresis")

@@ -1,0 +1,56 @@
+#pragma once
+// The reporter: the small pieces every command's stdout is made of, tables for people and JSON
+// for scripts (io/json_writer.hpp writes the JSON itself). One place for how a number is
+// printed, how a column is padded and how the values every report shares (stability, a state)
+// are written, so that the commands print them alike.
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace vibromap {
+
+class JsonWriter;
+
+// ---- numbers ----------------------------------------------------------------------------
+
+// One number as printf writes it with `spec` ("%.6g" unless told; "%.3g GB" works too).
+std::string printf_number(double x, const char* spec = "%.6g");
+
+// One number as an ostream writes it with std::setprecision(digits): 12 digits give 7.23, 17
+// the double itself.
+std::string precision_number(double x, int digits = 6);
+
+// ---- columns ----------------------------------------------------------------------------
+
+// s with spaces after (pad_right: left-aligned) or before (pad_left) it, up to `width`.
+std::string pad_right(std::string s, std::size_t width);
+std::string pad_left(std::string s, std::size_t width);
+
+struct Column {
+  std::string_view head;
+  std::size_t width;
+  bool left = false;  // left-aligned; else right-aligned
+};
+
+// One line of a table: each cell after two spaces, padded to its column's width (no newline).
+std::string table_line(std::span<const Column> columns, const std::vector<std::string>& cells);
+// The line of the columns' heads.
+std::string table_head(std::span<const Column> columns);
+
+// ---- values every report shares -----------------------------------------------------------
+
+// A stability flag (1 stable, 0 unstable, negative unknown): "stable", "unstable", "unknown".
+std::string stability_text(int stable);
+
+// The same flag in JSON: true, false, or null when unknown.
+JsonWriter& write_stable_json(JsonWriter& w, int stable);
+
+// A state (x1, x2, v1, v2) in JSON: an array of four numbers.
+JsonWriter& write_state_json(JsonWriter& w, const Eigen::Vector4d& x);
+
+}  // namespace vibromap
