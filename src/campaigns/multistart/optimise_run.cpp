@@ -17,6 +17,7 @@
 #include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
@@ -26,6 +27,7 @@
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 #include "vibromap/parallel/campaign.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -204,11 +206,26 @@ void verify_best(const Scene& scene, const OptimiseRunConfig& config, OptimiseRe
   }
   prefer_passing(report.best);
   for (std::size_t i = 1; i < report.best.size(); ++i) report.best[i].integrate.trajectory.clear();
+  check_cancel();  // a stop that came as the last re-solve ended: nothing written yet
   if (!report.best.empty() && !report.best.front().integrate.trajectory.empty()) {
     write_trajectory(config.trajectory, report.best.front().integrate, point_scene_text(scene, report.best.front()));
     report.trajectory_file = std::filesystem::path(config.trajectory).filename().string();
   }
   report.verify_wall_s = seconds_since(t0);
+}
+
+// Step 3 on rank 0: verify_best, stopped by a stop signal (the re-solves of a robust check can
+// take minutes, and mpirun kills the ranks a second after it passes SIGINT or SIGTERM on). A
+// stop leaves the journal, which holds every start, and writes nothing: --resume runs no start
+// and re-solves. Returns the stop signal (0: verified).
+int verify_stoppably(const Scene& scene, const OptimiseRunConfig& config, OptimiseReport& report) {
+  try {
+    const CancelScope scope(&stop_flag());
+    verify_best(scene, config, report);
+  } catch (const Cancelled&) {
+    return stop_signal();
+  }
+  return 0;
 }
 
 StartRecord run_one(const Scene& scene, const std::vector<Seed>& seeds, const StartSpec& spec, int rank) {
@@ -283,7 +300,7 @@ OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const Optimi
   report.measures = PointObjective(scene.params, scene.options, *scene.optimise).measure_names();
   report.seeds = seeds;
   report.optimise_wall_s = seconds_since(t_starts);
-  verify_best(scene, config, report);
+  if ((run.stop_signal = verify_stoppably(scene, config, report)) != 0) return run;
   report.wall_s = seconds_since(t0);
   write_optimise_file(config.output, report, *scene.optimise, scene.text);
   std::filesystem::remove(config.journal);
