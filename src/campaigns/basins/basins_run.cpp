@@ -145,7 +145,13 @@ BasinsReport run_basins(const MpiSession& mpi, const Scene& scene, const BasinsP
   campaign.sink = sink.get();
   BasinsReport report;
   report.farm = run_campaign(mpi, farm_options(config), campaign);
-  if (sink) report.content = sink->written();
+  if (!sink) return report;
+  report.content = sink->written();
+  for (std::uint64_t i = 0; i < plane.pixels() && report.content.done.size() == plane.pixels(); ++i) {
+    if (plane.overlapping(i)) continue;
+    ++report.pixels_to_follow;
+    if (report.content.done[static_cast<std::size_t>(i)]) ++report.pixels_followed;
+  }
   return report;
 }
 
