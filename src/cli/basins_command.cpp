@@ -116,6 +116,21 @@ long count_label(const BasinsContent& c, int label) {
   return static_cast<long>(std::count(c.labels.begin(), c.labels.end(), label));
 }
 
+// The share of the plane the fractions are over (pixels followed / to follow), 1 for none to follow.
+double fractions_cover(const BasinsReport& r) {
+  return r.pixels_to_follow == 0 ? 1.0 : static_cast<double>(r.pixels_followed) / static_cast<double>(r.pixels_to_follow);
+}
+
+// "over 412 of 1024 pixels (40 %)": a stopped run's fractions are the pixels done so far's.
+std::string fractions_line(const BasinsReport& r) {
+  const std::uint64_t shown =
+      r.pixels_followed < r.pixels_to_follow ? std::min<std::uint64_t>(100 * r.pixels_followed / r.pixels_to_follow, 99) : 100;
+  return cat("over ", std::to_string(r.pixels_followed), " of ", std::to_string(r.pixels_to_follow), " pixels (",
+             std::to_string(shown), " %)",
+             r.pixels_to_follow < r.content.plane.pixels() ? ", overlap excluded" : "",
+             r.pixels_followed < r.pixels_to_follow ? "; the rest are not computed yet" : "");
+}
+
 
 void print_json(std::ostream& out, const BasinsReport& r, const std::string& output) {
   const BasinsContent& c = r.content;
@@ -131,6 +146,9 @@ void print_json(std::ostream& out, const BasinsReport& r, const std::string& out
       .field("ranks", f.ranks)
       .field("wall_s", f.wall_s)
       .field("pixels_per_s", f.items_per_s())
+      .field("pixels_followed", r.pixels_followed)
+      .field("pixels_to_follow", r.pixels_to_follow)
+      .field("fractions_cover", fractions_cover(r))
       .field("stopped_by", f.stop_signal ? signal_name(f.stop_signal) : std::string())
       .field("unresolved", count_label(c, kUnresolvedLabel))
       .field("unlisted", count_label(c, kUnlistedLabel))
@@ -163,7 +181,8 @@ void print_table(std::ostream& out, const BasinsReport& r, const std::string& ou
       << "ranks          " << f.ranks << "\n"
       << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s() << " pixels/s\n"
       << "unresolved     " << count_label(c, kUnresolvedLabel) << ", unlisted " << count_label(c, kUnlistedLabel)
-      << ", overlap " << count_label(c, kOverlapLabel) << " pixels\n\n"
+      << ", overlap " << count_label(c, kOverlapLabel) << " pixels\n"
+      << "fractions      " << fractions_line(r) << "\n\n"
       << "  #  regime          fraction    pixels   k_con       T_con (s)   F_max (N)   max|mu|   stable  soft\n";
   for (std::size_t i = 0; i < c.attractors.size(); ++i) {
     const Attractor& a = c.attractors[i];

@@ -394,9 +394,13 @@ std::string optimise_footer() {
          "whose 'best' lists those points, best first. An existing FILE.h5 is replaced only with\n"
          "--overwrite.\n\n"
          "Finished starts go to the journal FILE.h5.journal as they arrive (synced every 10 s). SIGINT,\n"
-         "SIGTERM or SIGUSR1 stop the run after a final checkpoint (exit code 3), during the seeding\n"
-         "sweep or the starts; --resume then finishes it with the same answer, computing only what is\n"
-         "missing. The journal is removed once FILE.h5 is written.";
+         "SIGTERM or SIGUSR1 stop the run after a final checkpoint (exit code 3, and a 'vibromap:\n"
+         "stopped by' line even with -q), during the seeding sweep, the starts or the re-solves;\n"
+         "--resume then finishes it with the same answer, computing only what is missing. The journal\n"
+         "is removed once FILE.h5 is written. Under mpirun, Ctrl-C or SIGTERM to mpirun makes mpirun\n"
+         "itself exit 1 (it passes SIGTERM, then SIGKILL, to the ranks, which stop within that); SIGUSR1\n"
+         "is forwarded and mpirun exits 3. A script tells a stop by the 'stopped by' line, or by\n"
+         "FILE.h5.journal left and no FILE.h5.";
 }
 
 }  // namespace

@@ -95,7 +95,8 @@ bool check_output(const std::string& path, const OutputPolicy& policy) {
   if (!look_up(path, st)) return false;
   refuse_non_regular(path, policy.option, st);
   if (policy.resume || policy.overwrite) return true;
-  throw SceneError(cat(shown(path), ": ", policy.option, ": already exists; use ",
+  throw SceneError(cat(shown(path), ": ", policy.option, ": already exists",
+                       policy.exists.empty() ? std::string() : cat(" (", policy.exists, ")"), "; use ",
                        policy.resumable ? "--resume to continue it or " : "", "--overwrite to replace it"));
 }
 

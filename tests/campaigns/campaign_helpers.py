@@ -96,3 +96,27 @@ def reference_map(folder, scene_text):
                           timeout=300)
     assert proc.returncode == 0, proc.stderr
     return scene, ref
+
+
+def journal_records(path):
+    """How many intact start records the journal holds (io/journal.hpp's layout)."""
+    import struct
+    import zlib
+    try:
+        data = path.read_bytes()
+    except OSError:
+        return 0
+    if len(data) < 16:
+        return 0
+    (length,) = struct.unpack_from("<Q", data, 8)
+    pos, count = 16 + length + 4, 0
+    while pos + 16 <= len(data):
+        item, size = struct.unpack_from("<QQ", data, pos)
+        end = pos + 16 + size
+        if end + 4 > len(data):
+            break
+        (crc,) = struct.unpack_from("<I", data, end)
+        if crc != zlib.crc32(data[pos:end]):
+            break
+        pos, count = end + 4, count + 1
+    return count

@@ -115,6 +115,8 @@ TEST_F(OutputFile, AnExistingFileNeedsOverwriteOrResume) {
             p + ": --output: already exists; use --overwrite to replace it");
   EXPECT_EQ(thrown<SceneError>([&] { check_output(p, {.option = "-o", .resumable = true}); }),
             p + ": -o: already exists; use --resume to continue it or --overwrite to replace it");
+  EXPECT_EQ(thrown<SceneError>([&] { check_output(p, {.option = "journal", .exists = "a run left it"}); }),
+            p + ": journal: already exists (a run left it); use --overwrite to replace it");
   EXPECT_TRUE(check_output(p, {.overwrite = true}));
   EXPECT_TRUE(check_output(p, {.resume = true}));
 }

@@ -50,7 +50,7 @@
 // (resume(), read_map_layout(), scan_map(), read_map(): --resume, the optimiser's seeding map;
 // postprocess/vibromap_h5.py) checks it before reading any value and refuses a map that fails
 // it as damaged: IoError "<path>: damaged: its attributes fail their checksum (...); make it
-// again with --overwrite" (exit 4, as a damaged coordinate), never "a different scene". The
+// again with --overwrite" (exit 4, as a damaged coordinate), never "made by another run". The
 // three progress attributes are not covered: finish() rewrites them in place, and readers take
 // the counts from /done. A map without attribute_checksum (made before it existed) is read as
 // before, and --resume says its attributes are not verified; one whose root has an attribute

@@ -34,6 +34,7 @@ struct OutputPolicy {
   bool overwrite = false;  // --overwrite: an existing regular file is replaced (never written in place), -
   bool resumable = false;  // the command has --resume: the "already exists" line offers it, -
   bool resume = false;     // --resume: an existing regular file is opened again to be continued, -
+  std::string_view exists = {};  // what an existing file means, said when it is refused, -
 };
 
 // What a path that is not a regular file is ("a symbolic link", "a directory", "a FIFO (named

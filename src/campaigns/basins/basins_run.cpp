@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -13,15 +12,13 @@
 #include "basins_sink.hpp"
 #include "vibromap/campaigns/census/follow_state.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/output_target.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/output_file.hpp"
-#include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
-#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -73,39 +70,27 @@ BasinsContent new_content(const Scene& scene, const BasinsPlane& plane) {
 }
 
 // A file being resumed must be this run's; the error names the values that differ.
-BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, const std::string& path,
-                              const OutputLock& lock) {
-  BasinsContent have = [&] {
-    const StopAtOnce reading(lock.path());  // HDF5 cannot poll the stop flag
-    return read_basins_file(path);
-  }();
-  BasinsContent want = new_content(scene, plane);
-  const std::vector<std::string> diff = canonical_differences(have.identity, want.identity);
-  if (!diff.empty() || have.labels.size() != want.labels.size()) {
-    std::string keys;
-    for (std::size_t i = 0; i < diff.size() && i < 4; ++i) keys += cat(i ? ", " : "", diff[i]);
-    if (diff.size() > 4) keys += cat(" and ", std::to_string(diff.size() - 4), " more");
-    throw SceneError(cat(path, ": --resume: the file was made by another run than this one: ",
-                         keys.empty() ? std::string("the grid") : keys, "; use --overwrite or another --output"));
-  }
+BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, const OutputTarget& target) {
+  BasinsContent have = target.read(read_basins_file);
+  const BasinsContent want = new_content(scene, plane);
+  target.check_identity(have.identity, want.identity, scene.path,
+                        have.labels.size() == want.labels.size() ? "" : "the grid");
   if (have.unsealed)
-    std::cerr << "vibromap: note: " << path << ": made before basins files carried an attribute checksum: its "
+    std::cerr << "vibromap: note: " << target.path() << ": made before basins files carried an attribute checksum: its "
               << "attributes are not verified (--overwrite makes a new file that has one)\n";
   have.scene_text = scene.text;
   return have;
 }
 
-// Rank 0: the lock, and the sink over a new plane or the file resumed.
+// Rank 0: the output (checked and locked), and the sink over a new plane or the file resumed.
 std::unique_ptr<detail::BasinsSink> prepare_sink(const Scene& scene, const BasinsPlane& plane,
                                                  const BasinsRunConfig& config, const detail::PixelCodec& codec,
-                                                 std::unique_ptr<OutputLock>& lock) {
-  const bool exists = check_output(config.output, {.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
-  lock = std::make_unique<OutputLock>(config.output);
-  if (config.resume && exists)
-    return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
-                                                resumed_content(scene, plane, config.output, *lock));
-  return std::make_unique<detail::BasinsSink>(codec, scene, follower_census(scene), config.output,
-                                              new_content(scene, plane));
+                                                 std::optional<OutputTarget>& target) {
+  target.emplace(config.output,
+                 OutputPolicy{.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
+  return std::make_unique<detail::BasinsSink>(
+      codec, scene, follower_census(scene), config.output,
+      target->resuming() ? resumed_content(scene, plane, *target) : new_content(scene, plane));
 }
 
 // One pixel, on the rank's follower.
@@ -146,9 +131,9 @@ BasinsPlane make_basins_plane(const Scene& scene, const BasinsSpec& spec) {
 BasinsReport run_basins(const MpiSession& mpi, const Scene& scene, const BasinsPlane& plane,
                         const BasinsRunConfig& config) {
   const detail::PixelCodec codec;
-  std::unique_ptr<OutputLock> lock;
+  std::optional<OutputTarget> target;
   std::unique_ptr<detail::BasinsSink> sink;
-  mpi.agree([&] { sink = prepare_sink(scene, plane, config, codec, lock); }, exit_status_of);
+  mpi.agree([&] { sink = prepare_sink(scene, plane, config, codec, target); }, exit_status_of);
   // One follower per rank for the whole run, made at its first pixel.
   std::optional<CensusFollower> follower;
   Campaign<detail::PixelResult> campaign;
@@ -160,7 +145,13 @@ BasinsReport run_basins(const MpiSession& mpi, const Scene& scene, const BasinsP
   campaign.sink = sink.get();
   BasinsReport report;
   report.farm = run_campaign(mpi, farm_options(config), campaign);
-  if (sink) report.content = sink->written();
+  if (!sink) return report;
+  report.content = sink->written();
+  for (std::uint64_t i = 0; i < plane.pixels() && report.content.done.size() == plane.pixels(); ++i) {
+    if (plane.overlapping(i)) continue;
+    ++report.pixels_to_follow;
+    if (report.content.done[static_cast<std::size_t>(i)]) ++report.pixels_followed;
+  }
   return report;
 }
 

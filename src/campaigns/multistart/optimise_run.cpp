@@ -7,25 +7,27 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "start_codec.hpp"
 #include "start_sink.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/output_target.hpp"
 #include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/optimise_file.hpp"
-#include "vibromap/io/output_file.hpp"
-#include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/io/scene/keys.hpp"
 #include "vibromap/io/trajectory_file.hpp"
 #include "vibromap/parallel/campaign.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -38,19 +40,25 @@ constexpr double kDistinct = 0.01;  // best points closer than this in every sca
 
 // ---- Output, journal ------------------------------------------------------------------------
 
-// The result file and the journal beside it, checked under the output's lock (so that a
-// second run on the same output is told who holds it, not about the first run's journal).
-void check_outputs(const OptimiseRunConfig& config) {
-  if (check_output(config.output, {.overwrite = true}) && !config.overwrite)
-    throw SceneError(cat(config.output, config.resume ? ": already exists: the optimisation is complete" : ": already exists",
-                         "; use --overwrite to replace it"));
-  if (check_output(config.journal, {.option = "journal", .overwrite = true}) && !config.resume && !config.overwrite)
-    throw SceneError(cat(config.journal, ": an unfinished run of this output left its journal; --resume finishes it, "
-                         "--overwrite starts again"));
-  // The files written beside it, later: a link, a device or a folder in their place is refused
-  // now, before the seeding map and the journal are made (an existing file is replaced).
-  check_output(config.map_output, {.option = "seeding map", .overwrite = true, .resumable = true});
-  if (!config.trajectory.empty()) check_output(config.trajectory, {.option = "trajectory", .overwrite = true});
+// The journal beside the result file: an existing one is an unfinished run's, which --resume
+// finishes and --overwrite starts again.
+OutputPolicy journal_policy(const OptimiseRunConfig& config) {
+  return {.option = "journal", .overwrite = config.overwrite, .resumable = true, .resume = config.resume,
+          .exists = "an unfinished run of this output left it"};
+}
+
+// Rank 0: the result file (checked and locked, for the whole run: one optimisation per output),
+// then, under its lock (so that a second run on the same output is told who holds it, not
+// about the first run's journal), the journal and the files written beside it later: a link, a
+// device or a folder in their place is refused now, before the seeding map and the journal are
+// made (an existing file is replaced).
+void check_outputs(const Scene& scene, const OptimiseRunConfig& config, std::optional<OutputTarget>& target) {
+  if (!scene.optimise) throw SceneError(scene.path + ": no [optimise] section: nothing to optimise (see 'vibromap keys')");
+  target.emplace(config.output,
+                 OutputPolicy{.overwrite = config.overwrite, .exists = config.resume ? "the optimisation is complete" : ""});
+  check_output(config.journal, journal_policy(config));
+  target->check_beside(config.map_output, "seeding map");
+  if (!config.trajectory.empty()) target->check_beside(config.trajectory, "trajectory");
 }
 
 // What a journal must match to be resumed: the scene's result-defining values (every
@@ -69,18 +77,11 @@ std::string run_identity(const Scene& scene, const std::vector<Seed>& seeds) {
 
 Journal open_journal(const Scene& scene, const OptimiseRunConfig& config, const std::vector<Seed>& seeds) {
   const std::string identity = run_identity(scene, seeds);
-  if (config.resume && check_output(config.journal, {.option = "journal", .resume = true})) {
-    Journal j = Journal::open(config.journal);
-    if (const auto diff = canonical_differences(j.identity(), identity); !diff.empty()) {
-      std::string keys;
-      for (std::size_t i = 0; i < diff.size() && i < 4; ++i) keys += cat(i ? ", " : "", diff[i]);
-      if (diff.size() > 4) keys += cat(" and ", std::to_string(diff.size() - 4), " more");
-      throw SceneError(cat(config.journal, ": --resume: the journal belongs to another run than ", scene.path, ": ",
-                           keys, "; use --overwrite to start again"));
-    }
-    return j;
-  }
-  return Journal::create(config.journal, identity);
+  const OutputTarget journal(config.journal, journal_policy(config), OutputLocking::none);  // under the output's lock
+  if (!journal.resuming()) return Journal::create(config.journal, identity);
+  Journal j = Journal::open(config.journal);
+  journal.check_identity(j.identity(), identity, scene.path);
+  return j;
 }
 
 // ---- Seeds ----------------------------------------------------------------------------------
@@ -205,11 +206,26 @@ void verify_best(const Scene& scene, const OptimiseRunConfig& config, OptimiseRe
   }
   prefer_passing(report.best);
   for (std::size_t i = 1; i < report.best.size(); ++i) report.best[i].integrate.trajectory.clear();
+  check_cancel();  // a stop that came as the last re-solve ended: nothing written yet
   if (!report.best.empty() && !report.best.front().integrate.trajectory.empty()) {
     write_trajectory(config.trajectory, report.best.front().integrate, point_scene_text(scene, report.best.front()));
     report.trajectory_file = std::filesystem::path(config.trajectory).filename().string();
   }
   report.verify_wall_s = seconds_since(t0);
+}
+
+// Step 3 on rank 0: verify_best, stopped by a stop signal (the re-solves of a robust check can
+// take minutes, and mpirun kills the ranks a second after it passes SIGINT or SIGTERM on). A
+// stop leaves the journal, which holds every start, and writes nothing: --resume runs no start
+// and re-solves. Returns the stop signal (0: verified).
+int verify_stoppably(const Scene& scene, const OptimiseRunConfig& config, OptimiseReport& report) {
+  try {
+    const CancelScope scope(&stop_flag());
+    verify_best(scene, config, report);
+  } catch (const Cancelled&) {
+    return stop_signal();
+  }
+  return 0;
 }
 
 StartRecord run_one(const Scene& scene, const std::vector<Seed>& seeds, const StartSpec& spec, int rank) {
@@ -271,13 +287,8 @@ OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const Optimi
   const auto t0 = Clock::now();
   OptimiseRun run;
   run.report.ranks = mpi.size();
-  std::unique_ptr<OutputLock> lock;  // rank 0, for the whole run: one optimisation per output
-  mpi.agree([&] {
-    if (!scene.optimise) throw SceneError(scene.path + ": no [optimise] section: nothing to optimise (see 'vibromap keys')");
-    check_output(config.output, {.overwrite = true});  // its name and directory, before the lock file is made
-    lock = std::make_unique<OutputLock>(config.output);
-    check_outputs(config);
-  }, exit_status_of);
+  std::optional<OutputTarget> target;  // rank 0, for the whole run
+  mpi.agree([&] { check_outputs(scene, config, target); }, exit_status_of);
   std::vector<Seed> seeds;
   if ((run.stop_signal = make_seeds(mpi, scene, config, run, seeds)) != 0) return run;
   run.report.sweep_wall_s = run.sweep.wall_s;
@@ -289,7 +300,7 @@ OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const Optimi
   report.measures = PointObjective(scene.params, scene.options, *scene.optimise).measure_names();
   report.seeds = seeds;
   report.optimise_wall_s = seconds_since(t_starts);
-  verify_best(scene, config, report);
+  if ((run.stop_signal = verify_stoppably(scene, config, report)) != 0) return run;
   report.wall_s = seconds_since(t0);
   write_optimise_file(config.output, report, *scene.optimise, scene.text);
   std::filesystem::remove(config.journal);

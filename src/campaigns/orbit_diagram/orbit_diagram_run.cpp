@@ -3,15 +3,13 @@
 #include "vibromap/campaigns/orbit_diagram/orbit_diagram_run.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <memory>
 #include <optional>
 
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/output_target.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
-#include "vibromap/io/output_file.hpp"
-#include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/parallel/campaign.hpp"
 #include "vibromap/parallel/wire.hpp"
@@ -69,14 +67,11 @@ OrbitDiagramReport run_orbit_diagram(const MpiSession& mpi, const Scene& scene, 
   report.data.options = config.options;
   report.data.scene_text = scene.text;
   const StepsCodec codec;
-  std::unique_ptr<OutputLock> lock;
+  std::optional<OutputTarget> target;  // rank 0, when the diagram is written to a file
   std::unique_ptr<DiagramSink> sink;
   mpi.agree(
       [&] {
-        if (!config.output.empty()) {
-          check_output(config.output, {.overwrite = config.overwrite});
-          lock = std::make_unique<OutputLock>(config.output);
-        }
+        if (!config.output.empty()) target.emplace(config.output, OutputPolicy{.overwrite = config.overwrite});
         sink = std::make_unique<DiagramSink>(codec, report.data, config.output);
       },
       exit_status_of);

@@ -2,58 +2,27 @@
 
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 
-#include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cell_codec.hpp"
 #include "map_sink.hpp"
 #include "vibromap/campaigns/census/census_cell.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
+#include "vibromap/campaigns/output_target.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"
-#include "vibromap/io/output_file.hpp"
-#include "vibromap/io/output_lock.hpp"
 #include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
-#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
 
-std::string gigabytes(std::uint64_t bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", static_cast<double>(bytes) / 1e9);
-  return text;
-}
-
 // The map's identity: what a resume must match (every cell-defining value, io/scene/identity.hpp).
 std::string map_identity(const Scene& scene) { return canonical_text(scene, IdentityScope::sweep); }
-
-// "a, b, c" of the first few entries, and how many more.
-std::string listed(const std::vector<std::string>& items) {
-  constexpr std::size_t kShown = 4;
-  std::string out;
-  for (std::size_t i = 0; i < items.size() && i < kShown; ++i) out += cat(i > 0 ? ", " : "", items[i]);
-  if (items.size() > kShown) out += cat(" and ", std::to_string(items.size() - kShown), " more");
-  return out;
-}
-
-// Refuses, before the file is made, a map the disk cannot hold.
-void check_space(const std::string& output, const MapLayout& layout) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::absolute(output).parent_path();
-  std::error_code ec;
-  const fs::space_info space = fs::space(dir, ec);
-  const std::uint64_t need = MapWriter::file_bytes(layout);
-  if (!ec && need > space.available)
-    throw IoError(cat(output, ": the map of ", std::to_string(layout.grid.size()), " cells needs ", gigabytes(need),
-                         " GB, and its file system has ", gigabytes(space.available),
-                         " GB free; store fewer quantities, sweep fewer cells or write elsewhere"));
-}
 
 // Notes on stderr when the map has no attribute checksum (made by an older vibromap) and when
 // resume() wiped damaged chunks (their cells are computed again).
@@ -72,26 +41,24 @@ void report_repair(const MapWriter& w) {
 
 // Checks that a map being resumed is this scene's: the same canonical values key by key (the
 // error names the keys that differ), the same grid and stored quantities.
-void check_same_run(const MapWriter& w, const MapLayout& wanted, const Scene& scene) {
+void check_same_run(const OutputTarget& target, const MapWriter& w, const MapLayout& wanted, const Scene& scene) {
   const MapLayout& have = w.layout();
-  std::vector<std::string> diff = canonical_differences(have.identity, wanted.identity);
   bool same_grid = have.grid.axes().size() == wanted.grid.axes().size() && have.stored == wanted.stored &&
                    have.attractors == wanted.attractors;
   for (std::size_t d = 0; same_grid && d < wanted.grid.axes().size(); ++d)
     same_grid = have.grid.axes()[d].name == wanted.grid.axes()[d].name &&
                 have.grid.axes()[d].values == wanted.grid.axes()[d].values;
-  if (diff.empty() && !same_grid) diff.push_back("the map's own grid or stored quantities");
-  if (!diff.empty())
-    throw SceneError(cat(w.path(), ": --resume: the map was made from a different scene or grid than ", scene.path,
-                         ": ", listed(diff), "; use another --output"));
+  target.check_identity(have.identity, wanted.identity, scene.path,
+                        same_grid ? "" : "the map's own grid or stored quantities");
 }
 
-// Rank 0: the lock, and the map to fill (new, or opened for --resume), with its regime counts.
+// Rank 0: the output (checked and locked), and the map to fill (new, or opened for --resume),
+// with its regime counts.
 std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRunConfig& config, int ranks,
-                                              const detail::CellCodec& codec, std::unique_ptr<OutputLock>& lock) {
+                                              const detail::CellCodec& codec, std::optional<OutputTarget>& target) {
   if (!scene.sweep) throw SceneError(scene.path + ": no [sweep] section: nothing to sweep (see 'vibromap keys')");
-  const bool exists = check_output(config.output, {.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
-  lock = std::make_unique<OutputLock>(config.output);
+  target.emplace(config.output,
+                 OutputPolicy{.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
   const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
   MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
   const AnalysisOptions& analysis = scene.options.analysis;
@@ -100,16 +67,15 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   layout.soft_kcon = analysis.soft_kcon;
   detail::MapTally tally;
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;
-  if (config.resume && exists) {
-    MapWriter w = [&] {
-      const StopAtOnce reading(lock->path());  // HDF5 cannot poll the stop flag
-      return MapWriter::resume(config.output, [&](const CellResult& c) { tally.add(c); });
-    }();
-    check_same_run(w, layout, scene);
+  if (target->resuming()) {
+    MapWriter w = target->read(
+        [&](const std::string& path) { return MapWriter::resume(path, [&](const CellResult& c) { tally.add(c); }); });
+    check_same_run(*target, w, layout, scene);
     report_repair(w);
     return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(tally), ranks);
   }
-  check_space(config.output, layout);
+  target->check_space(MapWriter::file_bytes(layout), cat("the map of ", std::to_string(layout.grid.size()), " cells"),
+                      "store fewer quantities, sweep fewer cells or write elsewhere");
   return std::make_unique<detail::MapSink>(codec, MapWriter::create(config.output, layout, ranks), std::move(tally),
                                            ranks);
 }
@@ -143,9 +109,9 @@ FarmOptions farm_options(const Scene& scene, const SweepRunConfig& config) {
 
 SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunConfig& config) {
   const detail::CellCodec codec(scene.census.has_value());
-  std::unique_ptr<OutputLock> lock;
+  std::optional<OutputTarget> target;
   std::unique_ptr<detail::MapSink> sink;
-  mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, lock); }, exit_status_of);
+  mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, target); }, exit_status_of);
   const CellMaker cells(scene, Grid(scene.sweep->axes));
   Campaign<CellResult> campaign;
   campaign.solve = stoppable([&](std::uint64_t flat) { return solve_cell(cells, scene.census, flat); });

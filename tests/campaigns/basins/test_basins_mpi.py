@@ -143,13 +143,52 @@ def test_killed_run_resumes_to_the_same_file(reference, tmp_path):
     assert_same_file(out, two)
 
 
+def test_a_stopped_run_says_how_much_of_the_plane_its_fractions_cover(reference, tmp_path):
+    """SIGTERM once a checkpoint holds some pixels: the summary's fractions are over the pixels
+    followed so far, and the table says how many of the plane's that is (#29 item 4)."""
+    _, summary = reference
+    to_follow = 576 - summary["overlap"]
+    assert (summary["pixels_followed"], summary["pixels_to_follow"], summary["fractions_cover"]) == \
+        (to_follow, to_follow, 1.0)
+    out = tmp_path / "stopped.h5"
+    cmd = [EXE, "basins", SCENE, "--plane", "x1,v1", "--grid", GRID, "-o", str(out), "--quiet", "--checkpoint", "0.2"]
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    done, deadline = 0, time.time() + 120
+    while proc.poll() is None and done == 0 and time.time() < deadline:
+        time.sleep(0.05)
+        try:
+            with h5py.File(out, "r") as f:
+                done = int(f.attrs["pixels_done"])
+        except (OSError, KeyError):
+            continue
+    assert proc.poll() is None, "the run finished before it could be stopped; make it longer"
+    proc.send_signal(signal.SIGTERM)
+    table, err = proc.communicate(timeout=120)
+    assert proc.returncode == 3, err
+    with h5py.File(out, "r") as f:
+        labels, done_mask = f["label"][()], f["done"][()]
+    followed = int(((done_mask == 1) & (labels != -3)).sum())
+    assert 0 < followed < to_follow
+    lines = table.splitlines()
+    assert "(stopped by SIGTERM: go on with --resume)" in lines[0]
+    percent = min(100 * followed // to_follow, 99)
+    overlap = ", overlap excluded" if to_follow < 576 else ""
+    assert f"fractions      over {followed} of {to_follow} pixels ({percent} %){overlap}; the rest are not " \
+           "computed yet" in lines
+    rows = [line.split() for line in lines[lines.index("") + 2:]]  # after the blank line and the header
+    assert sum(int(r[3]) for r in rows) + int(labels[(done_mask == 1) & (labels == -1)].size) + \
+        int(labels[(done_mask == 1) & (labels == -2)].size) == followed
+    for r in rows:
+        assert abs(float(r[2]) - int(r[3]) / followed) < 1e-4  # fractions over the pixels followed
+
+
 def test_existing_file_is_refused(reference, tmp_path):
     two, _ = reference
     again = basins(1, two, check=False)
     assert again.returncode == 2
     assert again.stderr.count("vibromap: error:") == 1 and "already exists" in again.stderr
     other = basins(1, two, "--resume", "--set", "system.m2=320", check=False)
-    assert other.returncode == 2 and "another run" in other.stderr and "system.m2" in other.stderr
+    assert other.returncode == 2 and "made by another run than" in other.stderr and "system.m2" in other.stderr
 
 
 def census_json(ranks, K=64):

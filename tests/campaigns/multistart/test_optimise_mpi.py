@@ -25,7 +25,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC, kill_all  # noqa: E402
+from campaign_helpers import ENV, EXE, MPIEXEC, journal_records, kill_all  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 PLOT = os.path.join(REPO, "postprocess", "plot_optimise.py")
@@ -203,30 +203,6 @@ def test_bad_optimisations_end_with_one_line(tmp_path):
     assert "no cell of the map keeps the regime (3,2)" in proc.stderr
 
 
-def journal_records(path):
-    """How many intact start records the journal holds (io/journal.hpp's layout)."""
-    import struct
-    import zlib
-    try:
-        data = path.read_bytes()
-    except OSError:
-        return 0
-    if len(data) < 16:
-        return 0
-    (length,) = struct.unpack_from("<Q", data, 8)
-    pos, count = 16 + length + 4, 0
-    while pos + 16 <= len(data):
-        item, size = struct.unpack_from("<QQ", data, pos)
-        end = pos + 16 + size
-        if end + 4 > len(data):
-            break
-        (crc,) = struct.unpack_from("<I", data, end)
-        if crc != zlib.crc32(data[pos:end]):
-            break
-        pos, count = end + 4, count + 1
-    return count
-
-
 def test_killed_optimisation_resumes_to_the_same_best_point(tmp_path):
     """kill -9 of mpiexec and every rank once some starts are in the journal: --resume runs only
     the other starts and ends with the same starts and best points as an uninterrupted run."""
@@ -249,7 +225,7 @@ def test_killed_optimisation_resumes_to_the_same_best_point(tmp_path):
     assert 2 <= kept < total and not out.exists()
 
     refused = optimise(2, scene, out, check=False)  # neither --resume nor --overwrite
-    assert refused.returncode == 2 and "--resume finishes it" in refused.stderr
+    assert refused.returncode == 2 and "(an unfinished run of this output left it); use --resume to continue it" in refused.stderr
 
     resumed = json.loads(optimise(2, scene, out, "--resume").stdout)
     assert resumed["starts_resumed"] == kept

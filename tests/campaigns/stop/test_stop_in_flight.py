@@ -15,9 +15,10 @@ import sys
 import time
 
 import h5py
+import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC  # noqa: E402
+from campaign_helpers import ENV, EXE, MPIEXEC, journal_records  # noqa: E402
 
 FOREVER = """
 [system]
@@ -46,6 +47,31 @@ OPTIMISE = FOREVER + """
 m2 = { min = 100.0, max = 310.0 }
 seeds = 1
 max_evaluations = 5
+"""
+
+# Starts of moments, then a re-solve of the best point that would take hours: its soft fraction
+# re-checked by a census of 10^6 initial states (the Table 2 point, where (1,1) is soft).
+VERIFY_FOREVER = """
+[system]
+m2 = 310.0
+omega2 = 3.606
+
+[contact]
+E1 = 1.4e10
+E2 = 1.0e6
+R1 = 2.0
+R2 = 2.0
+
+[census]
+initial_conditions = 4
+
+[optimise]
+m2 = { min = 305.0, max = 310.0 }
+algorithm = "bobyqa"
+seeds = 1
+max_evaluations = 3
+min_soft_fraction = 0.5
+soft_check_initial_conditions = 1000000
 """
 
 # The longest a stop may take here: the item in flight would take hours, so anything that ends
@@ -117,3 +143,38 @@ def test_an_orbit_diagram_stops_in_its_transient(tmp_path):
             cmd = [MPIEXEC, "-n", str(n)] + cmd
         rc, err, _ = stop(cmd, sig)
         assert rc == 3, err
+
+
+@pytest.mark.parametrize("phase, sig", [("starts", signal.SIGINT), ("verification", signal.SIGINT),
+                                        ("verification", signal.SIGUSR1)])
+def test_ctrl_c_to_mpiexec_stops_an_optimise_on_two_ranks(tmp_path, phase, sig):
+    """Ctrl-C (SIGINT) to `mpiexec -n 2 vibromap optimise SCENE -q` (#29 item 4), in the starts and
+    while rank 0 re-solves the best point: the ranks stop, rank 0 says so despite -q, no lock
+    file is left and the journal keeps the finished starts. mpiexec passes SIGINT on as SIGTERM
+    a second later, SIGKILL a second after that, and exits 1 whatever the ranks return; SIGUSR1
+    it forwards, and returns the ranks' 3 (docs/guide-optimise.md). Before the fix the re-solves
+    did not poll the stop flag: SIGKILL ended them, with no line and both lock files left."""
+    scene = write(tmp_path, OPTIMISE if phase == "starts" else VERIFY_FOREVER, "opt.toml")
+    out, journal = tmp_path / "opt.h5", tmp_path / "opt.h5.journal"
+    proc = subprocess.Popen([MPIEXEC, "-n", "2", EXE, "optimise", str(scene), "-o", str(out), "-q"], env=ENV,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if phase == "starts":
+        time.sleep(3.0)  # the start in flight would take hours
+    else:  # the one start is in the journal: rank 0 is re-solving (for hours)
+        deadline = time.time() + 120
+        while time.time() < deadline and proc.poll() is None and journal_records(journal) < 1:
+            time.sleep(0.02)
+    assert proc.poll() is None, proc.communicate()
+    proc.send_signal(sig)
+    try:
+        _, err = proc.communicate(timeout=STOP_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        raise AssertionError(f"mpiexec went on {STOP_TIMEOUT} s after {sig.name}")
+    forwarded = "SIGUSR1" if sig == signal.SIGUSR1 else "SIGTERM"
+    assert proc.returncode == (3 if sig == signal.SIGUSR1 else 1), err
+    assert (f"vibromap: stopped by {forwarded} after a checkpoint: {journal} holds the finished starts; run the same "
+            "command with --resume to go on") in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["opt.h5.journal", "opt.toml"]  # no lock, no output
+    assert journal_records(journal) == (0 if phase == "starts" else 1)

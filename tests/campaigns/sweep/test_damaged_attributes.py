@@ -1,7 +1,7 @@
 """Damage in a map's attributes is damage (issue 28): `vibromap sweep --resume` of a finished map
 with one byte flipped inside an attribute's value (found by searching the file for the value's
 text) exits 4 with one line "FILE: damaged: its attributes fail their checksum (...)", before
-any identity is compared: never exit 0 with nothing computed, never "a different scene" naming
+any identity is compared: never exit 0 with nothing computed, never "made by another run" naming
 a garbled key. Random bytes flipped outside the chunks' storage (object headers, heaps, B-trees:
 where a chunk's Fletcher32 checksum does not reach), at fixed seeds, either leave a map that
 resumes to the undamaged one or are refused in one line. And a chunk that a damaged chunk index
@@ -84,13 +84,13 @@ def assert_damage_refused(proc, path, reason):
     assert proc.returncode == 4, context
     assert proc.stdout == "", context
     assert proc.stderr.count("\n") == 1 and proc.stderr.startswith(f"vibromap: error: {path}: damaged: {reason}"), context
-    assert "different scene" not in proc.stderr, context
+    assert "made by another run" not in proc.stderr, context
 
 
 @pytest.mark.parametrize("needle", [b"vibromap regime map", b"CF-1.8", b"F0 = 0.0", b"system.m2 = ",
                                     b"Young's modulus of body 2", b"not_computed periodic chatter", b"log\0"])
 def test_a_flipped_byte_inside_an_attribute_is_refused_as_damage(reference, tmp_path, needle):
-    """The title, Conventions, the scene text, the identity (once "a different scene" naming a
+    """The title, Conventions, the scene text, the identity (once "made by another run" naming a
     garbled key), an axis's long_name, regime's flag_meanings, an axis's scale."""
     scene, ref = reference
     damaged = tmp_path / "damaged.h5"
@@ -163,7 +163,7 @@ def test_metadata_flips_are_refused_or_harmless(reference, tmp_path, seed):
         proc = resume(scene, damaged)
         context = f"seed {seed}, byte {offset}: exit {proc.returncode}\n{proc.stderr}"
         assert proc.returncode in (0, 2, 4), context
-        assert "different scene" not in proc.stderr, context
+        assert "made by another run" not in proc.stderr, context
         if proc.returncode == 0:
             assert content(damaged) == want, context  # an unused byte: the map is the reference's
             outcomes.append("resumed")

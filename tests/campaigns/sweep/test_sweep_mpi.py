@@ -122,7 +122,7 @@ def test_bad_sweeps_exit_2_with_one_line(tmp_path):
     other = write_scene(tmp_path, n1=5, name="other.toml")
     resumed = sweep(1, other, out, "--resume", check=False)
     assert resumed.returncode == 2
-    assert "different scene" in resumed.stderr
+    assert "made by another run than" in resumed.stderr
     assert "sweep.axis.0 (contact.E1 log [20000, " in resumed.stderr  # the differing key, named
 
     heavier = tmp_path / "heavier.toml"

@@ -18,6 +18,7 @@
 // numbers the attractors by pixel count: the file does not depend on the number of ranks.
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -52,6 +53,11 @@ struct BasinsRunConfig {
 struct BasinsReport {
   FarmReport farm;
   BasinsContent content;  // rank 0: the file's content as written last
+  // Rank 0: what the attractors' fractions are over. The pixels followed so far (done, overlap
+  // excluded: the fractions' denominator), and those of the whole plane (overlap excluded);
+  // they differ when the run was stopped, and then the fractions are not yet the plane's.
+  std::uint64_t pixels_followed = 0;
+  std::uint64_t pixels_to_follow = 0;
 };
 
 // Collective. Throws SceneError (an existing file without --resume or --overwrite; a file of
