@@ -115,13 +115,9 @@ def test_labels_equal_brute_force(reference):
     assert len(agree) == 10, proc.stdout
 
 
-def test_killed_run_resumes_to_the_same_file(reference, tmp_path):
-    two, _ = reference
-    out = tmp_path / "killed.h5"
-    cmd = [MPIEXEC, "-n", "1", EXE, "basins", SCENE, "--plane", "x1,v1", "--grid", GRID, "-o", str(out), "--quiet",
-           "--checkpoint", "0.2"]
-    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    done, deadline = 0, time.time() + 120
+def wait_for_a_checkpoint(proc, out, timeout=120):
+    """Waits (at most `timeout` s) until a checkpoint of the running `proc` holds some pixels of `out`."""
+    done, deadline = 0, time.time() + timeout
     while proc.poll() is None and done == 0 and time.time() < deadline:
         time.sleep(0.05)
         try:
@@ -129,6 +125,15 @@ def test_killed_run_resumes_to_the_same_file(reference, tmp_path):
                 done = int(f.attrs["pixels_done"])
         except (OSError, KeyError):
             continue
+
+
+def test_killed_run_resumes_to_the_same_file(reference, tmp_path):
+    two, _ = reference
+    out = tmp_path / "killed.h5"
+    cmd = [MPIEXEC, "-n", "1", EXE, "basins", SCENE, "--plane", "x1,v1", "--grid", GRID, "-o", str(out), "--quiet",
+           "--checkpoint", "0.2"]
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wait_for_a_checkpoint(proc, out)
     assert proc.poll() is None, "the run finished before it could be killed; make it longer"
     kill_all(proc.pid)
     proc.wait()
@@ -153,14 +158,7 @@ def test_a_stopped_run_says_how_much_of_the_plane_its_fractions_cover(reference,
     out = tmp_path / "stopped.h5"
     cmd = [EXE, "basins", SCENE, "--plane", "x1,v1", "--grid", GRID, "-o", str(out), "--quiet", "--checkpoint", "0.2"]
     proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    done, deadline = 0, time.time() + 120
-    while proc.poll() is None and done == 0 and time.time() < deadline:
-        time.sleep(0.05)
-        try:
-            with h5py.File(out, "r") as f:
-                done = int(f.attrs["pixels_done"])
-        except (OSError, KeyError):
-            continue
+    wait_for_a_checkpoint(proc, out)
     assert proc.poll() is None, "the run finished before it could be stopped; make it longer"
     proc.send_signal(signal.SIGTERM)
     table, err = proc.communicate(timeout=120)
