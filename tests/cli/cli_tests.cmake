@@ -293,6 +293,12 @@ vibromap_cli_test(restitution_bad_e RC 2 ARGS restitution --e 1.5 ERR "--e 1\\.5
 # Extreme input (issue #28): a result or exit 2 with the allowed range, never exit 1 or a hang.
 # Before: run and continue never ended, optimise ignored SIGTERM, restitution exited 1 ("non-finite
 # state"), basins wrote an x1 coordinate of inf, and --e '' was e = 0.
+# A radius so small that z_max/R* overflowed (fuzz seed 11, case 1408), and a clearance so large
+# that the census box D +- L was infinite (case 326): refused by the keys' ranges.
+vibromap_cli_test(run_radius_denormal RC 2 ARGS run jobs/paper/table1.toml --set contact.R2=5e-324
+                  ERR "jobs/paper/table1\\.toml: --set contact\\.R2=5e-324: must be in \\[1e-09, 1e\\+06\\] \\(m\\)")
+vibromap_cli_test(basins_clearance_huge RC 2 ARGS basins jobs/paper/table1.toml --grid 3x3 -o never.h5 --set system.D=1e308
+                  ERR "jobs/paper/table1\\.toml: --set system\\.D=1e308: must be in \\[0, 1e\\+06\\] \\(m\\)")
 vibromap_cli_test(run_forcing_near_zero RC 2 ARGS run jobs/paper/table1.toml --set forcing.omega=1e-9
                   ERR "jobs/paper/table1\\.toml: --set forcing\\.omega=1e-9: forcing\\.omega = 1e-09 rad/s is 1\\.43e-10 times omega_n = 6\\.98 rad/s, the fastest natural frequency of m1 and m2 on their springs \\(k1, k2\\): omega/omega_n must be in \\[0\\.0001, 1e\\+04\\], i\\.e\\. forcing\\.omega in \\[0\\.000698, 6\\.98e\\+04\\] rad/s")
 vibromap_cli_test(continue_from_1e-300_to_1e308 RC 2 ARGS continue jobs/paper/table1.toml -p forcing.omega --from 1e-300 --to 1e308

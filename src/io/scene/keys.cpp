@@ -201,7 +201,9 @@ void add_system_keys(std::vector<Binding>& rows) {
                       either_form<&P::damper2, Damper::Form::ratio>(), "c2", "c2/(2*sqrt(m2*k2))"));
   rows.push_back(real(s, "c2", ge(0), "N s/m", "coupling damper coefficient",
                       either_form<&P::damper2, Damper::Form::coefficient>(), "xi2", "2*xi2*sqrt(m2*k2)"));
-  rows.push_back(real(s, "D", ge(0), "m", "clearance between the bodies at rest",
+  // At most 1e6 m: a larger clearance is no contact at all, and the state scales built on D
+  // (the census box D +- L, the basins plane) must stay finite.
+  rows.push_back(real(s, "D", interval(0.0, 1e6, false, false), "m", "clearance between the bodies at rest",
                       field<&P::D>()));
 }
 
@@ -209,13 +211,16 @@ void add_contact_keys(std::vector<Binding>& rows) {
   constexpr std::string_view s = "contact";
   using P = Parameters;
   const Bounds poisson = interval(-1.0, 0.5, true, true);
+  // Radii from 1 nm to 1000 km: R* and z_max/R* stay normal numbers (R2 = 5e-324 made
+  // z_max/R* infinite).
+  const Bounds kRadius = interval(1e-9, 1e6, false, false);
   rows.push_back(real(s, "E1", gt(0), "Pa", "Young's modulus of body 1", field<&P::E1>()));
   rows.push_back(real(s, "E2", gt(0), "Pa", "Young's modulus of body 2", field<&P::E2>()));
   rows.push_back(real(s, "nu1", poisson, "-", "Poisson ratio of body 1", field<&P::nu1>()));
   rows.push_back(real(s, "nu2", poisson, "-", "Poisson ratio of body 2", field<&P::nu2>()));
-  rows.push_back(real(s, "R1", gt(0), "m", "radius of curvature of body 1 at the contact",
+  rows.push_back(real(s, "R1", kRadius, "m", "radius of curvature of body 1 at the contact",
                       field<&P::R1>()));
-  rows.push_back(real(s, "R2", gt(0), "m", "radius of curvature of body 2 at the contact",
+  rows.push_back(real(s, "R2", kRadius, "m", "radius of curvature of body 2 at the contact",
                       field<&P::R2>()));
   rows.push_back(real(s, "q", gt(0), "-", "Hertz shape coefficient (0.319: circular contact)",
                       field<&P::q>()));
