@@ -104,6 +104,13 @@ bool has_critical_multiplier(BifurcationType type, const std::vector<std::comple
 // A corrected point on the branch and its evaluation.
 using Corrected = std::pair<Vector5d, Eval>;
 
+// The next point of a branch, corrected: the point, its tangent and Newton's iterations.
+struct Next {
+  Corrected at;
+  Vector5d t;
+  int iterations;
+};
+
 // The walk along one branch from its last point: the point z (evaluated: e), the tangent t and
 // the step ds, and the named steps of one move. trace() below is the walk itself.
 class Tracer {
@@ -120,12 +127,6 @@ class Tracer {
   bool step();
 
  private:
-  struct Next {
-    Corrected at;
-    Vector5d t;      // the tangent there
-    int iterations;  // Newton's
-  };
-
   // Predictor-corrector: Newton from z + ds t; none when it fails or the tangent turns too sharply.
   std::optional<Next> predict_correct();
 
@@ -199,7 +200,7 @@ bool Tracer::step() {
   return accept(*next, std::move(p1));
 }
 
-std::optional<Tracer::Next> Tracer::predict_correct() {
+std::optional<Next> Tracer::predict_correct() {
   int iterations = 0;
   const std::optional<Corrected> corrected = pb_.correct(z_ + ds_ * t_, t_, &iterations);
   if (!corrected) return std::nullopt;
