@@ -41,6 +41,12 @@ struct Linear {
     const Eigen::Vector2cd Q = Z.lu().solve(f);
     return {Q[0].real(), Q[1].real() + p.D, (cd(0, w) * Q[0]).real(), (cd(0, w) * Q[1]).real()};
   }
+  // The complex amplitudes (Q1, Q2) of x1 and x2 - D at p.omega.
+  Eigen::Vector2cd amplitudes(const Parameters& p) const {
+    const double w = p.omega;
+    Eigen::Matrix2cd Z = K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>();
+    return Z.lu().solve(Eigen::Vector2cd(p.lambda * p.F0 * std::exp(cd(0, p.phi0)), 0.0));
+  }
   std::vector<cd> multipliers(double T) const {
     Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
     A.topRightCorner<2, 2>() = Eigen::Matrix2d::Identity();
@@ -70,6 +76,22 @@ double interpolate(const std::vector<std::pair<double, double>>& xy, double x) {
       return xy[i - 1].second + f * (xy[i].second - xy[i - 1].second);
     }
   return xy.back().second;
+}
+
+// The extremes of the linear response x1 = Re(Q1 e^(i w t)), x2 = D + Re(Q2 e^(i w t)) over a cycle:
+// x1_max = |Q1|, x2_max = D + |Q2|, clearance_min = min(x2 - x1) = D - |Q2 - Q1|. Returns the worst
+// error of each of a branch's points, relative to the amplitude |Q1|, |Q2|, |Q2 - Q1|.
+Eigen::Vector3d worst_extremes(const Branch& b, const Parameters& base, const Linear& linear) {
+  Eigen::Vector3d worst = Eigen::Vector3d::Zero();
+  for (const BranchPoint& q : b.points) {
+    Parameters p = base;
+    p.omega = q.param;
+    const Eigen::Vector2cd Q = linear.amplitudes(p);
+    const double a1 = std::abs(Q[0]), a2 = std::abs(Q[1]), a12 = std::abs(Q[1] - Q[0]);
+    worst = worst.cwiseMax(Eigen::Vector3d(std::abs(q.x1_max - a1) / a1, std::abs(q.x2_max - (p.D + a2)) / a2,
+                                           std::abs(q.clearance_min - (p.D - a12)) / a12));
+  }
+  return worst;
 }
 
 TEST(Continuation, WithoutContactTheBranchIsTheLinearFrequencyResponse) {
@@ -109,8 +131,44 @@ TEST(Continuation, WithoutContactTheBranchIsTheLinearFrequencyResponse) {
   }
   EXPECT_LT(worst, 1e-8) << "state, relative to the amplitude";
   EXPECT_LT(worst_mu, 1e-8) << "Floquet multipliers, relative";
-  std::printf("%zu points from omega = 2 to %.3f rad/s; worst relative error: state %.2e, multipliers %.2e\n",
-              b.points.size(), b.points.back().param, worst, worst_mu);
+  const Eigen::Vector3d extremes = worst_extremes(b, base, linear);
+  EXPECT_LT(extremes.maxCoeff(), 1e-8) << "x1_max, x2_max, clearance_min, relative to their amplitudes";
+  std::printf("%zu points from omega = 2 to %.3f rad/s; worst relative error: state %.2e, multipliers %.2e, "
+              "extremes %.2e\n",
+              b.points.size(), b.points.back().param, worst, worst_mu, extremes.maxCoeff());
+}
+
+// Issue #31: the extremes of every point of a branch are located, not sampled: Table 2's system
+// without contact (D = 10 m) over omega in [2, 12] rad/s, every point's x1_max, x2_max and
+// clearance_min against the closed form. Sampled at 64 points per step and refined only when the
+// best sample was inside a step, they were off by up to 1.2e-3 of the amplitude (a maximum next
+// to a step's end: 1 - cos(pi / 64)); located as roots of the velocity they are as exact as the
+// orbit (state to ~1e-11 here).
+TEST(Continuation, WithoutContactTheExtremesOfEveryPointAreTheClosedForm) {
+  Parameters base;
+  base.m2 = 310.0;
+  base.spring2 = {Spring::Form::frequency, 3.606};
+  base.E1 = 1.4e10;
+  base.E2 = 1.0e6;
+  base.D = 10.0;
+  PointOptions options;
+  options.integrator.rtol = 1e-12;
+  options.integrator.atol = 1e-15;
+  ContinuationOptions o;
+  o.tol = 1e-13;
+  const Linear linear(base);
+  Parameters start = base;
+  start.omega = 2.0;
+  const Branch b = continue_orbit(omega_path(base, options), 2.0, 12.0, start.initial_state(), o);
+  ASSERT_GT(b.points.size(), 50u) << b.stop;
+  EXPECT_EQ(b.stop, "reached the end of the interval");
+  EXPECT_EQ(b.points.back().contacts, 0);
+  const Eigen::Vector3d worst = worst_extremes(b, base, linear);
+  EXPECT_LT(worst[0], 1e-8) << "x1_max, relative to |Q1|";
+  EXPECT_LT(worst[1], 1e-8) << "x2_max, relative to |Q2|";
+  EXPECT_LT(worst[2], 1e-8) << "clearance_min, relative to |Q2 - Q1|";
+  std::printf("%zu points; worst relative error: x1_max %.2e, x2_max %.2e, clearance_min %.2e\n", b.points.size(),
+              worst[0], worst[1], worst[2]);
 }
 
 TEST(Continuation, BadOptionsAndAStartWithoutOrbitAreSaid) {
