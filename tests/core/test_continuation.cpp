@@ -171,6 +171,61 @@ TEST(Continuation, WithoutContactTheExtremesOfEveryPointAreTheClosedForm) {
               worst[0], worst[1], worst[2]);
 }
 
+// orbit_extent on a transient whose free oscillation is fast: Table 1's system with a stiff
+// attached spring (omega2 = 400 rad/s) without contact, from rest at omega = 2 rad/s, over one
+// period taken in steps of up to a whole period (max_step = 1): the relative motion rings at
+// ~430 rad/s, some 200 oscillations in a step, which 64 samples per step would alias. The
+// extremes against the exact solution, X_p(t) + V e^(L t) V^-1 (X(0) - X_p(0)) of the first-order
+// system, maximised over 2e5 samples each refined by golden section.
+TEST(OrbitExtent, AFastFreeOscillationWithinLongStepsIsResolved) {
+  Parameters p;
+  p.spring2 = {Spring::Form::frequency, 400.0};
+  p.D = 10.0;
+  p.omega = 2.0;
+  const Linear linear(p);
+  Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+  A.topRightCorner<2, 2>() = Eigen::Matrix2d::Identity();
+  A.bottomLeftCorner<2, 2>() = -linear.M.inverse() * linear.K;
+  A.bottomRightCorner<2, 2>() = -linear.M.inverse() * linear.C;
+  const Eigen::Vector2cd Q = linear.amplitudes(p);
+  const Eigen::Vector4cd P(Q[0], Q[1], cd(0, p.omega) * Q[0], cd(0, p.omega) * Q[1]);  // X_p = Re(P e^(i w t))
+  const Eigen::EigenSolver<Eigen::Matrix4d> es(A);
+  const Eigen::Vector4cd c = es.eigenvectors().lu().solve((Eigen::Vector4d::Zero() - P.real()).cast<cd>());
+  const auto X = [&](double t) -> Eigen::Vector3d {  // (x1, x2, x1 - x2)
+    Eigen::Vector4cd e = es.eigenvectors() * (es.eigenvalues().array() * t).exp().matrix().cwiseProduct(c);
+    const Eigen::Vector4d x = (P * std::exp(cd(0, p.omega * t))).real() + e.real();
+    return {x[0], x[1] + p.D, x[0] - x[1] - p.D};
+  };
+  const double T = p.period();
+  const int n = 200000;
+  Eigen::Vector3d best = Eigen::Vector3d::Constant(-1e300);
+  std::vector<Eigen::Vector3d> v(n + 1);
+  for (int i = 0; i <= n; ++i) v[static_cast<std::size_t>(i)] = X(T * i / n);
+  for (int k = 0; k < 3; ++k)
+    for (int i = 1; i < n; ++i) {
+      const auto at = [&](int j) { return v[static_cast<std::size_t>(j)][k]; };
+      best[k] = std::max({best[k], at(0), at(n)});
+      if (!(at(i) >= at(i - 1) && at(i) >= at(i + 1))) continue;
+      double a = T * (i - 1) / n, b = T * (i + 1) / n;  // golden section on the bracket
+      for (int it = 0; it < 80; ++it) {
+        const double m1 = b - 0.618033988749895 * (b - a), m2 = a + 0.618033988749895 * (b - a);
+        (X(m1)[k] >= X(m2)[k] ? b : a) = X(m1)[k] >= X(m2)[k] ? m2 : m1;
+      }
+      best[k] = std::max(best[k], X(0.5 * (a + b))[k]);
+    }
+  IntegratorOptions io;
+  io.max_step = 1.0;
+  IntegrationCounters counters;
+  const OrbitExtent e = orbit_extent(Model(p), io, Model::to_internal(p.initial_state()), 1, counters);
+  ASSERT_TRUE(e.ok);
+  const double ring = best[2] - (-p.D);  // the amplitude of x1 - x2 about its rest value
+  EXPECT_NEAR(e.x1_max, best[0], 1e-8 * std::abs(best[0]));
+  EXPECT_NEAR(e.x2_max, best[1], 1e-8 * std::abs(best[1] - p.D));
+  EXPECT_NEAR(e.clearance_min, -best[2], 1e-8 * ring);
+  std::printf("x1_max %.12e (exact %.12e), clearance_min %.12e (exact %.12e)\n", e.x1_max, best[0],
+              e.clearance_min, -best[2]);
+}
+
 TEST(Continuation, BadOptionsAndAStartWithoutOrbitAreSaid) {
   ContinuationOptions o;
   o.ds = 2.0;
