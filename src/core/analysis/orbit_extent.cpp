@@ -1,93 +1,84 @@
 #include "vibromap/core/analysis/orbit_extent.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
+#include <numbers>
+#include <vector>
+
+#include "vibromap/core/integrate/root_finding.hpp"
 
 namespace vibromap {
 namespace {
 
-constexpr int kSamples = 64;        // per free-flight step (the closed form spans up to a period)
-constexpr int kContactSamples = 8;  // per contact step (a short part of one impact)
-constexpr int kGoldenSteps = 60;   // golden-section iterations: the bracket shrinks by 0.618^60 ~ 3e-13
+constexpr int kSamples = 64;           // per free-flight step at least (the closed form spans up to a period)
+constexpr int kSamplesPerFastPeriod = 16;  // per period of the free system's faster mode, at least
+constexpr int kMaxSamples = 4096;      // per step, at most
+constexpr int kContactSamples = 8;     // per contact step (a short part of one impact)
+constexpr double kRootTolerance = 1e-13;  // a maximum's time, relative to the step: its value to ~1e-25
 
-// The largest of f over [a, b] near the sample at `at` (its neighbours bracket it).
-double refine_max(const std::function<double(double)>& f, double a, double b) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int i = 0; i < kGoldenSteps && b - a > 0.0; ++i) {
-    if (fc >= fd) {
-      b = d, d = c, fd = fc;
-      c = b - g * (b - a);
-      fc = f(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + g * (b - a);
-      fd = f(d);
-    }
-  }
-  return std::max(fc, fd);
+using Physical = Eigen::Vector4d;  // (x1, x2, v1, v2)
+
+// A quantity whose maxima are sought and its rate of change: x1, x2 and x1 - x2 (the overlap,
+// minus the clearance x2 - x1).
+struct Part {
+  double (*value)(const Physical&);
+  double (*rate)(const Physical&);
+};
+constexpr Part kX1{[](const Physical& x) { return x[0]; }, [](const Physical& x) { return x[2]; }};
+constexpr Part kX2{[](const Physical& x) { return x[1]; }, [](const Physical& x) { return x[3]; }};
+constexpr Part kOverlap{[](const Physical& x) { return x[0] - x[1]; }, [](const Physical& x) { return x[2] - x[3]; }};
+
+// The angular frequency of the faster undamped mode of the free system (no contact), rad/s:
+// the larger root of det(K - w^2 M) = 0.
+double fast_frequency(const Model& model) {
+  const Parameters& p = model.parameters();
+  const double a = (model.k1() + model.k2()) / p.m1, d = model.k2() / p.m2, bc = model.k2() * model.k2() / (p.m1 * p.m2);
+  return std::sqrt(0.5 * (a + d) + std::sqrt(0.25 * (a - d) * (a - d) + bc));
 }
 
-// Whether the maximum of a smooth f over [t_l, t_r] can exceed `best`, from its samples f_l <= f_m
-// >= f_r at t_l < t_m < t_r, equally spaced by h: near a maximum f is a parabola, whose peak lies at
-// most (f_m - min(f_l, f_r)) / 4 above f_m (a h^2 / 4 against a h^2 at least); twice that margin
-// is kept. A step whose samples cannot beat the best so far is not refined.
-bool could_exceed(double f_m, double f_l, double f_r, double best) {
-  return f_m + 0.5 * (f_m - std::min(f_l, f_r)) >= best;
+// One step sampled on its dense output at equally spaced times, its ends included.
+struct Samples {
+  std::vector<double> tau;
+  std::vector<Physical> x;
+};
+
+// The local maxima of a part within one step: where its rate changes sign from + to - between two
+// samples, located as a root of the rate on the dense output (the velocity is part of the state,
+// so no difference quotient is needed). Each maximum's time and value are passed to `take`.
+template <class Take>
+void interior_maxima(const StepView& step, const Samples& s, const Part& part, Take take) {
+  const double tol = kRootTolerance * (step.tau1 - step.tau0);
+  for (std::size_t i = 0; i + 1 < s.tau.size(); ++i) {
+    const double ga = -part.rate(s.x[i]), gb = -part.rate(s.x[i + 1]);
+    if (!(ga < 0.0 && gb > 0.0)) continue;  // a rate exactly 0 at a sample: that sample is the maximum
+    const auto g = [&](double tau) { return -part.rate(Model::to_physical(step.eval(tau))); };
+    const double t = illinois(g, s.tau[i], s.tau[i + 1], ga, gb, tol).x;
+    take(part.value(Model::to_physical(step.eval(t))));
+  }
+}
+
+// The largest of a part over the step: at its samples (the step's ends among them) and at its
+// located interior maxima. A maximum at a step's end (the rate keeps its sign over the step) is
+// that end's sample; one inside is a root of the rate: the largest is found whichever it is.
+double step_max(const StepView& step, const Samples& s, const Part& part) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const Physical& x : s.x) best = std::max(best, part.value(x));
+  interior_maxima(step, s, part, [&](double v) { best = std::max(best, v); });
+  return best;
 }
 
 class ExtentObserver final : public Observer {
  public:
+  explicit ExtentObserver(const Model& model) : fast_(fast_frequency(model)) {}
+
   void on_step(const StepView& step) override {
     if (!(step.tau1 > step.tau0)) return;
-    const auto physical = [&](double tau) { return Model::to_physical(step.eval(tau)); };
-    // f_k(tau) for x1, x2 and -(x2 - x1): each maximised.
-    const std::function<double(const Eigen::Vector4d&)> parts[3] = {
-        [](const Eigen::Vector4d& x) { return x[0]; }, [](const Eigen::Vector4d& x) { return x[1]; },
-        [](const Eigen::Vector4d& x) { return x[0] - x[1]; }};
-    double* best[3] = {&x1_max, &x2_max, &overlap_max};
-    const int samples = step.mode == ContactMode::contact ? kContactSamples : kSamples;
-    std::array<double, kSamples + 1> taus{};
-    std::array<Eigen::Vector4d, kSamples + 1> xs;
-    for (int i = 0; i <= samples; ++i) {
-      taus[static_cast<std::size_t>(i)] = step.tau0 + (step.tau1 - step.tau0) * i / samples;
-      xs[static_cast<std::size_t>(i)] = physical(taus[static_cast<std::size_t>(i)]);
-    }
-    for (int k = 0; k < 3; ++k) {
-      int at = 0;
-      for (int i = 1; i <= samples; ++i)
-        if (parts[k](xs[static_cast<std::size_t>(i)]) > parts[k](xs[static_cast<std::size_t>(at)])) at = i;
-      double value = parts[k](xs[static_cast<std::size_t>(at)]);
-      // An interior maximum is refined between its neighbours when it can beat the best so far.
-      if (at > 0 && at < samples &&
-          could_exceed(value, parts[k](xs[static_cast<std::size_t>(at - 1)]), parts[k](xs[static_cast<std::size_t>(at + 1)]),
-                       *best[k]))
-        value = std::max(value, refine_max([&](double tau) { return parts[k](physical(tau)); },
-                                           taus[static_cast<std::size_t>(at - 1)], taus[static_cast<std::size_t>(at + 1)]));
-      *best[k] = std::max(*best[k], value);
-    }
-    // z = x1 - x2: its interior maxima, the closest approaches in free flight and the deepest
-    // penetration in contact.
-    const auto z = [&](double tau) { return step.eval(tau)[1]; };
-    for (int i = 1; i < samples; ++i) {
-      const double zi = xs[static_cast<std::size_t>(i)][0] - xs[static_cast<std::size_t>(i)][1];
-      const double zl = xs[static_cast<std::size_t>(i - 1)][0] - xs[static_cast<std::size_t>(i - 1)][1];
-      const double zr = xs[static_cast<std::size_t>(i + 1)][0] - xs[static_cast<std::size_t>(i + 1)][1];
-      if (!(zi >= zl && zi >= zr)) continue;
-      if (step.mode == ContactMode::contact ? !could_exceed(zi, zl, zr, contact_peak) : !could_exceed(zi, zl, zr, -graze_gap))
-        continue;
-      const double peak = std::max(zi, refine_max(z, taus[static_cast<std::size_t>(i - 1)], taus[static_cast<std::size_t>(i + 1)]));
-      if (step.mode == ContactMode::contact)
-        contact_peak = std::max(contact_peak, peak);
-      else if (peak < 0.0)
-        graze_gap = std::min(graze_gap, -peak);
-    }
-    if (step.mode == ContactMode::contact)
-      contact_peak = std::max({contact_peak, z(step.tau0), z(step.tau1)});
+    const Samples s = sample(step);
+    x1_max = std::max(x1_max, step_max(step, s, kX1));
+    x2_max = std::max(x2_max, step_max(step, s, kX2));
+    overlap_max = std::max(overlap_max, step_max(step, s, kOverlap));
+    track_gaps(step, s);
   }
   void on_event(const ContactEvent& event) override {
     if (event.kind == ContactEvent::Kind::entry) {
@@ -106,6 +97,41 @@ class ExtentObserver final : public Observer {
   double x1_max = -std::numeric_limits<double>::infinity();
   double x2_max = -std::numeric_limits<double>::infinity();
   double overlap_max = -std::numeric_limits<double>::infinity();  // max of x1 - x2
+
+ private:
+  // A free-flight step gets kSamples samples, more when it spans several periods of the faster
+  // mode (so that no sub-interval holds two extremes of a part); a contact step kContactSamples.
+  Samples sample(const StepView& step) const {
+    int n = kContactSamples;
+    if (step.mode != ContactMode::contact) {
+      const double periods = (step.tau1 - step.tau0) * fast_ / (2.0 * std::numbers::pi);
+      n = std::clamp(static_cast<int>(std::ceil(kSamplesPerFastPeriod * periods)), kSamples, kMaxSamples);
+    }
+    Samples s;
+    s.tau.resize(static_cast<std::size_t>(n) + 1);
+    s.x.resize(s.tau.size());
+    for (int i = 0; i <= n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      s.tau[k] = i == n ? step.tau1 : step.tau0 + (step.tau1 - step.tau0) * i / n;
+      s.x[k] = Model::to_physical(step.eval(s.tau[k]));
+    }
+    return s;
+  }
+
+  // z = x1 - x2: its interior maxima are the closest approaches in free flight (graze_gap) and
+  // the deepest penetration in contact (with the step's ends: contact_peak).
+  void track_gaps(const StepView& step, const Samples& s) {
+    const bool in_contact = step.mode == ContactMode::contact;
+    interior_maxima(step, s, kOverlap, [&](double peak) {
+      if (in_contact)
+        contact_peak = std::max(contact_peak, peak);
+      else if (peak < 0.0)
+        graze_gap = std::min(graze_gap, -peak);
+    });
+    if (in_contact) contact_peak = std::max({contact_peak, kOverlap.value(s.x.front()), kOverlap.value(s.x.back())});
+  }
+
+  double fast_;  // rad/s
 };
 
 }  // namespace
@@ -116,7 +142,7 @@ OrbitExtent orbit_extent(const Model& model, const IntegratorOptions& integratio
   const auto integ = make_integrator(model, integration);
   State u = y;
   integ->reset(u);
-  ExtentObserver obs;
+  ExtentObserver obs(model);
   for (int i = 0; i < n; ++i) {
     e.strobe.push_back(Model::to_physical(u));
     if (integ->advance_period(u, obs) != IntegrationStatus::ok) {
