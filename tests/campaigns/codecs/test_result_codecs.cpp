@@ -64,156 +64,7 @@ void expect_prefixes_refused(const ResultCodec<Result>& codec, const std::vector
   }
 }
 
-// ---- sweep ----------------------------------------------------------------------------------
-
-CellResult sample_cell() {
-  CellResult c;
-  c.status = 2;
-  c.regime = -1;
-  c.hertz_valid = 1;
-  c.stable = 0;
-  c.soft = -1;
-  c.n = 3;
-  c.k = -7;
-  c.periods = std::numeric_limits<std::int64_t>::max();
-  c.rhs_evals = 123456789012345;
-  c.clipped_impacts = -1;
-  c.wall_s = 0.125;
-  c.steady_residual = 3.5e-300;  // subnormal-adjacent: no rounding on the way
-  c.T_con = 1e-3 / 3.0;
-  c.k_con = kInf;
-  c.F_max = -0.0;
-  c.z_max = 4.2e-5;
-  c.z_ratio = -kInf;
-  c.v_in = 0.3;
-  c.impulse = std::numeric_limits<double>::denorm_min();
-  c.max_multiplier = kNaN;
-  c.lyapunov = -kNaN;
-  c.e_effective = 0.7;
-  c.energy_dissipated = 12.5;
-  return c;
-}
-
-AttractorRecord sample_attractor(int i) {
-  AttractorRecord a;
-  a.regime = static_cast<std::int8_t>(i);
-  a.stable = static_cast<std::int8_t>(i % 2);
-  a.hertz_valid = 1;
-  a.from_rest = static_cast<std::int8_t>(i == 0);
-  a.soft = 1;
-  a.transient = static_cast<std::int8_t>(i == 1);
-  a.n = 2 + i;
-  a.k = 5 * i;
-  a.T_con = 0.01 * (i + 1);
-  a.k_con = 86.9 / (i + 1);
-  a.F_max = 1e6;
-  a.z_ratio = 2e-5;
-  a.max_floquet = i == 1 ? kNaN : 0.93;
-  a.fraction = 0.25 * (i + 1);
-  a.fraction_stderr = 0.01;
-  a.strobe = i == 1 ? std::array<double, 4>{kNaN, kNaN, kNaN, kNaN} : std::array<double, 4>{0.1, 0.15, -0.2, 1e-9};
-  return a;
-}
-
-void expect_same_cell(const CellResult& a, const CellResult& b) {
-  EXPECT_EQ(a.status, b.status);
-  EXPECT_EQ(a.regime, b.regime);
-  EXPECT_EQ(a.hertz_valid, b.hertz_valid);
-  EXPECT_EQ(a.stable, b.stable);
-  EXPECT_EQ(a.soft, b.soft);
-  EXPECT_EQ(a.n, b.n);
-  EXPECT_EQ(a.k, b.k);
-  EXPECT_EQ(a.periods, b.periods);
-  EXPECT_EQ(a.rhs_evals, b.rhs_evals);
-  EXPECT_EQ(a.clipped_impacts, b.clipped_impacts);
-  for (const double CellResult::*m :
-       {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::T_con, &CellResult::k_con, &CellResult::F_max,
-        &CellResult::z_max, &CellResult::z_ratio, &CellResult::v_in, &CellResult::impulse, &CellResult::max_multiplier,
-        &CellResult::lyapunov, &CellResult::e_effective, &CellResult::energy_dissipated, &CellResult::soft_fraction,
-        &CellResult::unresolved_fraction, &CellResult::unlisted_fraction, &CellResult::budget_fraction})
-    EXPECT_TRUE(same_bits(a.*m, b.*m));
-  ASSERT_EQ(a.census.size(), b.census.size());
-  for (std::size_t i = 0; i < a.census.size(); ++i) {
-    const AttractorRecord &x = a.census[i], &y = b.census[i];
-    EXPECT_EQ(x.regime, y.regime);
-    EXPECT_EQ(x.stable, y.stable);
-    EXPECT_EQ(x.hertz_valid, y.hertz_valid);
-    EXPECT_EQ(x.from_rest, y.from_rest);
-    EXPECT_EQ(x.soft, y.soft);
-    EXPECT_EQ(x.transient, y.transient);
-    EXPECT_EQ(x.n, y.n);
-    EXPECT_EQ(x.k, y.k);
-    for (const double AttractorRecord::*m :
-         {&AttractorRecord::T_con, &AttractorRecord::k_con, &AttractorRecord::F_max, &AttractorRecord::z_ratio,
-          &AttractorRecord::max_floquet, &AttractorRecord::fraction, &AttractorRecord::fraction_stderr})
-      EXPECT_TRUE(same_bits(x.*m, y.*m));
-    for (int j = 0; j < 4; ++j) EXPECT_TRUE(same_bits(x.strobe[j], y.strobe[j]));
-  }
-}
-
-// Layout: 5 int8 codes, n and k (int32), 3 int64 counters, 13 doubles, the census byte.
-constexpr std::size_t kCellBytes = 5 + 2 * 4 + 3 * 8 + 13 * 8 + 1;
-// The census: 4 fractions, a uint32 count, per attractor 6 int8 codes, n, k, 7 doubles, 4 strobe.
-constexpr std::size_t kCensusBytes = 4 * 8 + 4;
-constexpr std::size_t kCellAttractorBytes = 6 + 2 * 4 + 7 * 8 + 4 * 8;
-
 }  // namespace
-
-TEST(ResultCodecs, SweepCellWithoutCensus) {
-  const CellCodec codec(false);
-  const CellResult c = sample_cell();
-  const std::vector<char> bytes = encode(codec, c);
-  EXPECT_EQ(bytes.size(), kCellBytes);
-  const CellResult back = decode_all(codec, bytes);
-  expect_same_cell(c, back);  // census empty, its fractions NaN: the defaults on both sides
-  expect_prefixes_refused(codec, bytes);
-}
-
-TEST(ResultCodecs, SweepCellWithACensus) {
-  const CellCodec codec(true);
-  CellResult c = sample_cell();
-  c.soft_fraction = 0.5;
-  c.unresolved_fraction = 0.0;
-  c.unlisted_fraction = kNaN;
-  c.budget_fraction = 1.0 / 7.0;
-  c.census = {sample_attractor(0), sample_attractor(1), sample_attractor(2)};
-  const std::vector<char> bytes = encode(codec, c);
-  EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes + 3 * kCellAttractorBytes);
-  expect_same_cell(c, decode_all(codec, bytes));
-  expect_prefixes_refused(codec, bytes);
-}
-
-TEST(ResultCodecs, SweepCellWithAnEmptyCensus) {
-  const CellCodec codec(true);
-  CellResult c = sample_cell();
-  c.soft_fraction = 0.0;
-  const std::vector<char> bytes = encode(codec, c);
-  EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes);
-  const CellResult back = decode_all(codec, bytes);
-  EXPECT_TRUE(back.census.empty());
-  expect_same_cell(c, back);
-}
-
-TEST(ResultCodecs, SweepCellsBackToBackAsARange) {
-  const CellCodec codec(true);
-  std::vector<CellResult> cells(3, sample_cell());
-  cells[1].census = {sample_attractor(1)};
-  cells[2].n = 9;
-  ByteWriter w;
-  for (const CellResult& c : cells) codec.encode(c, w);
-  ByteReader in(w.bytes());
-  for (const CellResult& c : cells) expect_same_cell(c, codec.decode(in));
-  EXPECT_EQ(in.remaining(), 0u);
-}
-
-TEST(ResultCodecs, SweepCellListingMoreAttractorsThanACensusKeepsIsRefused) {
-  const CellCodec codec(true);
-  CellResult c = sample_cell();
-  c.census.assign(kMaxCensusAttractors + 1, sample_attractor(0));
-  const std::vector<char> bytes = encode(codec, c);
-  ByteReader in(bytes);
-  EXPECT_THROW(codec.decode(in), WireError);
-}
 
 // ---- an attractor (the census map's cells and the followed states carry theirs so) ----------
 
@@ -297,6 +148,122 @@ TEST(ResultCodecs, AttractorOfAnUnknownRegimeKindIsRefused) {
   std::memcpy(bytes.data() + 1, &failed, sizeof failed);
   ByteReader in(bytes);
   EXPECT_EQ(codec.decode(in).regime.kind, RegimeKind::failed);
+}
+
+// ---- sweep ----------------------------------------------------------------------------------
+
+namespace {
+
+CellResult sample_cell() {
+  CellResult c;
+  c.status = 2;
+  c.regime = -1;
+  c.hertz_valid = 1;
+  c.stable = 0;
+  c.soft = -1;
+  c.n = 3;
+  c.k = -7;
+  c.periods = std::numeric_limits<std::int64_t>::max();
+  c.rhs_evals = 123456789012345;
+  c.clipped_impacts = -1;
+  c.wall_s = 0.125;
+  c.steady_residual = 3.5e-300;  // subnormal-adjacent: no rounding on the way
+  c.T_con = 1e-3 / 3.0;
+  c.k_con = kInf;
+  c.F_max = -0.0;
+  c.z_max = 4.2e-5;
+  c.z_ratio = -kInf;
+  c.v_in = 0.3;
+  c.impulse = std::numeric_limits<double>::denorm_min();
+  c.max_multiplier = kNaN;
+  c.lyapunov = -kNaN;
+  c.e_effective = 0.7;
+  c.energy_dissipated = 12.5;
+  return c;
+}
+
+void expect_same_cell(const CellResult& a, const CellResult& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.regime, b.regime);
+  EXPECT_EQ(a.hertz_valid, b.hertz_valid);
+  EXPECT_EQ(a.stable, b.stable);
+  EXPECT_EQ(a.soft, b.soft);
+  EXPECT_EQ(a.n, b.n);
+  EXPECT_EQ(a.k, b.k);
+  EXPECT_EQ(a.periods, b.periods);
+  EXPECT_EQ(a.rhs_evals, b.rhs_evals);
+  EXPECT_EQ(a.clipped_impacts, b.clipped_impacts);
+  for (const double CellResult::*m :
+       {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::T_con, &CellResult::k_con, &CellResult::F_max,
+        &CellResult::z_max, &CellResult::z_ratio, &CellResult::v_in, &CellResult::impulse, &CellResult::max_multiplier,
+        &CellResult::lyapunov, &CellResult::e_effective, &CellResult::energy_dissipated, &CellResult::soft_fraction,
+        &CellResult::unresolved_fraction, &CellResult::unlisted_fraction, &CellResult::budget_fraction})
+    EXPECT_TRUE(same_bits(a.*m, b.*m));
+  ASSERT_EQ(a.census.size(), b.census.size());
+  for (std::size_t i = 0; i < a.census.size(); ++i) expect_same_attractor(a.census[i], b.census[i]);
+}
+
+// Layout: 5 int8 codes, n and k (int32), 3 int64 counters, 13 doubles, the census byte.
+constexpr std::size_t kCellBytes = 5 + 2 * 4 + 3 * 8 + 13 * 8 + 1;
+// The census: 4 fractions, a uint32 count, then each attractor (attractor_codec.hpp).
+constexpr std::size_t kCensusBytes = 4 * 8 + 4;
+
+}  // namespace
+
+TEST(ResultCodecs, SweepCellWithoutCensus) {
+  const CellCodec codec(false);
+  const CellResult c = sample_cell();
+  const std::vector<char> bytes = encode(codec, c);
+  EXPECT_EQ(bytes.size(), kCellBytes);
+  const CellResult back = decode_all(codec, bytes);
+  expect_same_cell(c, back);  // census empty, its fractions NaN: the defaults on both sides
+  expect_prefixes_refused(codec, bytes);
+}
+
+TEST(ResultCodecs, SweepCellWithACensus) {
+  const CellCodec codec(true);
+  CellResult c = sample_cell();
+  c.soft_fraction = 0.5;
+  c.unresolved_fraction = 0.0;
+  c.unlisted_fraction = kNaN;
+  c.budget_fraction = 1.0 / 7.0;
+  c.census = {full_attractor(0), full_attractor(1), full_attractor(2)};  // 2, 1 and 0 stroboscopic states
+  const std::vector<char> bytes = encode(codec, c);
+  EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes + 3 * kAttractorBytes + 3 * kStateBytes);
+  expect_same_cell(c, decode_all(codec, bytes));
+  expect_prefixes_refused(codec, bytes);
+}
+
+TEST(ResultCodecs, SweepCellWithAnEmptyCensus) {
+  const CellCodec codec(true);
+  CellResult c = sample_cell();
+  c.soft_fraction = 0.0;
+  const std::vector<char> bytes = encode(codec, c);
+  EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes);
+  const CellResult back = decode_all(codec, bytes);
+  EXPECT_TRUE(back.census.empty());
+  expect_same_cell(c, back);
+}
+
+TEST(ResultCodecs, SweepCellsBackToBackAsARange) {
+  const CellCodec codec(true);
+  std::vector<CellResult> cells(3, sample_cell());
+  cells[1].census = {full_attractor(1)};
+  cells[2].n = 9;
+  ByteWriter w;
+  for (const CellResult& c : cells) codec.encode(c, w);
+  ByteReader in(w.bytes());
+  for (const CellResult& c : cells) expect_same_cell(c, codec.decode(in));
+  EXPECT_EQ(in.remaining(), 0u);
+}
+
+TEST(ResultCodecs, SweepCellListingMoreAttractorsThanACensusKeepsIsRefused) {
+  const CellCodec codec(true);
+  CellResult c = sample_cell();
+  c.census.assign(kMaxCensusAttractors + 1, full_attractor(0));
+  const std::vector<char> bytes = encode(codec, c);
+  ByteReader in(bytes);
+  EXPECT_THROW(codec.decode(in), WireError);
 }
 
 // ---- basins and the point census ------------------------------------------------------------
