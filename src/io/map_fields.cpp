@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 
@@ -77,31 +78,61 @@ MapField real_field(std::string name, std::string long_name, std::string units) 
   return f;
 }
 
-// A field of the census's attractor records, slot a = attractor a of the cell: made from a
-// per-cell field of the same kind (its type, fill, flags, range), with accessors on
-// AttractorRecord member M (or element I of a std::array member).
-template <auto M, int I = -1>
-MapField attractor_field(MapField f, std::size_t slots) {
+// A field of the census's attractors, slot a = attractor a of the cell: made from a per-cell
+// field of the same kind (its type, fill, flags, range), with get(const Attractor&) giving the
+// file's value and set(Attractor&, value) taking it back: an integer field when get gives an
+// integer (or bool), set then taking an int64; else a double.
+template <class Get, class Set>
+MapField attractor_field(MapField f, std::size_t slots, Get get, Set set) {
   f.slots = slots;
-  auto ref = [](auto& r) -> auto& {
-    if constexpr (I < 0) return r.*M; else return (r.*M)[I];
-  };
   const double fill = f.fill.value_or(0.0);
-  using Value = std::remove_cvref_t<decltype(ref(std::declval<AttractorRecord&>()))>;
-  if constexpr (std::is_integral_v<Value>) {
-    f.get_int = [ref, fill](const CellResult& c, std::size_t a) -> std::int64_t {
-      return a < c.census.size() ? static_cast<std::int64_t>(ref(c.census[a])) : static_cast<std::int64_t>(fill);
+  if constexpr (std::is_integral_v<std::invoke_result_t<Get, const Attractor&>>) {
+    f.get_int = [get, fill](const CellResult& c, std::size_t a) -> std::int64_t {
+      return a < c.census.size() ? static_cast<std::int64_t>(get(c.census[a])) : static_cast<std::int64_t>(fill);
     };
-    f.set_int = [ref](CellResult& c, std::size_t a, std::int64_t v) {
-      if (a < c.census.size()) ref(c.census[a]) = static_cast<Value>(v);
+    f.set_int = [set](CellResult& c, std::size_t a, std::int64_t v) {
+      if (a < c.census.size()) set(c.census[a], v);
     };
   } else {
-    f.get_real = [ref, fill](const CellResult& c, std::size_t a) { return a < c.census.size() ? ref(c.census[a]) : fill; };
-    f.set_real = [ref](CellResult& c, std::size_t a, double v) {
-      if (a < c.census.size()) ref(c.census[a]) = v;
+    f.get_real = [get, fill](const CellResult& c, std::size_t a) -> double {
+      return a < c.census.size() ? get(c.census[a]) : fill;
+    };
+    f.set_real = [set](CellResult& c, std::size_t a, double v) {
+      if (a < c.census.size()) set(c.census[a], v);
     };
   }
   return f;
+}
+
+// The code a listed attractor holds in a code dataset: -1 (not listed) is malformed there.
+std::int64_t listed_code(std::int64_t v) {
+  if (v < 0) throw std::invalid_argument("holds -1 (not listed) for a listed attractor");
+  return v;
+}
+
+// An attractor field on member M: a double as it is, a bool as a 0/1 flag, an int as it is.
+template <auto M>
+MapField attractor_member(MapField f, std::size_t slots) {
+  using Value = std::remove_cvref_t<decltype(std::declval<Attractor&>().*M)>;
+  return attractor_field(
+      std::move(f), slots, [](const Attractor& a) { return a.*M; },
+      [](Attractor& a, auto v) {
+        if constexpr (std::is_same_v<Value, bool>)
+          a.*M = listed_code(v) != 0;
+        else
+          a.*M = static_cast<Value>(v);  // an int from an int64 in its dataset's range, or a double
+      });
+}
+
+// Component I (x1, x2, v1, v2) of an attractor's first stroboscopic state: NaN when it has none.
+template <int I>
+MapField attractor_strobe(MapField f, std::size_t slots) {
+  return attractor_field(
+      std::move(f), slots, [](const Attractor& a) { return a.strobe.empty() ? kNaN : a.strobe.front()[I]; },
+      [](Attractor& a, double v) {
+        if (a.strobe.empty()) a.strobe.assign(1, Eigen::Vector4d::Constant(kNaN));
+        a.strobe.front()[I] = v;
+      });
 }
 
 // The census's datasets (map_file.hpp).
@@ -124,50 +155,52 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   const auto code = [](std::string name, std::string long_name, std::int8_t last, std::string meanings) {
     return code_field<&CellResult::regime>(std::move(name), std::move(long_name), last, std::move(meanings));
   };
-  using A = AttractorRecord;
-  fields.push_back(attractor_field<&A::regime>(
+  using A = Attractor;
+  fields.push_back(attractor_field(
       code("attractor_regime", "the attractor's regime; periodic (n,k) with attractor_n and attractor_k",
            regime_code(RegimeKind::failed), flag_meanings(RegimeKind::failed, &regime_code)),
-      slots));
+      slots, [](const A& a) { return regime_code(a.regime.kind); },
+      [](A& a, std::int64_t v) { a.regime.kind = static_cast<RegimeKind>(listed_code(v)); }));
   MapField stable = code("attractor_stable", "stability of the attractor's orbit from its Floquet multipliers", 1,
                          "unknown unstable stable");
-  fields.push_back(attractor_field<&A::stable>(stable, slots));
+  fields.push_back(attractor_member<&A::stable>(stable, slots));
   const auto flag = [&](std::string name, std::string long_name) {
     MapField f = code(std::move(name), std::move(long_name), 1, "not_listed no yes");
     return f;
   };
-  fields.push_back(attractor_field<&A::hertz_valid>(
+  fields.push_back(attractor_member<&A::hertz_valid>(
       flag("attractor_hertz_valid", "1 where the attractor's z_ratio is within the Hertz validity limit"), slots));
-  fields.push_back(attractor_field<&A::from_rest>(flag("attractor_from_rest", "1 for the attractor rest reaches"), slots));
-  fields.push_back(attractor_field<&A::soft>(
+  fields.push_back(attractor_member<&A::from_rest>(flag("attractor_from_rest", "1 for the attractor rest reaches"), slots));
+  fields.push_back(attractor_member<&A::soft>(
       flag("attractor_soft", "1 where the attractor is soft (periodic with impacts, stable, Hertz-valid, k_con <= soft_kcon)"), slots));
-  fields.push_back(attractor_field<&A::transient>(
+  fields.push_back(attractor_member<&A::transient>(
       flag("attractor_transient",
            "1 where states were seen to leave the non-periodic attractor (transient chaos: its fraction falls as "
            "analysis.max_periods grows)"),
       slots));
-  fields.push_back(attractor_field<&A::n>(
+  fields.push_back(attractor_field(
       count_field<&CellResult::n>("attractor_n", "period of the attractor in forcing periods (0 where not periodic)"),
-      slots));
-  fields.push_back(attractor_field<&A::k>(
-      count_field<&CellResult::k>("attractor_k", "impacts per period of the attractor (0 where not periodic)"), slots));
+      slots, [](const A& a) { return a.regime.n; }, [](A& a, std::int64_t v) { a.regime.n = static_cast<int>(v); }));
+  fields.push_back(attractor_field(
+      count_field<&CellResult::k>("attractor_k", "impacts per period of the attractor (0 where not periodic)"), slots,
+      [](const A& a) { return a.regime.k; }, [](A& a, std::int64_t v) { a.regime.k = static_cast<int>(v); }));
   const auto real = [](std::string name, std::string long_name, std::string units) {
     return real_field<&CellResult::T_con>(std::move(name), std::move(long_name), std::move(units));
   };
-  fields.push_back(attractor_field<&A::T_con>(real("attractor_T_con", "duration of the attractor's longest impact", "s"), slots));
-  fields.push_back(attractor_field<&A::k_con>(real("attractor_k_con", "softness T / T_con of the attractor's longest impact", "1"), slots));
-  fields.push_back(attractor_field<&A::F_max>(real("attractor_F_max", "largest peak contact force of the attractor", "N"), slots));
-  fields.push_back(attractor_field<&A::z_ratio>(real("attractor_z_ratio", "largest peak penetration over R* of the attractor", "1"), slots));
-  fields.push_back(attractor_field<&A::max_floquet>(
+  fields.push_back(attractor_member<&A::T_con>(real("attractor_T_con", "duration of the attractor's longest impact", "s"), slots));
+  fields.push_back(attractor_member<&A::k_con>(real("attractor_k_con", "softness T / T_con of the attractor's longest impact", "1"), slots));
+  fields.push_back(attractor_member<&A::F_max>(real("attractor_F_max", "largest peak contact force of the attractor", "N"), slots));
+  fields.push_back(attractor_member<&A::z_ratio>(real("attractor_z_ratio", "largest peak penetration over R* of the attractor", "1"), slots));
+  fields.push_back(attractor_member<&A::max_floquet>(
       real("attractor_max_floquet", "largest |Floquet multiplier| of the attractor's orbit", "1"), slots));
-  fields.push_back(attractor_field<&A::fraction>(
+  fields.push_back(attractor_member<&A::fraction>(
       real("attractor_fraction", "basin fraction: initial states reaching the attractor over all", "1"), slots));
-  fields.push_back(attractor_field<&A::fraction_stderr>(
+  fields.push_back(attractor_member<&A::fraction_stderr>(
       real("attractor_fraction_stderr", "standard error sqrt(p (1 - p) / K) of the basin fraction", "1"), slots));
-  fields.push_back(attractor_field<&A::strobe, 0>(real("attractor_x1", "x1 of the attractor's first stroboscopic state", "m"), slots));
-  fields.push_back(attractor_field<&A::strobe, 1>(real("attractor_x2", "x2 of the attractor's first stroboscopic state", "m"), slots));
-  fields.push_back(attractor_field<&A::strobe, 2>(real("attractor_v1", "v1 of the attractor's first stroboscopic state", "m/s"), slots));
-  fields.push_back(attractor_field<&A::strobe, 3>(real("attractor_v2", "v2 of the attractor's first stroboscopic state", "m/s"), slots));
+  fields.push_back(attractor_strobe<0>(real("attractor_x1", "x1 of the attractor's first stroboscopic state", "m"), slots));
+  fields.push_back(attractor_strobe<1>(real("attractor_x2", "x2 of the attractor's first stroboscopic state", "m"), slots));
+  fields.push_back(attractor_strobe<2>(real("attractor_v1", "v1 of the attractor's first stroboscopic state", "m/s"), slots));
+  fields.push_back(attractor_strobe<3>(real("attractor_v2", "v2 of the attractor's first stroboscopic state", "m/s"), slots));
 }
 
 MapField quantity_field(Quantity q) {

@@ -355,7 +355,11 @@ CellResult MapDatasets::cell(std::size_t k, const std::string& path) const {
       if (v < f.lo || v > f.hi)
         malformed(path, cat("dataset '/", f.name, "' holds ", std::to_string(v), ", outside ", std::to_string(f.lo),
                             "..", std::to_string(f.hi)));
-      f.set_int(c, a, v);
+      try {
+        f.set_int(c, a, v);
+      } catch (const std::invalid_argument& e) {  // a code the field's slot cannot hold (map_fields.cpp)
+        malformed(path, cat("dataset '/", f.name, "' ", e.what()));
+      }
     }
   }
   return c;

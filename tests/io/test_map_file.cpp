@@ -243,16 +243,14 @@ SweepMap sample_census_map() {
     c.unlisted_fraction = 1.0 / (n + 1.0);
     c.budget_fraction = i % 3 == 0 ? 0.0 : 0.03125 * static_cast<double>(i % 5);
     for (std::size_t a = 0; a < i % 4; ++a) {
-      AttractorRecord r;
+      Attractor r;
       const auto x = static_cast<double>(a);
-      r.regime = static_cast<std::int8_t>((i + a) % 9);
-      r.stable = static_cast<std::int8_t>(static_cast<int>((i + a) % 3) - 1);
-      r.hertz_valid = static_cast<std::int8_t>(a % 2);
-      r.from_rest = a == 0 ? 1 : 0;
-      r.soft = static_cast<std::int8_t>((i + a) % 2);
-      r.transient = static_cast<std::int8_t>((i + a) % 3 == 0);
-      r.n = static_cast<std::int32_t>(1 + a);
-      r.k = static_cast<std::int32_t>(1 + i % 3);
+      r.regime = Regime{static_cast<RegimeKind>((i + a) % 9), static_cast<int>(1 + a), static_cast<int>(1 + i % 3)};
+      r.stable = static_cast<int>((i + a) % 3) - 1;
+      r.hertz_valid = a % 2 == 1;
+      r.from_rest = a == 0;
+      r.soft = (i + a) % 2 == 1;
+      r.transient = (i + a) % 3 == 0;
       r.T_con = 1e-3 * (n + x + 1.0);
       r.k_con = 100.0 / (n + x + 1.0);
       r.F_max = 1e5 * (x + 1.0);
@@ -260,7 +258,7 @@ SweepMap sample_census_map() {
       r.max_floquet = a == 2 ? kNaN : 0.5 + 0.125 * x;
       r.fraction = 0.25 * (x + 1.0) / 2.0;
       r.fraction_stderr = 0.01 * (x + 1.0);
-      r.strobe = {-0.01 * x, 0.05 + n, 0.5 * x, -0.25 * n};
+      if (a != 1) r.strobe = {Eigen::Vector4d(-0.01 * x, 0.05 + n, 0.5 * x, -0.25 * n)};  // none for attractor 1
       c.census.push_back(r);
     }
   }
@@ -282,15 +280,17 @@ TEST_F(MapFile, RoundTripsACensusMapWithItsAttractorDimension) {
                               &CellResult::budget_fraction})
       EXPECT_TRUE(same(a.*member, e.*member));
     for (std::size_t k = 0; k < e.census.size(); ++k) {
-      const AttractorRecord& x = e.census[k];
-      const AttractorRecord& y = a.census[k];
-      EXPECT_EQ(std::vector<int>({y.regime, y.stable, y.hertz_valid, y.from_rest, y.soft, y.transient, y.n, y.k}),
-                std::vector<int>({x.regime, x.stable, x.hertz_valid, x.from_rest, x.soft, x.transient, x.n, x.k}));
-      for (const auto member : {&AttractorRecord::T_con, &AttractorRecord::k_con, &AttractorRecord::F_max,
-                                &AttractorRecord::z_ratio, &AttractorRecord::max_floquet, &AttractorRecord::fraction,
-                                &AttractorRecord::fraction_stderr})
+      const Attractor& x = e.census[k];
+      const Attractor& y = a.census[k];
+      EXPECT_EQ(y.regime, x.regime);
+      EXPECT_EQ(std::vector<int>({y.stable, y.hertz_valid, y.from_rest, y.soft, y.transient}),
+                std::vector<int>({x.stable, x.hertz_valid, x.from_rest, x.soft, x.transient}));
+      for (const auto member : {&Attractor::T_con, &Attractor::k_con, &Attractor::F_max, &Attractor::z_ratio,
+                                &Attractor::max_floquet, &Attractor::fraction, &Attractor::fraction_stderr})
         EXPECT_TRUE(same(y.*member, x.*member));
-      for (std::size_t d = 0; d < 4; ++d) EXPECT_EQ(y.strobe[d], x.strobe[d]);
+      // The first stroboscopic state; none is read back as one of NaN.
+      ASSERT_EQ(y.strobe.size(), 1u);
+      for (int d = 0; d < 4; ++d) EXPECT_TRUE(same(y.strobe[0][d], x.strobe.empty() ? kNaN : x.strobe[0][d]));
     }
   }
   // On disk: (E1, R1, attractor), slots beyond a cell's attractors hold the fill values.
@@ -321,6 +321,29 @@ TEST_F(MapFile, ADamagedCensusDatasetIsNamed) {
   } catch (const IoError& e) {
     EXPECT_EQ(std::string(e.what()),
               file("census.h5") + ": not a valid vibromap map: dataset '/attractors' holds 4, outside 0..3");
+  }
+}
+
+TEST_F(MapFile, AListedAttractorWithoutARegimeOrFlagIsRefused) {
+  // -1 (not listed) fills the slots beyond a cell's attractors; a listed one holding it is malformed.
+  for (const std::string name : {"attractor_regime", "attractor_soft"}) {
+    SCOPED_TRACE(name);
+    write_map(file("census.h5"), sample_census_map());
+    {
+      Hdf5File f(file("census.h5"), FileMode::read_write);
+      std::vector<std::int64_t> codes = f.open_dataset(name).read_int();
+      codes[7 * 3 + 2] = -1;  // cell 7 lists 3 attractors
+      f.remove(name);
+      f.write_dataset(name, std::vector<std::int8_t>(codes.begin(), codes.end()), {3, 4, 3});
+      f.remove_attribute("attribute_checksum");
+    }
+    try {
+      read_map(file("census.h5"));
+      FAIL() << "a listed attractor with " << name << " -1 was read";
+    } catch (const IoError& e) {
+      EXPECT_EQ(std::string(e.what()), file("census.h5") + ": not a valid vibromap map: dataset '/" + name +
+                                           "' holds -1 (not listed) for a listed attractor");
+    }
   }
 }
 

@@ -37,9 +37,8 @@ SweepMap census_map() {
     c.status = 0;
     c.regime = 0;
     c.n = c.k = 1;
-    AttractorRecord a;
-    a.regime = 0;
-    a.n = a.k = 1;
+    Attractor a;
+    a.regime = Regime{RegimeKind::periodic, 1, 1};
     a.T_con = kMarker;
     a.fraction = 0.5;
     c.census = {a, a};

@@ -8,7 +8,6 @@
 // its basin fraction, and the fractions that are soft, unresolved and unlisted; its ordinary
 // fields then describe the attractor the rest state reaches.
 
-#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -54,22 +53,6 @@ constexpr std::int8_t kNotComputed = -1;
 std::int8_t regime_code(RegimeKind k);  // periodic 0, chatter 1, ..., failed 8 (enum order)
 std::int8_t status_code(SolveStatus s); // ok 0, budget 1, failed 2, invalid_input 3
 
-// One attractor of a cell's census, as a map keeps it (census.hpp's Attractor, without the
-// orbit's other n - 1 stroboscopic states: they follow from the first by the period map).
-struct AttractorRecord {
-  std::int8_t regime = kNotComputed;  // regime_code of the attractor's regime
-  std::int8_t stable = -1;            // 1 stable, 0 unstable, -1 unknown
-  std::int8_t hertz_valid = 0;
-  std::int8_t from_rest = 0;          // 1: the rest state reaches it
-  std::int8_t soft = 0;               // 1: soft (is_soft, regime.hpp)
-  std::int8_t transient = 0;          // 1: non-periodic, and states were seen to leave it (census.hpp)
-  std::int32_t n = 0, k = 0;
-  double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_ratio = 0.0;
-  double max_floquet = std::numeric_limits<double>::quiet_NaN();
-  double fraction = 0.0, fraction_stderr = 0.0;
-  std::array<double, 4> strobe{};     // first stroboscopic state (x1, x2, v1, v2); NaN when none
-};
-
 struct CellResult {
   std::int8_t status = kNotComputed;
   std::int8_t regime = kNotComputed;
@@ -84,7 +67,9 @@ struct CellResult {
   double max_multiplier = std::numeric_limits<double>::quiet_NaN();
   double lyapunov = std::numeric_limits<double>::quiet_NaN();
   // The census (sweeps with [census]; empty and NaN otherwise).
-  std::vector<AttractorRecord> census;  // attractors listed, by basin fraction
+  // Attractors listed, by basin fraction, as the census found them (a map keeps part of each:
+  // map_file.hpp; a cell read from a map has the rest at their defaults).
+  std::vector<Attractor> census;
   double soft_fraction = std::numeric_limits<double>::quiet_NaN();        // census: basin fraction of soft attractors
   double unresolved_fraction = std::numeric_limits<double>::quiet_NaN();  // census: initial states not decided
   double unlisted_fraction = std::numeric_limits<double>::quiet_NaN();    // census: beyond max_attractors

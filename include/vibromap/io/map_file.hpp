@@ -32,7 +32,11 @@
 //                    from_rest, soft, transient (int8 flags, -1 where the cell lists fewer attractors),
 //                    n, k (int32), T_con, k_con, F_max, z_ratio, max_floquet, fraction,
 //                    fraction_stderr, and x1, x2, v1, v2 (the first stroboscopic state; the
-//                    other n - 1 follow by the period map), float64 NaN where not listed.
+//                    other n - 1 follow by the period map; NaN when none), float64 NaN where
+//                    not listed. These are what a map keeps of a CellResult's census
+//                    attractors (core/analysis/census.hpp's Attractor): read back, an attractor
+//                    has one stroboscopic state (or none, all NaN) and its other fields at their
+//                    defaults; a listed attractor whose regime or flag holds -1 is malformed.
 //   The ordinary datasets then describe the attractor the rest state reaches.
 // Float datasets hold NaN (their _FillValue) where done == 0; integer ones hold 0, and
 // regime/status/stable -1. So a NaN alone does not say whether a cell was reached: /done does.

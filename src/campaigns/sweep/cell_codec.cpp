@@ -1,5 +1,6 @@
 #include "cell_codec.hpp"
 
+#include "vibromap/campaigns/census/attractor_codec.hpp"
 #include "vibromap/parallel/wire.hpp"
 
 namespace vibromap::detail {
@@ -13,13 +14,6 @@ constexpr double CellResult::*kReals[] = {&CellResult::wall_s, &CellResult::stea
                                            &CellResult::e_effective, &CellResult::energy_dissipated};
 constexpr double CellResult::*kCensusReals[] = {&CellResult::soft_fraction, &CellResult::unresolved_fraction,
                                                  &CellResult::unlisted_fraction, &CellResult::budget_fraction};
-constexpr std::int8_t AttractorRecord::*kAttractorCodes[] = {&AttractorRecord::regime, &AttractorRecord::stable,
-                                                             &AttractorRecord::hertz_valid, &AttractorRecord::from_rest,
-                                                             &AttractorRecord::soft, &AttractorRecord::transient};
-constexpr double AttractorRecord::*kAttractorReals[] = {
-    &AttractorRecord::T_con,       &AttractorRecord::k_con,    &AttractorRecord::F_max,
-    &AttractorRecord::z_ratio,     &AttractorRecord::max_floquet, &AttractorRecord::fraction,
-    &AttractorRecord::fraction_stderr};
 }  // namespace
 
 void CellCodec::encode(const CellResult& c, ByteWriter& out) const {
@@ -39,13 +33,7 @@ void CellCodec::encode(const CellResult& c, ByteWriter& out) const {
   if (!census_) return;
   for (const auto member : kCensusReals) out.put(c.*member);
   out.put(static_cast<std::uint32_t>(c.census.size()));
-  for (const AttractorRecord& a : c.census) {
-    for (const auto member : kAttractorCodes) out.put(a.*member);
-    out.put(a.n);
-    out.put(a.k);
-    for (const auto member : kAttractorReals) out.put(a.*member);
-    for (const double x : a.strobe) out.put(x);
-  }
+  for (const Attractor& a : c.census) AttractorCodec().encode(a, out);
 }
 
 CellResult CellCodec::decode(ByteReader& in) const {
@@ -66,13 +54,7 @@ CellResult CellCodec::decode(ByteReader& in) const {
   const auto attractors = in.get<std::uint32_t>();
   if (attractors > kMaxCensusAttractors) throw WireError("a cell result lists more attractors than a census keeps");
   c.census.resize(attractors);
-  for (AttractorRecord& a : c.census) {
-    for (const auto member : kAttractorCodes) a.*member = in.get<std::int8_t>();
-    a.n = in.get<std::int32_t>();
-    a.k = in.get<std::int32_t>();
-    for (const auto member : kAttractorReals) a.*member = in.get<double>();
-    for (double& x : a.strobe) x = in.get<double>();
-  }
+  for (Attractor& a : c.census) a = AttractorCodec().decode(in);
   return c;
 }
 

@@ -5,6 +5,7 @@
 // with WireError (a truncated journal or message is never read as a record), and records
 // written back to back decode one after the other, as a sink reads a range.
 //   sweep:          CellResult (sweep/cell_codec.hpp), with and without a census
+//   census's attractor: Attractor (campaigns/census/attractor_codec.hpp), which both below carry
 //   basins, census: PixelResult (campaigns/census/state_codec.hpp)
 //   optimise:       StartRecord (multistart/start_codec.hpp)
 //   orbit diagram:  the steps of one direction (orbit_diagram/steps_codec.hpp)
@@ -12,12 +13,15 @@
 
 #include <bit>
 #include <cstdint>
+#include <cstring>
+#include <string>
 #include <limits>
 #include <vector>
 
 #include "multistart/start_codec.hpp"
 #include "orbit_diagram/steps_codec.hpp"
 #include "sweep/cell_codec.hpp"
+#include "vibromap/campaigns/census/attractor_codec.hpp"
 #include "vibromap/campaigns/census/state_codec.hpp"
 #include "vibromap/core/analysis/basins_plane.hpp"  // kOverlapLabel
 
@@ -60,7 +64,95 @@ void expect_prefixes_refused(const ResultCodec<Result>& codec, const std::vector
   }
 }
 
+}  // namespace
+
+// ---- an attractor (the census map's cells and the followed states carry theirs so) ----------
+
+namespace {
+
+// Every field of an Attractor away from its default; i varies the regime, flags and strobe.
+Attractor full_attractor(int i) {
+  Attractor a;
+  a.periodic = i % 2 == 0;
+  a.regime = i % 2 == 0 ? Regime{RegimeKind::periodic, 2 + i, 5 * i} : Regime{RegimeKind::chaotic, 0, 0};
+  a.T_con = 0.011 * (i + 1);
+  a.k_con = 79.0 / (i + 1);
+  a.F_max = 2.5e6;
+  a.z_ratio = 1e-5;
+  a.z_max = -0.0;
+  a.v_in = 0.31;
+  a.impulse = 40.0;
+  a.hertz_valid = i % 2 == 0;
+  a.max_floquet = i == 1 ? kNaN : 0.93;
+  a.stable = i % 3 - 1;
+  a.count = 17 + i;
+  a.fraction = 0.25 * (i + 1);
+  a.fraction_stderr = -kInf;
+  a.from_rest = i == 0;
+  a.strobe = {Eigen::Vector4d(0.1, 0.2, 0.3, 0.4), Eigen::Vector4d(kNaN, -0.0, 1e300, -1e-300)};
+  a.strobe.resize(static_cast<std::size_t>(2 - i % 3));  // 2, 1, 0 states
+  a.soft = i % 2 == 1;
+  a.escape_rate = i == 1 ? 0.125 : kNaN;
+  a.escape_exposure = 4000000000L + i;
+  a.escapes = 3 * i;
+  a.transient = i == 1;
+  return a;
+}
+
+void expect_same_attractor(const Attractor& x, const Attractor& y) {
+  EXPECT_EQ(x.periodic, y.periodic);
+  EXPECT_EQ(x.regime, y.regime);
+  for (const double Attractor::*m : {&Attractor::T_con, &Attractor::k_con, &Attractor::F_max, &Attractor::z_ratio,
+                                     &Attractor::z_max, &Attractor::v_in, &Attractor::impulse, &Attractor::max_floquet,
+                                     &Attractor::fraction, &Attractor::fraction_stderr, &Attractor::escape_rate})
+    EXPECT_TRUE(same_bits(x.*m, y.*m));
+  for (const bool Attractor::*m : {&Attractor::hertz_valid, &Attractor::from_rest, &Attractor::soft, &Attractor::transient})
+    EXPECT_EQ(x.*m, y.*m);
+  EXPECT_EQ(x.stable, y.stable);
+  EXPECT_EQ(x.count, y.count);
+  EXPECT_EQ(x.escape_exposure, y.escape_exposure);
+  EXPECT_EQ(x.escapes, y.escapes);
+  ASSERT_EQ(x.strobe.size(), y.strobe.size());
+  for (std::size_t k = 0; k < x.strobe.size(); ++k)
+    for (int i = 0; i < 4; ++i) EXPECT_TRUE(same_bits(x.strobe[k][i], y.strobe[k][i]));
+}
+
+// Layout (attractor_codec.hpp): periodic, kind, n, k (int32), 11 doubles, 4 flags, stable and
+// count (int32), escape_exposure (int64), escapes (int32), the count of states (uint64), states.
+constexpr std::size_t kAttractorBytes = 1 + 3 * 4 + 11 * 8 + 4 + 2 * 4 + 8 + 4 + 8;
+constexpr std::size_t kStateBytes = 4 * 8;
+
+}  // namespace
+
+TEST(ResultCodecs, AttractorWithEveryField) {
+  const AttractorCodec codec;
+  for (int i = 0; i < 3; ++i) {
+    SCOPED_TRACE("attractor " + std::to_string(i));
+    const Attractor a = full_attractor(i);
+    const std::vector<char> bytes = encode(codec, a);
+    EXPECT_EQ(bytes.size(), kAttractorBytes + a.strobe.size() * kStateBytes);
+    expect_same_attractor(a, decode_all(codec, bytes));
+    expect_prefixes_refused(codec, bytes);
+  }
+}
+
+TEST(ResultCodecs, AttractorOfAnUnknownRegimeKindIsRefused) {
+  const AttractorCodec codec;
+  std::vector<char> bytes = encode(codec, full_attractor(0));
+  const auto failed = static_cast<std::int32_t>(RegimeKind::failed);
+  for (const std::int32_t kind : {failed + 1, std::int32_t{-1}}) {
+    std::memcpy(bytes.data() + 1, &kind, sizeof kind);  // after the periodic byte
+    ByteReader in(bytes);
+    EXPECT_THROW(codec.decode(in), WireError) << "kind " << kind;
+  }
+  std::memcpy(bytes.data() + 1, &failed, sizeof failed);
+  ByteReader in(bytes);
+  EXPECT_EQ(codec.decode(in).regime.kind, RegimeKind::failed);
+}
+
 // ---- sweep ----------------------------------------------------------------------------------
+
+namespace {
 
 CellResult sample_cell() {
   CellResult c;
@@ -90,27 +182,6 @@ CellResult sample_cell() {
   return c;
 }
 
-AttractorRecord sample_attractor(int i) {
-  AttractorRecord a;
-  a.regime = static_cast<std::int8_t>(i);
-  a.stable = static_cast<std::int8_t>(i % 2);
-  a.hertz_valid = 1;
-  a.from_rest = static_cast<std::int8_t>(i == 0);
-  a.soft = 1;
-  a.transient = static_cast<std::int8_t>(i == 1);
-  a.n = 2 + i;
-  a.k = 5 * i;
-  a.T_con = 0.01 * (i + 1);
-  a.k_con = 86.9 / (i + 1);
-  a.F_max = 1e6;
-  a.z_ratio = 2e-5;
-  a.max_floquet = i == 1 ? kNaN : 0.93;
-  a.fraction = 0.25 * (i + 1);
-  a.fraction_stderr = 0.01;
-  a.strobe = i == 1 ? std::array<double, 4>{kNaN, kNaN, kNaN, kNaN} : std::array<double, 4>{0.1, 0.15, -0.2, 1e-9};
-  return a;
-}
-
 void expect_same_cell(const CellResult& a, const CellResult& b) {
   EXPECT_EQ(a.status, b.status);
   EXPECT_EQ(a.regime, b.regime);
@@ -129,29 +200,13 @@ void expect_same_cell(const CellResult& a, const CellResult& b) {
         &CellResult::unresolved_fraction, &CellResult::unlisted_fraction, &CellResult::budget_fraction})
     EXPECT_TRUE(same_bits(a.*m, b.*m));
   ASSERT_EQ(a.census.size(), b.census.size());
-  for (std::size_t i = 0; i < a.census.size(); ++i) {
-    const AttractorRecord &x = a.census[i], &y = b.census[i];
-    EXPECT_EQ(x.regime, y.regime);
-    EXPECT_EQ(x.stable, y.stable);
-    EXPECT_EQ(x.hertz_valid, y.hertz_valid);
-    EXPECT_EQ(x.from_rest, y.from_rest);
-    EXPECT_EQ(x.soft, y.soft);
-    EXPECT_EQ(x.transient, y.transient);
-    EXPECT_EQ(x.n, y.n);
-    EXPECT_EQ(x.k, y.k);
-    for (const double AttractorRecord::*m :
-         {&AttractorRecord::T_con, &AttractorRecord::k_con, &AttractorRecord::F_max, &AttractorRecord::z_ratio,
-          &AttractorRecord::max_floquet, &AttractorRecord::fraction, &AttractorRecord::fraction_stderr})
-      EXPECT_TRUE(same_bits(x.*m, y.*m));
-    for (int j = 0; j < 4; ++j) EXPECT_TRUE(same_bits(x.strobe[j], y.strobe[j]));
-  }
+  for (std::size_t i = 0; i < a.census.size(); ++i) expect_same_attractor(a.census[i], b.census[i]);
 }
 
 // Layout: 5 int8 codes, n and k (int32), 3 int64 counters, 13 doubles, the census byte.
 constexpr std::size_t kCellBytes = 5 + 2 * 4 + 3 * 8 + 13 * 8 + 1;
-// The census: 4 fractions, a uint32 count, per attractor 6 int8 codes, n, k, 7 doubles, 4 strobe.
+// The census: 4 fractions, a uint32 count, then each attractor (attractor_codec.hpp).
 constexpr std::size_t kCensusBytes = 4 * 8 + 4;
-constexpr std::size_t kAttractorBytes = 6 + 2 * 4 + 7 * 8 + 4 * 8;
 
 }  // namespace
 
@@ -172,9 +227,9 @@ TEST(ResultCodecs, SweepCellWithACensus) {
   c.unresolved_fraction = 0.0;
   c.unlisted_fraction = kNaN;
   c.budget_fraction = 1.0 / 7.0;
-  c.census = {sample_attractor(0), sample_attractor(1), sample_attractor(2)};
+  c.census = {full_attractor(0), full_attractor(1), full_attractor(2)};  // 2, 1 and 0 stroboscopic states
   const std::vector<char> bytes = encode(codec, c);
-  EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes + 3 * kAttractorBytes);
+  EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes + 3 * kAttractorBytes + 3 * kStateBytes);
   expect_same_cell(c, decode_all(codec, bytes));
   expect_prefixes_refused(codec, bytes);
 }
@@ -193,7 +248,7 @@ TEST(ResultCodecs, SweepCellWithAnEmptyCensus) {
 TEST(ResultCodecs, SweepCellsBackToBackAsARange) {
   const CellCodec codec(true);
   std::vector<CellResult> cells(3, sample_cell());
-  cells[1].census = {sample_attractor(1)};
+  cells[1].census = {full_attractor(1)};
   cells[2].n = 9;
   ByteWriter w;
   for (const CellResult& c : cells) codec.encode(c, w);
@@ -205,7 +260,7 @@ TEST(ResultCodecs, SweepCellsBackToBackAsARange) {
 TEST(ResultCodecs, SweepCellListingMoreAttractorsThanACensusKeepsIsRefused) {
   const CellCodec codec(true);
   CellResult c = sample_cell();
-  c.census.assign(kMaxCensusAttractors + 1, sample_attractor(0));
+  c.census.assign(kMaxCensusAttractors + 1, full_attractor(0));
   const std::vector<char> bytes = encode(codec, c);
   ByteReader in(bytes);
   EXPECT_THROW(codec.decode(in), WireError);
@@ -223,27 +278,11 @@ PixelResult sample_pixel() {
   r.budget = false;
   r.failed = true;
   r.end_state = Eigen::Vector4d(0.01, 0.05, -kInf, kNaN);
-  Attractor& a = r.attractor;
-  a.periodic = false;
-  a.regime = Regime{RegimeKind::chaotic, 0, 0};
-  a.T_con = 0.011;
-  a.k_con = 79.0;
-  a.F_max = 2.5e6;
-  a.z_ratio = 1e-5;
-  a.z_max = -0.0;
-  a.v_in = 0.31;
-  a.impulse = 40.0;
-  a.hertz_valid = false;
-  a.max_floquet = kNaN;
-  a.stable = -1;
-  a.soft = true;
-  a.transient = true;
-  a.strobe = {Eigen::Vector4d(0.1, 0.2, 0.3, 0.4), Eigen::Vector4d(kNaN, -0.0, 1e300, -1e-300)};
+  r.attractor = full_attractor(1);
+  r.attractor.strobe = full_attractor(0).strobe;
   return r;
 }
 
-// The fields the layout carries (state_codec.hpp): the census fields (count, fraction,
-// from_rest, escapes) are the sink's, not a pixel's.
 void expect_same_pixel(const PixelResult& a, const PixelResult& b) {
   EXPECT_EQ(a.label, b.label);
   EXPECT_EQ(a.periods, b.periods);
@@ -251,25 +290,11 @@ void expect_same_pixel(const PixelResult& a, const PixelResult& b) {
   EXPECT_EQ(a.budget, b.budget);
   EXPECT_EQ(a.failed, b.failed);
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(same_bits(a.end_state[i], b.end_state[i]));
-  const Attractor &x = a.attractor, &y = b.attractor;
-  EXPECT_EQ(x.periodic, y.periodic);
-  EXPECT_EQ(x.regime, y.regime);
-  for (const double Attractor::*m : {&Attractor::T_con, &Attractor::k_con, &Attractor::F_max, &Attractor::z_ratio,
-                                     &Attractor::z_max, &Attractor::v_in, &Attractor::impulse, &Attractor::max_floquet})
-    EXPECT_TRUE(same_bits(x.*m, y.*m));
-  EXPECT_EQ(x.hertz_valid, y.hertz_valid);
-  EXPECT_EQ(x.stable, y.stable);
-  EXPECT_EQ(x.soft, y.soft);
-  EXPECT_EQ(x.transient, y.transient);
-  ASSERT_EQ(x.strobe.size(), y.strobe.size());
-  for (std::size_t k = 0; k < x.strobe.size(); ++k)
-    for (int i = 0; i < 4; ++i) EXPECT_TRUE(same_bits(x.strobe[k][i], y.strobe[k][i]));
+  expect_same_attractor(a.attractor, b.attractor);
 }
 
-// Layout: label (int32), periods (int64), 3 flags, the end state; for a label >= 0: periodic,
-// kind, n, k, 8 doubles, hertz_valid, stable (int32), soft, transient, the count and states.
+// Layout: label (int32), periods (int64), 3 flags, the end state; for a label >= 0, the attractor.
 constexpr std::size_t kPixelBytes = 4 + 8 + 3 + 4 * 8;
-constexpr std::size_t kPixelAttractorBytes = 1 + 3 * 4 + 8 * 8 + 1 + 4 + 1 + 1 + 8;
 
 }  // namespace
 
@@ -277,7 +302,7 @@ TEST(ResultCodecs, BasinsPixelWithItsAttractor) {
   const PixelCodec codec;
   const PixelResult r = sample_pixel();
   const std::vector<char> bytes = encode(codec, r);
-  EXPECT_EQ(bytes.size(), kPixelBytes + kPixelAttractorBytes + 2 * 4 * 8);
+  EXPECT_EQ(bytes.size(), kPixelBytes + kAttractorBytes + 2 * kStateBytes);
   expect_same_pixel(r, decode_all(codec, bytes));
   expect_prefixes_refused(codec, bytes);
 }
@@ -286,12 +311,12 @@ TEST(ResultCodecs, BasinsPixelOfAPeriodicAttractorWithoutStrobe) {
   const PixelCodec codec;
   PixelResult r = sample_pixel();
   r.label = 0;
+  r.attractor = full_attractor(2);
   r.attractor.periodic = true;
   r.attractor.regime = Regime{RegimeKind::periodic, 3, 3};
-  r.attractor.stable = 1;
-  r.attractor.strobe.clear();
+  ASSERT_TRUE(r.attractor.strobe.empty());
   const std::vector<char> bytes = encode(codec, r);
-  EXPECT_EQ(bytes.size(), kPixelBytes + kPixelAttractorBytes);
+  EXPECT_EQ(bytes.size(), kPixelBytes + kAttractorBytes);
   expect_same_pixel(r, decode_all(codec, bytes));
 }
 

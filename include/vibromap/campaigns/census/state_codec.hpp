@@ -1,14 +1,15 @@
 #pragma once
 // The campaigns that follow initial states on MPI ranks (the point census, basins): one state's
 // result (an initial state of a point census, a pixel of a basins plane) and its bytes (layout
-// 3): the label, the periods integrated, whether it was decided early or followed to the
+// 4): the label, the periods integrated, whether it was decided early or followed to the
 // budget's end, whether its integration failed, the state where it was left (the follow past
-// the budget goes on from it) and, for a label >= 0, the attractor's record (periodic, regime,
-// T_con, k_con, F_max, z_ratio, z_max, v_in, impulse, hertz_valid, max_floquet, stable, soft,
-// transient, the stroboscopic states). Made on the ranks by follow_state (follow_state.hpp).
+// the budget goes on from it) and, for a label >= 0, the attractor as the follower holds it
+// (attractor_codec.hpp; its count, fraction, from_rest and escape figures are the sink's to
+// fill in). Made on the ranks by follow_state (follow_state.hpp).
 
 #include <cstdint>
 
+#include "vibromap/campaigns/census/attractor_codec.hpp"
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
@@ -26,7 +27,7 @@ struct PixelResult {
 
 class PixelCodec : public ResultCodec<PixelResult> {
  public:
-  std::uint32_t version() const override { return 3; }
+  std::uint32_t version() const override { return 4; }  // 4: the attractor by AttractorCodec
   void encode(const PixelResult& r, ByteWriter& out) const override;
   PixelResult decode(ByteReader& in) const override;
 };

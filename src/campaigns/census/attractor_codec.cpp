@@ -1,0 +1,59 @@
+// The bytes of an attractor: see attractor_codec.hpp.
+
+#include "vibromap/campaigns/census/attractor_codec.hpp"
+
+#include "vibromap/parallel/wire.hpp"
+
+namespace vibromap::detail {
+namespace {
+
+constexpr std::uint64_t kMaxStrobe = 1 << 16;  // more stroboscopic states than any period a census keeps
+constexpr double Attractor::*kReals[] = {
+    &Attractor::T_con,       &Attractor::k_con,    &Attractor::F_max,           &Attractor::z_ratio,
+    &Attractor::z_max,       &Attractor::v_in,     &Attractor::impulse,         &Attractor::max_floquet,
+    &Attractor::fraction,    &Attractor::fraction_stderr, &Attractor::escape_rate};
+constexpr bool Attractor::*kFlags[] = {&Attractor::hertz_valid, &Attractor::from_rest, &Attractor::soft,
+                                       &Attractor::transient};
+
+}  // namespace
+
+void AttractorCodec::encode(const Attractor& a, ByteWriter& out) const {
+  out.put(static_cast<std::uint8_t>(a.periodic));
+  out.put(static_cast<std::int32_t>(a.regime.kind));
+  out.put(static_cast<std::int32_t>(a.regime.n));
+  out.put(static_cast<std::int32_t>(a.regime.k));
+  for (const auto member : kReals) out.put(a.*member);
+  for (const auto member : kFlags) out.put(static_cast<std::uint8_t>(a.*member));
+  out.put(static_cast<std::int32_t>(a.stable));
+  out.put(static_cast<std::int32_t>(a.count));
+  out.put(static_cast<std::int64_t>(a.escape_exposure));
+  out.put(static_cast<std::int32_t>(a.escapes));
+  out.put(static_cast<std::uint64_t>(a.strobe.size()));
+  for (const Eigen::Vector4d& x : a.strobe)
+    for (int i = 0; i < 4; ++i) out.put(x[i]);
+}
+
+Attractor AttractorCodec::decode(ByteReader& in) const {
+  Attractor a;
+  a.periodic = in.get<std::uint8_t>() != 0;
+  const auto kind = in.get<std::int32_t>();
+  if (kind < 0 || kind > static_cast<std::int32_t>(RegimeKind::failed))
+    throw WireError("an attractor of unknown regime kind " + std::to_string(kind));
+  a.regime.kind = static_cast<RegimeKind>(kind);
+  a.regime.n = in.get<std::int32_t>();
+  a.regime.k = in.get<std::int32_t>();
+  for (const auto member : kReals) a.*member = in.get<double>();
+  for (const auto member : kFlags) a.*member = in.get<std::uint8_t>() != 0;
+  a.stable = in.get<std::int32_t>();
+  a.count = in.get<std::int32_t>();
+  a.escape_exposure = static_cast<long>(in.get<std::int64_t>());
+  a.escapes = in.get<std::int32_t>();
+  const auto points = in.get<std::uint64_t>();
+  if (points > kMaxStrobe) throw WireError("an attractor with too many stroboscopic states");
+  a.strobe.resize(static_cast<std::size_t>(points));
+  for (Eigen::Vector4d& x : a.strobe)
+    for (int i = 0; i < 4; ++i) x[i] = in.get<double>();
+  return a;
+}
+
+}  // namespace vibromap::detail
