@@ -47,6 +47,7 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
     lines.append("stability: " + ", ".join(f"{sweep.stable_meanings.get(int(c), c)} {int((stable == c).sum())}"
                                            for c in sorted(set(stable.tolist()))))
     lines.extend(soft_lines(sweep, done))
+    lines.extend(refine_lines(sweep))
     wall = sweep.data["wall_s"]
     lines.append(f"wall time per cell: median {np.median(wall[done]):.3g} s, max {wall[done].max():.3g} s, "
                  f"total {wall[done].sum():.3g} s")
@@ -68,6 +69,23 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
             bad += n
     lines.append("finite: every float quantity of every computed cell" if bad == 0 else f"{bad} non-finite values")
     return lines, bad
+
+
+def refine_lines(sweep) -> list[str]:
+    """An adaptive map (sweep.refine > 0): its levels, the points solved per level, inherited and
+    audited, and the audit's mismatches with their 95 % upper bound; nothing for a uniform map."""
+    a = sweep.attrs
+    if "refine_levels" not in a:
+        return []
+    text = lambda v: v.decode() if isinstance(v, bytes) else str(v)  # noqa: E731
+    total = int(np.asarray(sweep.data["done"]).size)
+    solved = int(a["refine_solved"])
+    per_level = " ".join(str(int(n)) for n in np.atleast_1d(a["refine_solved_per_level"]))
+    return [f"refine: {int(a['refine_levels'])} levels on {text(a['refine_on'])}: {solved} of {total} points solved "
+            f"({100.0 * solved / max(total, 1):.3g} %; per level {per_level}), {int(a['refine_inherited'])} inherited",
+            f"audit: {int(a['refine_mismatches'])} of {int(a['refine_audited'])} audited points differ from what they "
+            f"inherited (fraction {float(a['refine_audit_fraction']):.3g}; 95 % upper bound on the mismatch rate "
+            f"{float(a['refine_mismatch_bound']):.3g})"]
 
 
 def soft_lines(sweep, done) -> list[str]:

@@ -64,6 +64,17 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
         .field("initial_conditions_per_s", state_rate(r))
         .field("census_budget_states", r.census_budget_states);
   w.field("soft_cells", r.soft).field("impacting_cells", r.impacting).field("hertz_invalid_cells", r.hertz_invalid);
+  if (r.refine_levels > 0) {
+    const RefineFigures& x = r.refine;
+    w.field("refine_levels", r.refine_levels).key("refine_solved_per_level").begin_array();
+    for (const std::uint64_t n : x.solved_per_level) w.value(n);
+    w.end_array()
+        .field("refine_solved", x.solved)
+        .field("refine_inherited", x.inherited)
+        .field("refine_audited", x.audited)
+        .field("refine_mismatches", x.mismatches)
+        .field("refine_mismatch_bound", x.mismatch_bound);
+  }
   w.key("regimes").begin_object();
   for (const auto& [label, count] : r.regimes) w.field(label, count);
   w.end_object().end_object();
@@ -87,6 +98,16 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
         << " initial states followed to analysis.max_periods (no early decision: brute force follows them as far)\n";
   out << "soft           " << r.soft << " cells (periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon); "
       << r.hertz_invalid << " of " << r.impacting << " cells with impacts beyond the Hertz limit\n";
+  if (r.refine_levels > 0) {
+    const RefineFigures& x = r.refine;
+    out << "refine         " << r.refine_levels << " levels: " << x.solved << " points solved (" << std::setprecision(3)
+        << 100.0 * static_cast<double>(x.solved) / static_cast<double>(std::max<std::uint64_t>(f.items, 1))
+        << " %; per level";
+    for (const std::uint64_t n : x.solved_per_level) out << " " << n;
+    out << "), " << x.inherited << " inherited, audit " << x.mismatches << " of " << x.audited
+        << " audited points differ (95 % upper bound on the mismatch rate " << std::setprecision(3) << x.mismatch_bound
+        << ")\n";
+  }
   out << "regimes       ";
   for (const auto& [label, count] : r.regimes) out << " " << label << " " << count;
   out << "\n";

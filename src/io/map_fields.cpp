@@ -240,7 +240,7 @@ MapField done_field() {
   return f;
 }
 
-std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors) {
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels) {
   std::vector<MapField> fields;
   fields.push_back(code_field<&CellResult::status>("status", "outcome of the point solver",
                                                    status_code(SolveStatus::invalid_input),
@@ -264,6 +264,17 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_
       real_field<&CellResult::steady_residual>("steady_residual", "relative residual of the steady-state test", "1"));
   for (const Quantity q : stored) fields.push_back(quantity_field(q));
   if (attractors > 0) add_census_fields(fields, attractors);
+  if (refine_levels > 0) {
+    fields.push_back(code_field<&CellResult::computed>(
+        "computed", "how the point got its values: solved, inherited from the nearest solved corner of its block, or "
+        "audited (inherited, then solved to check the inference; it holds its own solution)",
+        2, "not_decided inherited solved audited"));
+    fields.back().flag_values = {-1, 0, 1, 2};
+    fields.push_back(code_field<&CellResult::level>(
+        "level", "refinement level at which the point was decided (0: the coarse grid)",
+        static_cast<std::int8_t>(refine_levels), ""));
+    fields.back().flag_values.clear();
+  }
   return fields;
 }
 

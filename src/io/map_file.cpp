@@ -52,7 +52,7 @@ const MapRepair& MapWriter::repair() const { return impl_->repair; }
 
 std::uint64_t MapWriter::file_bytes(const MapLayout& layout) {
   std::uint64_t per_cell = 1;  // done
-  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors))
+  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors, layout.refine_levels))
     per_cell += detail::element_bytes(f.file_type) * f.width();
   // HDF5 stores every chunk whole, the ones that overhang the grid's edge included.
   const Shape shape = layout.grid.shape();
@@ -83,7 +83,7 @@ void make_skeleton(NewFile& out, const MapLayout& layout, int ranks) {
   std::vector<Dataset> scales = detail::write_axes(file, layout.grid);
   if (layout.attractors > 0) scales.push_back(detail::write_attractor_scale(file, layout.attractors));
   detail::make_field(file, detail::done_field(), shape, chunk, scales);
-  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors))
+  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors, layout.refine_levels))
     detail::make_field(file, f, shape, chunk, scales);
   detail::write_root_attributes(file, layout, ranks);
   scales.clear();
@@ -125,7 +125,7 @@ MapWriter MapWriter::open_new(const std::string& path, const MapLayout& layout) 
   return MapWriter(std::move(impl));
 }
 
-MapWriter MapWriter::resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done) {
+MapWriter MapWriter::resume(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit_done) {
   auto impl = open_for_writing(path);
   detail::SealState seal = detail::SealState::verified;
   impl->layout = detail::read_layout(impl->file, &seal);
@@ -141,7 +141,7 @@ MapWriter MapWriter::resume(const std::string& path, const std::function<void(co
 
 // Reads every chunk of every dataset: a chunk that fails to read anywhere is wiped everywhere
 // (fill values, /done = 0); the others' done cells are counted and visited.
-void MapWriter::verify_and_repair(const std::function<void(const CellResult&)>& visit_done) {
+void MapWriter::verify_and_repair(const std::function<void(std::uint64_t, const CellResult&)>& visit_done) {
   Impl& m = *impl_;
   std::vector<CellSpan> damaged;
   const int n_fields = static_cast<int>(m.ds.fields.size());
@@ -163,7 +163,7 @@ void MapWriter::verify_and_repair(const std::function<void(const CellResult&)>& 
       if (m.ds.done_buffer[k] == 0) continue;
       const CellResult c = m.ds.cell(k, m.path);
       ++m.done_count;
-      if (visit_done) visit_done(c);
+      if (visit_done) visit_done(span.begin + k, c);
     }
   }
   for (const CellSpan& span : damaged) {
@@ -229,6 +229,20 @@ void MapWriter::write(std::uint64_t first, std::span<const CellResult> cells) {
   }
 }
 
+CellSpan MapWriter::read_chunk(std::uint64_t flat, std::vector<CellResult>& out) {
+  Impl& m = *impl_;
+  const auto it = std::upper_bound(m.chunks.begin(), m.chunks.end(), flat,
+                                   [](std::uint64_t x, const CellSpan& s) { return x < s.begin; });
+  if (it == m.chunks.begin()) fail(m.path, "read_chunk: no chunk holds the cell");
+  const CellSpan span = *(it - 1);
+  std::string why;
+  for (int i = 0; i < static_cast<int>(m.ds.fields.size()); ++i)
+    if (!m.ds.read(i, span, &why)) fail(m.path, cat("dataset '/", m.ds.name(i), "' fails to read (", why, ")"));
+  out.clear();
+  for (std::uint64_t k = 0; k < span.end - span.begin; ++k) out.push_back(m.ds.cell(static_cast<std::size_t>(k), m.path));
+  return span;
+}
+
 void MapWriter::checkpoint() {
   Impl& m = *impl_;
   if (m.unflushed.empty()) return;
@@ -250,12 +264,26 @@ void MapWriter::checkpoint() {
   m.file.sync();
 }
 
-void MapWriter::finish(int ranks) {
+std::vector<std::string> refine_figure_attributes() {
+  return {"refine_solved_per_level", "refine_solved", "refine_inherited", "refine_audited", "refine_mismatches",
+          "refine_mismatch_bound"};
+}
+
+void MapWriter::finish(int ranks, const RefineFigures* refine) {
   Impl& m = *impl_;
   checkpoint();
   m.file.set_attribute("cells_done", m.done_count);
   m.file.set_attribute("complete", m.done_count == m.layout.grid.size() ? 1 : 0);
   m.file.set_attribute("ranks", ranks);
+  if (refine != nullptr && m.layout.refine_levels > 0) {
+    std::vector<double> per_level(refine->solved_per_level.begin(), refine->solved_per_level.end());  // exact below 2^53
+    m.file.set_attribute("refine_solved_per_level", std::span<const double>(per_level));
+    m.file.set_attribute("refine_solved", refine->solved);
+    m.file.set_attribute("refine_inherited", refine->inherited);
+    m.file.set_attribute("refine_audited", refine->audited);
+    m.file.set_attribute("refine_mismatches", refine->mismatches);
+    m.file.set_attribute("refine_mismatch_bound", refine->mismatch_bound);
+  }
   m.file.sync();
   m.ds = detail::MapDatasets{};
   m.file.close();

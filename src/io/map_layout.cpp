@@ -119,9 +119,26 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
   file.set_attribute("steady", layout.steady);
   file.set_attribute("hertz_limit", layout.hertz_limit);
   file.set_attribute("soft_kcon", layout.soft_kcon);
+  std::vector<std::string> uncovered = {"cells_done", "complete", "ranks"};
+  if (layout.refine_levels > 0) {
+    file.set_attribute("refine_levels", layout.refine_levels);
+    file.set_attribute("refine_on", layout.refine_on);
+    file.set_attribute("refine_audit_fraction", layout.refine_audit);
+    for (const std::string& name : refine_figure_attributes()) {
+      if (name == "refine_mismatch_bound") {
+        file.set_attribute(name, 1.0);
+      } else if (name == "refine_solved_per_level") {
+        const std::vector<double> zeros(static_cast<std::size_t>(layout.refine_levels) + 1, 0.0);
+        file.set_attribute(name, std::span<const double>(zeros));
+      } else {
+        file.set_attribute(name, 0);
+      }
+      uncovered.push_back(name);
+    }
+  }
   // Last of the map's attributes (MapWriter::create makes every dataset first): the seal over
   // them all but the progress attributes, which finish() rewrites and no reader trusts.
-  seal_attributes(file, {"cells_done", "complete", "ranks"});
+  seal_attributes(file, uncovered);
 }
 
 // Refuses a layout the file cannot hold, before any file is touched.
@@ -245,6 +262,15 @@ MapLayout read_layout(const Hdf5File& file, SealState* seal) {
     if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");
     layout.attractors = static_cast<std::size_t>(a);
   }
+  if (file.has_attribute("refine_levels")) {  // an adaptive map
+    const std::int64_t l = file.read_int_attribute("refine_levels");
+    if (l < 1 || l > 20) malformed(path, "root attribute 'refine_levels' is outside 1..20");
+    layout.refine_levels = static_cast<int>(l);
+    require_attribute(file, path, "refine_on");
+    require_attribute(file, path, "refine_audit_fraction");
+    layout.refine_on = file.read_string_attribute("refine_on");
+    layout.refine_audit = file.read_double_attribute("refine_audit_fraction");
+  }
   if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(layout.grid.size()))
     malformed(path, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(layout.grid.size()),
                         " cells"));
@@ -269,7 +295,7 @@ Dataset open_field(const Hdf5File& file, std::string_view name, const Shape& sha
 // ---- One chunk of every dataset ----------------------------------------------------------------
 
 void MapDatasets::open(const Hdf5File& file, const MapLayout& layout) {
-  fields = map_fields(layout.stored, layout.attractors);
+  fields = map_fields(layout.stored, layout.attractors, layout.refine_levels);
   const Shape shape = layout.grid.shape();
   done = open_field(file, "done", shape);
   for (const MapField& f : fields) data.push_back(open_field(file, f.name, with_slots(shape, f)));

@@ -164,7 +164,7 @@ class Coordinator {
  public:
   Coordinator(const MpiSession& mpi, const FarmOptions& o, const ItemSolver& solve, FarmSink& sink)
       : o_(o), solve_(solve), sink_(sink), workers_(mpi.size() - 1), ranks_(mpi.size()), max_chunk_(max_chunk(o)),
-        resumed_(sink.items_done()), left_(sink.items() - resumed_),
+        resumed_(sink.items_done()), left_(sink.items_pending()),
         progress_(std::cerr, o.progress, isatty(STDERR_FILENO) != 0, o.progress_interval, o.label, o.noun,
                   sink.items(), resumed_) {}
 

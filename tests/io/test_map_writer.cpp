@@ -223,7 +223,7 @@ TEST_F(MapWriterTest, ResumeCountsTheDoneCellsOfAStoppedRun) {
     w.write(600, cells(600, 700));  // lost: no checkpoint after it (a kill now)
   }
   long visited = 0;
-  MapWriter w = MapWriter::resume(file("r.h5"), [&](const CellResult&) { ++visited; });
+  MapWriter w = MapWriter::resume(file("r.h5"), [&](std::uint64_t, const CellResult&) { ++visited; });
   EXPECT_EQ(w.cells_done(), 490u);
   EXPECT_EQ(visited, 490);
   EXPECT_EQ(w.repair().chunks, 0u);

@@ -74,6 +74,10 @@ struct CellResult {
   double unresolved_fraction = std::numeric_limits<double>::quiet_NaN();  // census: initial states not decided
   double unlisted_fraction = std::numeric_limits<double>::quiet_NaN();    // census: beyond max_attractors
   double budget_fraction = std::numeric_limits<double>::quiet_NaN();      // census: followed to max_periods
+  // Adaptive maps (sweep.refine > 0; set by the sweep on rank 0, not by the solver): how the
+  // point got its values (1 solved, 0 inherited, 2 audited, -1 not decided) and the level at
+  // which that was decided.
+  std::int8_t computed = -1, level = -1;
 
   double value(Quantity q) const;  // the quantity as a double (integers exactly up to 2^53)
 };

@@ -104,7 +104,26 @@ struct MapLayout {
   std::string steady = {};
   double hertz_limit = 0.05;
   double soft_kcon = 10.0;
+  // Adaptive maps (sweep.refine > 0; docs/design-refine.md): the grid above is the fine grid,
+  // the map has the datasets computed and level, and root attributes refine_levels, refine_on
+  // (the quantities, space separated), refine_audit_fraction, and the figures RefineFigures
+  // holds (written by finish(), not covered by the attribute checksum).
+  int refine_levels = 0;
+  std::string refine_on = {};
+  double refine_audit = 0.0;
 };
+
+// What an adaptive map's run did: points solved (per level, then in all), inherited, audited
+// and found to differ from what they inherited, and the 95 % upper bound on that rate.
+struct RefineFigures {
+  std::vector<std::uint64_t> solved_per_level;  // [0..L]
+  std::uint64_t solved = 0, inherited = 0, audited = 0, mismatches = 0;
+  double mismatch_bound = 1.0;
+};
+
+// The root attributes an adaptive map's figures are written to (refine_solved, ...), and how
+// they read back (all zero and bound 1 in a map whose run has not finished; absent: a uniform map).
+std::vector<std::string> refine_figure_attributes();
 
 // Cells [begin, end) in flat order.
 struct CellSpan {
@@ -138,9 +157,9 @@ class MapWriter {
   static MapWriter create_in(NewFile& out, const MapLayout& layout, int ranks);
   // Opens a map to go on filling it: checks its layout, reads every chunk of every dataset to
   // verify its checksum, wipes damaged chunks (repair()), counts the cells done and calls
-  // visit_done(cell) for each (resume's counts of regimes). Throws IoError naming the path and
+  // visit_done(flat index, cell) for each (resume's counts of regimes). Throws IoError naming the path and
   // what is wrong when it is not a map, a value is out of range or its axes are damaged.
-  static MapWriter resume(const std::string& path, const std::function<void(const CellResult&)>& visit_done = {});
+  static MapWriter resume(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit_done = {});
 
   MapWriter(MapWriter&&) noexcept;
   MapWriter& operator=(MapWriter&&) noexcept;
@@ -156,17 +175,21 @@ class MapWriter {
   std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<CellSpan>& out);
   // Writes the results of cells [first, first + cells.size()) (not done until the checkpoint).
   void write(std::uint64_t first, std::span<const CellResult> cells);
+  // The cells of the chunk that holds cell `flat`, as written so far (a cell not written holds the
+  // fill values); returns the chunk's span. Throws IoError when the chunk fails to read.
+  CellSpan read_chunk(std::uint64_t flat, std::vector<CellResult>& out);
   // Makes the cells written since the last checkpoint durable and done (see the file comment).
   void checkpoint();
-  // The last checkpoint, then the root attributes cells_done, complete and ranks; closes.
-  void finish(int ranks);
+  // The last checkpoint, then the root attributes cells_done, complete and ranks (and an adaptive
+  // map's figures, when given); closes.
+  void finish(int ranks, const RefineFigures* refine = nullptr);
 
  private:
   struct Impl;
   explicit MapWriter(std::unique_ptr<Impl> impl);
   static std::unique_ptr<Impl> open_for_writing(const std::string& path);
   static MapWriter open_new(const std::string& path, const MapLayout& layout);
-  void verify_and_repair(const std::function<void(const CellResult&)>& visit_done);
+  void verify_and_repair(const std::function<void(std::uint64_t, const CellResult&)>& visit_done);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -55,6 +55,9 @@ class FarmSink {
   virtual ~FarmSink() = default;
   virtual std::uint64_t items() const = 0;       // items of the campaign
   virtual std::uint64_t items_done() const = 0;  // recorded as done (by earlier runs, then this one)
+  // Items this run is to compute (chunk sizes are a share of it); a sink whose run covers only
+  // some of its items (a phase of an adaptive map) says how many.
+  virtual std::uint64_t items_pending() const { return items() - items_done(); }
   // Appends to `out` the pending items at or after `from`, ascending, at most `max` of them
   // (max > 0), and returns where the scan stopped: the `from` of the next call. Returns items()
   // when none are left after `out`.

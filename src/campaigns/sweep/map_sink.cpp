@@ -46,4 +46,55 @@ std::string MapSink::note() const {
   return out;
 }
 
+RefineSink::RefineSink(const CellCodec& codec, MapWriter writer, MapTally tally, int ranks, RefinePlan plan)
+    : MapSink(codec, std::move(writer), std::move(tally), ranks), plan_(std::move(plan)) {}
+
+std::uint64_t RefineSink::begin_phase(int phase) {
+  phase_ = phase;
+  points_ = plan_.plan(phase);
+  left_ = static_cast<std::uint64_t>(
+      std::count_if(points_.begin(), points_.end(), [&](std::uint64_t p) { return !plan_.recorded(p); }));
+  return left_;
+}
+
+std::uint64_t RefineSink::pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) {
+  std::uint64_t taken = 0;
+  auto it = std::lower_bound(points_.begin(), points_.end(), from);
+  for (; it != points_.end() && taken < max; ++it) {
+    if (plan_.recorded(*it)) continue;
+    if (!out.empty() && out.back().end == *it) {
+      ++out.back().end;
+    } else {
+      out.push_back({*it, *it + 1});
+    }
+    ++taken;
+  }
+  return it == points_.end() ? items() : *it;
+}
+
+void RefineSink::store_results(const ItemRange& range, std::vector<CellResult>& results) {
+  for (std::uint64_t i = range.begin; i < range.end; ++i) {
+    CellResult& c = results[static_cast<std::size_t>(i - range.begin)];
+    plan_.stamp(phase_, i, c);
+    plan_.record(i, c);
+  }
+  MapSink::store_results(range, results);
+}
+
+std::string RefineSink::note() const {  // the phase is the progress line's label
+  return MapSink::note();
+}
+
+void RefineSink::fill() {
+  plan_.fill(writer_, [&](const CellResult& c) {
+    tally_.add(c);
+    ++filled_;
+  });
+}
+
+void RefineSink::close() {
+  figures_ = plan_.figures();
+  writer_.finish(ranks_, &figures_);
+}
+
 }  // namespace vibromap::detail

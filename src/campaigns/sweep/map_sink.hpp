@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cell_codec.hpp"
+#include "refine_plan.hpp"
 #include "vibromap/io/map_file.hpp"
 
 namespace vibromap::detail {
@@ -36,11 +37,41 @@ class MapSink : public ResultSink<CellResult> {
 
   const MapTally& tally() const { return tally_; }
 
- private:
+ protected:
   MapWriter writer_;
   MapTally tally_;
   int ranks_;
+
+ private:
   std::vector<CellSpan> spans_;
+};
+
+// The sink of an adaptive map (sweep.refine > 0): one farm run per phase (refine_plan.hpp), the
+// items the fine grid's points, pending those of the phase the map does not hold yet.
+class RefineSink : public MapSink {
+ public:
+  // `plan` holds the points the map already has (resume).
+  RefineSink(const CellCodec& codec, MapWriter writer, MapTally tally, int ranks, RefinePlan plan);
+
+  // Plans `phase` and returns how many of its points remain to solve.
+  std::uint64_t begin_phase(int phase);
+  std::uint64_t items_pending() const override { return left_; }
+  std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) override;
+  void store_results(const ItemRange& range, std::vector<CellResult>& results) override;
+  void finish(bool) override { writer_.checkpoint(); }  // a phase's end; close() ends the map
+  std::string note() const override;
+  // The fill of the inherited points, then the last checkpoint and the figures; closes.
+  void fill();
+  void close();
+  const RefineFigures& figures() const { return figures_; }
+  std::uint64_t filled() const { return filled_; }
+
+ private:
+  RefinePlan plan_;
+  int phase_ = 0;
+  std::vector<std::uint64_t> points_;  // the phase's points, ascending
+  std::uint64_t left_ = 0, filled_ = 0;
+  RefineFigures figures_;
 };
 
 std::string regime_label(const CellResult& c);

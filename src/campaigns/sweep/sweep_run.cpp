@@ -2,6 +2,8 @@
 
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -52,6 +54,14 @@ void check_same_run(const OutputTarget& target, const MapWriter& w, const MapLay
                         same_grid ? "" : "the map's own grid or stored quantities");
 }
 
+// The map's grid: the axes given, or with sweep.refine = L their fine points.
+Grid map_grid(const SweepOptions& sweep) {
+  if (sweep.refine == 0) return Grid(sweep.axes);
+  std::vector<Axis> fine;
+  for (const Axis& a : sweep.axes) fine.push_back(refine_axis(a, sweep.refine));
+  return Grid(std::move(fine));
+}
+
 // Rank 0: the output (checked and locked), and the map to fill (new, or opened for --resume),
 // with its regime counts.
 std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRunConfig& config, int ranks,
@@ -60,24 +70,39 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   target.emplace(config.output,
                  OutputPolicy{.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
   const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
-  MapLayout layout{Grid(scene.sweep->axes), scene.sweep->store, scene.text, map_identity(scene), attractors};
+  MapLayout layout{map_grid(*scene.sweep), scene.sweep->store, scene.text, map_identity(scene), attractors};
   const AnalysisOptions& analysis = scene.options.analysis;
   layout.steady = to_string(analysis.steady);
   layout.hertz_limit = analysis.hertz_limit;
   layout.soft_kcon = analysis.soft_kcon;
+  const SweepOptions& sweep = *scene.sweep;
+  std::optional<detail::RefinePlan> plan;
+  if (sweep.refine > 0) {
+    plan.emplace(sweep.axes, sweep.refine, sweep.refine_on, sweep.refine_audit);
+    layout.refine_levels = sweep.refine;
+    for (const RefineOn& on : sweep.refine_on) layout.refine_on += (layout.refine_on.empty() ? "" : " ") + refine_on_text(on);
+    layout.refine_audit = sweep.refine_audit;
+  }
   detail::MapTally tally;
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;
+  const auto make = [&](MapWriter w) -> std::unique_ptr<detail::MapSink> {
+    if (plan) return std::make_unique<detail::RefineSink>(codec, std::move(w), std::move(tally), ranks, std::move(*plan));
+    return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(tally), ranks);
+  };
   if (target->resuming()) {
-    MapWriter w = target->read(
-        [&](const std::string& path) { return MapWriter::resume(path, [&](const CellResult& c) { tally.add(c); }); });
+    MapWriter w = target->read([&](const std::string& path) {
+      return MapWriter::resume(path, [&](std::uint64_t i, const CellResult& c) {
+        tally.add(c);
+        if (plan) plan->record(i, c);
+      });
+    });
     check_same_run(*target, w, layout, scene);
     report_repair(w);
-    return std::make_unique<detail::MapSink>(codec, std::move(w), std::move(tally), ranks);
+    return make(std::move(w));
   }
   target->check_space(MapWriter::file_bytes(layout), cat("the map of ", std::to_string(layout.grid.size()), " cells"),
                       "store fewer quantities, sweep fewer cells or write elsewhere");
-  return std::make_unique<detail::MapSink>(codec, MapWriter::create(config.output, layout, ranks), std::move(tally),
-                                           ranks);
+  return make(MapWriter::create(config.output, layout, ranks));
 }
 
 // One cell: its point solved from rest, or (with [census]) its census.
@@ -105,6 +130,53 @@ FarmOptions farm_options(const Scene& scene, const SweepRunConfig& config) {
   return o;
 }
 
+// Adds one phase's farm run to the run's report.
+void add_phase(FarmReport& total, const FarmReport& r) {
+  total.items_computed += r.items_computed;
+  total.ranks = r.ranks;
+  total.wall_s += r.wall_s;
+  total.checkpoints += r.checkpoints;
+  total.checkpoint_s += r.checkpoint_s;
+  total.checkpoint_max_s = std::max(total.checkpoint_max_s, r.checkpoint_max_s);
+  total.final_checkpoint_s += r.final_checkpoint_s;
+  total.stop_signal = r.stop_signal;
+  total.requests += r.requests;
+  total.request_s += r.request_s;
+}
+
+// The phases of an adaptive map, one farm run each (the farm hands out one phase's points and
+// returns; every rank learns from rank 0 whether a phase has points and whether it stopped),
+// then the fill on rank 0.
+FarmReport run_phases(const MpiSession& mpi, const FarmOptions& options, const Campaign<CellResult>& campaign,
+                      detail::RefineSink* sink, int levels) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FarmReport total;
+  total.ranks = mpi.size();
+  bool first = true;
+  for (int phase = 0; phase <= levels + 1; ++phase) {
+    int points = 0;
+    mpi.agree([&] { points = sink->begin_phase(phase) > 0 ? 1 : 0; }, exit_status_of);
+    if (sink && first) {
+      total.items = sink->items();
+      total.items_resumed = sink->items_done();
+      first = false;
+    }
+    if (mpi.broadcast(points) == 0) continue;
+    FarmOptions o = options;
+    o.label = phase <= levels ? cat("sweep level ", std::to_string(phase), "/", std::to_string(levels)) : "sweep audit";
+    add_phase(total, run_campaign(mpi, o, campaign));
+    total.stop_signal = mpi.broadcast(total.stop_signal);
+    if (total.stop_signal != 0) break;
+  }
+  mpi.agree([&] {
+    if (total.stop_signal == 0) sink->fill();
+    sink->close();
+    total.items_computed += sink->filled();
+  }, exit_status_of);
+  total.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return total;
+}
+
 }  // namespace
 
 SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunConfig& config) {
@@ -112,13 +184,21 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   std::optional<OutputTarget> target;
   std::unique_ptr<detail::MapSink> sink;
   mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, target); }, exit_status_of);
-  const CellMaker cells(scene, Grid(scene.sweep->axes));
+  const CellMaker cells(scene, map_grid(*scene.sweep));
   Campaign<CellResult> campaign;
   campaign.solve = stoppable([&](std::uint64_t flat) { return solve_cell(cells, scene.census, flat); });
   campaign.codec = &codec;
   campaign.sink = sink.get();
   SweepReport report;
-  report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
+  const int levels = scene.sweep->refine;
+  if (levels > 0) {
+    report.farm = run_phases(mpi, farm_options(scene, config), campaign, static_cast<detail::RefineSink*>(sink.get()),
+                             levels);
+  } else {
+    report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
+  }
+  report.refine_levels = levels;
+  if (auto* refine = dynamic_cast<detail::RefineSink*>(sink.get())) report.refine = refine->figures();
   if (sink) {
     report.regimes = sink->tally().regimes;
     report.census_budget_states = sink->tally().census_budget_states;

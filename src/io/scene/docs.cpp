@@ -98,6 +98,10 @@ std::vector<KeyRow> sweep_rows() {
                   cat("optional per-cell quantities, any of ", join(views(quantity_names()), ", "),
                       " (status, regime, n, k, wall time and residual are always stored)")});
   for (const SweepInterval& row : sweep_intervals()) rows.push_back(key_row(row.info));
+  rows.push_back(key_row(detail::sweep_refine_keys()[0]));
+  rows.push_back({"sweep.refine_on", detail::refine_on_list(default_refine_on()), "-", "refine quantity names",
+                  detail::refine_on_meaning()});
+  rows.push_back(key_row(detail::sweep_refine_keys()[1]));
   return rows;
 }
 
@@ -191,6 +195,10 @@ void write_reference_sweep(std::ostream& os) {
     const SceneKey& k = row.info;
     write_example_line(os, cat(k.key, " = ", k.default_text), cat(k.meaning, unit_suffix(k.unit), ", ", k.allowed()));
   }
+  const auto& refine = detail::sweep_refine_keys();
+  write_example_line(os, cat("refine = ", refine[0].default_text), cat(refine[0].meaning, ", ", refine[0].allowed()));
+  write_example_line(os, cat("refine_on = ", detail::refine_on_list(default_refine_on())), detail::refine_on_meaning());
+  write_example_line(os, cat("refine_audit = ", refine[1].default_text), cat(refine[1].meaning, ", ", refine[1].allowed()));
 }
 
 }  // namespace

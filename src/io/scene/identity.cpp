@@ -45,6 +45,7 @@ void add_sweep_lines(const SweepOptions& sweep, std::vector<std::string>& lines)
   std::string store;
   for (const Quantity q : sweep.store) store += cat(store.empty() ? "" : ", ", to_string(q));
   lines.push_back(cat("sweep.store = [", store, "]"));
+  for (std::string& line : detail::refine_lines(sweep)) lines.push_back(std::move(line));
 }
 
 // "key = value" lines as a map from key to value.

@@ -157,6 +157,14 @@ struct SweepInterval {
   double SweepOptions::*field;
 };
 const std::vector<SweepInterval>& sweep_intervals();
+// The refinement keys (sweep_refine.cpp): the rows of refine and refine_audit (refine_on is a
+// list, documented by refine_on_meaning()); the reader; a refined map's identity lines (none
+// when refine = 0).
+const std::vector<SceneKey>& sweep_refine_keys();
+std::string refine_on_list(const std::vector<RefineOn>& list);  // ["regime", "k_con:0.1"]
+std::string refine_on_meaning();
+void read_refine(const toml::table& sweep_table, const Context& ctx, SweepOptions& sweep);
+std::vector<std::string> refine_lines(const SweepOptions& sweep);
 const std::vector<std::string>& quantity_names();  // the storable quantities, cell_result.hpp's order
 
 double axis_end(const toml::table& axis, std::string_view field, const std::string& loc);  // a finite number

@@ -19,7 +19,8 @@ constexpr double kMaxCells = 1e12;         // far beyond any run; keeps the flat
 }  // namespace
 
 const std::vector<std::string_view>& sweep_option_keys() {
-  static const std::vector<std::string_view> keys = {"order", "store", "checkpoint_interval", "progress_interval"};
+  static const std::vector<std::string_view> keys = {"order", "store", "checkpoint_interval", "progress_interval",
+                                                          "refine", "refine_on", "refine_audit"};
   return keys;
 }
 
@@ -266,6 +267,7 @@ std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& 
     if (const toml::node* node = sec->get(row.info.key)) sweep.*row.field = read_real(row.info, *node, locate(ctx, row.info, *node));
   }
   check_grid_size(sweep.axes, ctx);
+  read_refine(*sec, ctx, sweep);
   return sweep;
 }
 

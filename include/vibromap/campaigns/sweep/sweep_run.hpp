@@ -7,11 +7,15 @@
 //   codec  CellResult, field by field
 //   sink   the map file (io/map_file.hpp) on rank 0, with the regime counts for progress
 // The farm (parallel/farm.hpp) distributes, checkpoints and stops on signals.
+// With sweep.refine = L > 0 the map is the fine grid and the run goes in phases (the coarse
+// points, each level's new points, the audit; then rank 0 fills the inherited points), one farm
+// run per phase on the same MPI session (docs/design-refine.md).
 
 #include <cstdint>
 #include <map>
 #include <string>
 
+#include "vibromap/io/map_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
 
@@ -32,6 +36,10 @@ struct SweepReport {
   long soft = 0;                         // cells whose motion is soft (is_soft), whole map
   long impacting = 0;                    // cells whose motion has impacts, whole map
   long hertz_invalid = 0;                // of those, cells beyond the Hertz limit
+  // An adaptive map (sweep.refine > 0; rank 0): levels, and what the run did over the whole map
+  // (solved per level, inherited, audited, mismatches and their 95 % bound).
+  int refine_levels = 0;
+  RefineFigures refine;
 };
 
 // Collective: every rank calls it with the same scene and config. Throws SceneError (no

@@ -4,10 +4,12 @@
 // documents its keys.
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "vibromap/core/quantities.hpp"
 #include "vibromap/core/grid.hpp"
+#include "vibromap/core/refine_compare.hpp"
 
 namespace vibromap {
 
@@ -20,6 +22,15 @@ struct SweepOptions {
   std::vector<Quantity> store = {Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max, Quantity::hertz_valid};
   double checkpoint_interval = 60.0;  // seconds between checkpoints of the map file, s
   double progress_interval = 10.0;    // seconds between progress lines when stderr is not a terminal, s
+  // Adaptive refinement (issue #30, docs/design-refine.md): levels (0: the uniform map of the
+  // axes given), the quantities whose difference refines a cell, and the share of inherited
+  // points solved again to audit the inference.
+  int refine = 0;
+  std::vector<RefineOn> refine_on = default_refine_on();
+  double refine_audit = 0.01;
 };
+
+// "regime", "k_con:0.1": a refine_on entry as the scene writes it.
+std::string refine_on_text(const RefineOn& on);
 
 }  // namespace vibromap
