@@ -14,9 +14,11 @@
 #include "vibromap/io/journal.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
+#include "support/thrown.hpp"
 
 namespace fs = std::filesystem;
 using namespace vibromap;
+using vibromap::test::thrown;
 
 namespace {
 
@@ -42,16 +44,6 @@ class OutputFile : public ::testing::Test {
     std::size_t n = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_)) ++n;
     return n;
-  }
-  // The message of what `f` throws as E ("" when it throws nothing).
-  template <class E, class F>
-  static std::string thrown(F f) {
-    try {
-      f();
-    } catch (const E& e) {
-      return e.what();
-    }
-    return "";
   }
 
   fs::path dir_;

@@ -10,9 +10,11 @@
 #include "vibromap/campaigns/output_target.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
+#include "support/thrown.hpp"
 
 namespace fs = std::filesystem;
 using namespace vibromap;
+using vibromap::test::thrown;
 
 namespace {
 
@@ -27,16 +29,6 @@ class OutputTargetTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
-  // The message of what `f` throws as E ("" when it throws nothing).
-  template <class E, class F>
-  static std::string thrown(F f) {
-    try {
-      f();
-    } catch (const E& e) {
-      return e.what();
-    }
-    return "";
-  }
 
   fs::path dir_;
 };

@@ -85,19 +85,24 @@ def write(tmp_path, text, name):
     return path
 
 
+def signal_and_wait(proc, sig, what):
+    """Sends `sig` to `proc` and waits at most STOP_TIMEOUT s for it to end; returns its stderr."""
+    proc.send_signal(sig)
+    try:
+        return proc.communicate(timeout=STOP_TIMEOUT)[1]
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.communicate()
+        raise AssertionError(f"{what} went on {STOP_TIMEOUT} s after {sig.name}")
+
+
 def stop(cmd, sig, started=3.0):
     """Starts cmd, lets it compute for `started` s, sends `sig`; returns (exit code, stderr, s to stop)."""
     proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(started)
     assert proc.poll() is None, proc.communicate()
     t0 = time.time()
-    proc.send_signal(sig)
-    try:
-        _, err = proc.communicate(timeout=STOP_TIMEOUT)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.communicate()
-        raise AssertionError(f"{cmd[0]} {cmd[1]} went on {STOP_TIMEOUT} s after the signal")
+    err = signal_and_wait(proc, sig, f"{cmd[0]} {cmd[1]}")
     return proc.returncode, err, time.time() - t0
 
 
@@ -165,13 +170,7 @@ def test_ctrl_c_to_mpiexec_stops_an_optimise_on_two_ranks(tmp_path, phase, sig):
         while time.time() < deadline and proc.poll() is None and journal_records(journal) < 1:
             time.sleep(0.02)
     assert proc.poll() is None, proc.communicate()
-    proc.send_signal(sig)
-    try:
-        _, err = proc.communicate(timeout=STOP_TIMEOUT)
-    except subprocess.TimeoutExpired:
-        proc.kill()
-        proc.communicate()
-        raise AssertionError(f"mpiexec went on {STOP_TIMEOUT} s after {sig.name}")
+    err = signal_and_wait(proc, sig, "mpiexec")
     forwarded = "SIGUSR1" if sig == signal.SIGUSR1 else "SIGTERM"
     assert proc.returncode == (3 if sig == signal.SIGUSR1 else 1), err
     assert (f"vibromap: stopped by {forwarded} after a checkpoint: {journal} holds the finished starts; run the same "
