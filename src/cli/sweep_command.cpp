@@ -80,7 +80,8 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
         .field("refine_inherited", x.inherited)
         .field("refine_audited", x.audited)
         .field("refine_mismatches", x.mismatches)
-        .field("refine_mismatch_bound", x.mismatch_bound);
+        .field("refine_mismatch_bound", x.mismatch_bound)
+        .field("refine_whole_cells", x.whole_blocks);
   }
   w.key("regimes").begin_object();
   for (const auto& [label, count] : r.regimes) w.field(label, count);
@@ -129,7 +130,7 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
         << 100.0 * static_cast<double>(x.solved) / static_cast<double>(std::max<std::uint64_t>(f.items, 1))
         << " %; per level";
     for (const std::uint64_t n : x.solved_per_level) out << " " << n;
-    out << "), " << x.inherited << " inherited, audit " << x.mismatches << " of " << x.audited
+    out << "; " << x.whole_blocks << " speckled coarse cells solved whole), " << x.inherited << " inherited, audit " << x.mismatches << " of " << x.audited
         << " audited points differ (95 % upper bound on the mismatch rate " << std::setprecision(3) << x.mismatch_bound
         << ")\n";
   }

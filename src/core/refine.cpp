@@ -228,13 +228,7 @@ void RefineGrid::children(const RefineBlock& b, std::vector<RefineBlock>& out) c
   for_each_combination(dims(), opt, count, [&](const GridIndex& i) { out.push_back({b.level + 1, i}); });
 }
 
-RefineBlock RefineGrid::parent(const RefineBlock& b) const {
-  RefineBlock p{b.level - 1, b.lo};
-  const std::size_t s = spacing(b.level - 2);
-  for (std::size_t d = 0; d < dims(); ++d)
-    if (split_[d]) p.lo[d] -= p.lo[d] % s;
-  return p;
-}
+RefineBlock RefineGrid::parent(const RefineBlock& b) const { return ancestor(b, b.level - 1); }
 
 void RefineGrid::containing_blocks(int level, const GridIndex& p, std::vector<RefineBlock>& out) const {
   out.clear();
@@ -254,6 +248,29 @@ void RefineGrid::containing_blocks(int level, const GridIndex& p, std::vector<Re
     count[d] = k;
   }
   for_each_combination(dims(), opt, count, [&](const GridIndex& i) { out.push_back({level, i}); });
+}
+
+RefineBlock RefineGrid::ancestor(const RefineBlock& b, int level) const {
+  RefineBlock a{level, b.lo};
+  const std::size_t s = spacing(level - 1);
+  for (std::size_t d = 0; d < dims(); ++d)
+    if (split_[d]) a.lo[d] -= a.lo[d] % s;
+  return a;
+}
+
+void RefineGrid::touching(const RefineBlock& b, std::vector<RefineBlock>& out) const {
+  out.clear();
+  const std::size_t s = spacing(b.level - 1);
+  std::array<std::array<std::size_t, 3>, kMaxRefineAxes> opt{};
+  std::array<std::size_t, kMaxRefineAxes> count{};
+  for (std::size_t d = 0; d < dims(); ++d) {
+    std::size_t k = 0;
+    if (split_[d] && b.lo[d] >= s) opt[d][k++] = b.lo[d] - s;
+    opt[d][k++] = b.lo[d];
+    if (split_[d] && b.lo[d] / s + 1 < cells(b.level, d)) opt[d][k++] = b.lo[d] + s;
+    count[d] = k;
+  }
+  for_each_combination(dims(), opt, count, [&](const GridIndex& i) { out.push_back({b.level, i}); });
 }
 
 std::size_t RefineGrid::nearest_corner(const RefineBlock& b, const GridIndex& p) const {

@@ -1,5 +1,6 @@
 // Which blocks are refined, who owns a new point, where an unsolved point inherits from, and
 // the in-memory reference run (refine.hpp).
+#include <array>
 #include <stdexcept>
 
 #include "vibromap/core/refine.hpp"
@@ -16,12 +17,99 @@ bool corners_differ(const RefineGrid& g, const RefineBlock& b, const PointsDiffe
   return false;
 }
 
-bool block_is_refined(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ) {
+namespace {
+
+// The lattice points of level 0 in b's closed level-1 cell and the cells touching it: per split
+// axis up to 4 values (lo - s .. lo + 2 s, inside the grid), per unsplit axis b's own index.
+struct Patch {
+  std::array<std::array<std::size_t, 4>, kMaxRefineAxes> value{};
+  std::array<std::size_t, kMaxRefineAxes> count{};
+};
+
+Patch patch_of(const RefineGrid& g, const RefineBlock& b) {
+  Patch p;
+  const std::size_t s = g.spacing(0);
+  for (std::size_t d = 0; d < g.dims(); ++d) {
+    if (!g.split(d)) {
+      p.value[d][p.count[d]++] = b.lo[d];
+      continue;
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (b.lo[d] + k * s < s) continue;  // lo - s below the grid
+      const std::size_t x = b.lo[d] + k * s - s;
+      if (x < g.fine_extent(d)) p.value[d][p.count[d]++] = x;
+    }
+  }
+  return p;
+}
+
+// Some line of the patch along `axis` changes value at least twice (A B A, A B C).
+bool changes_twice_along(const RefineGrid& g, const Patch& p, std::size_t axis, const PointsDiffer& differ) {
+  std::array<std::size_t, kMaxRefineAxes> pos{};
+  while (true) {
+    GridIndex i{};
+    for (std::size_t d = 0; d < g.dims(); ++d) i[d] = p.value[d][pos[d]];
+    int changes = 0;
+    std::size_t prev = g.ravel(i);
+    for (std::size_t k = 1; k < p.count[axis]; ++k) {
+      i[axis] = p.value[axis][k];
+      const std::size_t here = g.ravel(i);
+      if (differ(prev, here)) ++changes;
+      prev = here;
+    }
+    if (changes >= 2) return true;
+    bool advanced = false;  // the next line: an odometer over the other axes, last fastest
+    for (std::size_t d = g.dims(); d-- > 0 && !advanced;) {
+      if (d == axis) continue;
+      if (++pos[d] < p.count[d]) {
+        advanced = true;
+      } else {
+        pos[d] = 0;
+      }
+    }
+    if (!advanced) return false;
+  }
+}
+
+}  // namespace
+
+bool speckled(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ) {
+  std::vector<std::size_t> scratch;
+  if (!corners_differ(g, b, differ, scratch)) return false;
+  const Patch p = patch_of(g, b);
+  for (std::size_t d = 0; d < g.dims(); ++d)
+    if (g.split(d) && !changes_twice_along(g, p, d, differ)) return false;
+  return true;
+}
+
+bool solved_whole(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ) {
+  std::vector<RefineBlock> around;
+  g.touching(b, around);
+  for (const RefineBlock& n : around)
+    if (speckled(g, n, differ)) return true;
+  return false;
+}
+
+std::vector<bool> whole_blocks(const RefineGrid& g, const PointsDiffer& differ) {
+  std::vector<bool> whole(g.block_count(1));
+  std::vector<RefineBlock> around;
+  for (std::size_t id = 0; id < whole.size(); ++id) {
+    const RefineBlock b = g.block(1, id);
+    if (!speckled(g, b, differ)) continue;
+    g.touching(b, around);
+    for (const RefineBlock& n : around) whole[g.block_id(n)] = true;
+  }
+  return whole;
+}
+
+bool block_is_refined(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ, bool speckle) {
+  std::vector<std::size_t> scratch;
+  const BlockPredicate flagged = [&](const RefineBlock& c) { return corners_differ(g, c, differ, scratch); };
+  if (speckle && solved_whole(g, g.ancestor(b, 1), differ)) return true;
   std::vector<RefineBlock> chain{b};
   while (chain.back().level > 1) chain.push_back(g.parent(chain.back()));
-  std::vector<std::size_t> scratch;
   for (auto it = chain.rbegin(); it != chain.rend(); ++it)
-    if (!corners_differ(g, *it, differ, scratch)) return false;
+    if (!flagged(*it)) return false;
   return true;
 }
 
@@ -60,8 +148,10 @@ PointDecision decide_point(const RefineGrid& g, const GridIndex& p, const BlockP
 namespace {
 
 // Level l of the reference run: decides the candidates, solves the points refined blocks own.
+// `whole` (level-1 block ids solved whole) is made at level 1 and read below it.
 void run_level(const RefineGrid& g, int l, const std::function<void(std::size_t)>& solve,
-               const PointsDiffer& differ, RefineOutcome& out, std::vector<std::vector<char>>& refined) {
+               const PointsDiffer& differ, RefineOutcome& out, std::vector<std::vector<char>>& refined,
+               std::vector<bool>& whole) {
   std::vector<std::size_t> candidates, scratch, fresh;
   if (l == 1) {
     for (std::size_t id = 0; id < g.block_count(1); ++id) candidates.push_back(id);
@@ -77,6 +167,14 @@ void run_level(const RefineGrid& g, int l, const std::function<void(std::size_t)
   auto& ids = out.refined_blocks[static_cast<std::size_t>(l)];
   for (std::size_t id : candidates)
     if (corners_differ(g, g.block(l, id), differ, scratch)) flags[id] = 1;
+  if (l == 1 && !whole.empty()) {  // whole is sized when speckle is on
+    whole = whole_blocks(g, differ);
+    for (std::size_t id = 0; id < whole.size(); ++id)
+      if (whole[id]) out.whole.push_back(id);
+  }
+  if (!whole.empty())
+    for (std::size_t id : candidates)
+      if (whole[g.block_id(g.ancestor(g.block(l, id), 1))]) flags[id] = 1;
   for (std::size_t id = 0; id < flags.size(); ++id)
     if (flags[id]) ids.push_back(id);
   const BlockPredicate is_refined = [&](const RefineBlock& b) { return flags[g.block_id(b)] != 0; };
@@ -113,7 +211,8 @@ RefineOutcome refine_in_memory(const RefineGrid& g, const std::function<void(std
   }
   out.solved_per_level[0] = coarse;
   std::vector<std::vector<char>> refined(levels + 1);
-  for (int l = 1; l <= g.levels(); ++l) run_level(g, l, solve, differ, out, refined);
+  std::vector<bool> whole(options.speckle ? g.block_count(1) : 0);
+  for (int l = 1; l <= g.levels(); ++l) run_level(g, l, solve, differ, out, refined, whole);
   const BlockPredicate is_refined = [&](const RefineBlock& b) {
     return refined[static_cast<std::size_t>(b.level)][g.block_id(b)] != 0;
   };

@@ -266,7 +266,7 @@ void MapWriter::checkpoint() {
 
 std::vector<std::string> refine_figure_attributes() {
   return {"refine_solved_per_level", "refine_solved", "refine_inherited", "refine_audited", "refine_mismatches",
-          "refine_mismatch_bound"};
+          "refine_mismatch_bound", "refine_whole_blocks"};
 }
 
 void MapWriter::finish(int ranks, const RefineFigures* refine) {
@@ -283,6 +283,7 @@ void MapWriter::finish(int ranks, const RefineFigures* refine) {
     m.file.set_attribute("refine_audited", refine->audited);
     m.file.set_attribute("refine_mismatches", refine->mismatches);
     m.file.set_attribute("refine_mismatch_bound", refine->mismatch_bound);
+    m.file.set_attribute("refine_whole_blocks", refine->whole_blocks);
   }
   m.file.sync();
   m.ds = detail::MapDatasets{};

@@ -124,6 +124,7 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
     file.set_attribute("refine_levels", layout.refine_levels);
     file.set_attribute("refine_on", layout.refine_on);
     file.set_attribute("refine_audit_fraction", layout.refine_audit);
+    file.set_attribute("refine_speckle", layout.refine_speckle ? 1 : 0);
     for (const std::string& name : refine_figure_attributes()) {
       if (name == "refine_mismatch_bound") {
         file.set_attribute(name, 1.0);
@@ -270,6 +271,7 @@ MapLayout read_layout(const Hdf5File& file, SealState* seal) {
     require_attribute(file, path, "refine_audit_fraction");
     layout.refine_on = file.read_string_attribute("refine_on");
     layout.refine_audit = file.read_double_attribute("refine_audit_fraction");
+    if (file.has_attribute("refine_speckle")) layout.refine_speckle = file.read_int_attribute("refine_speckle") != 0;
   }
   if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(layout.grid.size()))
     malformed(path, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(layout.grid.size()),

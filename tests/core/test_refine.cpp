@@ -241,6 +241,7 @@ TEST(Refine, AStraightEdgeSolvesOneSlabPerLevelIn2dAnd3d) {
       EXPECT_EQ(r.out.solved_per_level[static_cast<std::size_t>(l)], edge_points(g, l)) << g.dims() << "D level " << l;
     }
     EXPECT_EQ(wrong_points(g, r, edge), 0u);
+    EXPECT_TRUE(r.out.whole.empty());  // a flat edge is crossed once by every line: no speckle
   }
   // In 2D that is 2 m 2^l + 1 points at level l, m coarse cells along the edge: order n 2^L.
   const RefineGrid g({11, 9}, {true, true}, 3);
@@ -258,6 +259,7 @@ TEST(Refine, AnObliqueHalfPlaneRefinesTheCellsItCrossesAndInheritsExactly) {
   const Trial r = run(g, half);
   expect_consistent(g, r);
   EXPECT_EQ(wrong_points(g, r, half), 0u);
+  EXPECT_TRUE(r.out.whole.empty());
   for (int l = 1; l <= 3; ++l) {
     const double s = static_cast<double>(g.spacing(l - 1));
     const auto lines = [&](double hi) { return static_cast<std::size_t>(std::ceil(hi / s)) - 1; };  // in (0, hi)
@@ -280,6 +282,7 @@ TEST(Refine, AnObliqueHalfSpaceIn3dInheritsExactly) {
   EXPECT_EQ(wrong_points(g, r, half), 0u);
   EXPECT_LT(total_solved(r), g.fine_size() / 4);
   EXPECT_GT(r.out.solved_per_level[2], r.out.solved_per_level[1]);
+  EXPECT_TRUE(r.out.whole.empty());  // an oblique plane never trips speckle, in 3 axes as in 2
 }
 
 TEST(Refine, ADiskRefinesOnlyBlocksItsCircleCrossesAndIsExactAwayFromIt) {
@@ -338,13 +341,52 @@ bool crossed(const RefineGrid& g, const RefineBlock& b, double w, double off) {
   return false;
 }
 
+// The level-1 blocks speckle solves whole on the board, by the board's own arithmetic: a
+// block is speckled when crossed and, on every axis, the span of its patch (the block and
+// its touching ones, inside the grid) holds two faces or more (a line along d changes value
+// at each k w - off, whatever its other coordinates); whole when it touches a speckled one.
+std::vector<std::size_t> board_whole(const RefineGrid& g, double w, double off) {
+  const double s = static_cast<double>(g.spacing(0));
+  const auto speckled = [&](const RefineBlock& b) {
+    if (!crossed(g, b, w, off)) return false;
+    for (std::size_t d = 0; d < g.dims(); ++d) {
+      const double lo = std::max(0.0, coord(b.lo, d) - s);
+      const double hi = std::min(static_cast<double>(g.fine_extent(d) - 1), coord(b.lo, d) + 2 * s);
+      if (std::floor((hi + off) / w) - std::floor((lo + off) / w) < 2) return false;
+    }
+    return true;
+  };
+  std::vector<std::size_t> whole;
+  for (std::size_t id = 0; id < g.block_count(1); ++id) {
+    const RefineBlock b = g.block(1, id);
+    bool near = false;
+    for (std::size_t other = 0; other < g.block_count(1) && !near; ++other) {
+      const RefineBlock c = g.block(1, other);
+      bool touches = true;
+      for (std::size_t d = 0; d < g.dims(); ++d) touches = touches && std::max(b.lo[d], c.lo[d]) - std::min(b.lo[d], c.lo[d]) <= g.spacing(0);
+      near = touches && speckled(c);
+    }
+    if (near) whole.push_back(id);
+  }
+  return whole;
+}
+
 }  // namespace
 
 TEST(Refine, CheckerboardsWiderThanACellAreFoundWholeIn2dAnd3d) {
+  RefineOptions corners_alone;
+  corners_alone.speckle = false;
   for (const RefineGrid& g : {RefineGrid({17, 14}, {true, true}, 3), RefineGrid({7, 6, 5}, {true, true, true}, 2)}) {
     const double w = 1.66 * static_cast<double>(g.spacing(0)), off = 0.7;
     const Field board = checkerboard(w, off, g.dims());
-    const Trial r = run(g, board);
+    // Squares 1.66 cells wide change value twice along every axis within 3 cells: speckle,
+    // solved whole; corners alone find them too (every square holds a coarse point).
+    const Trial whole = run(g, board);
+    expect_consistent(g, whole);
+    EXPECT_EQ(wrong_points(g, whole, board), 0u) << g.dims() << "D";
+    EXPECT_EQ(whole.out.whole, board_whole(g, w, off)) << g.dims() << "D";
+    EXPECT_FALSE(whole.out.whole.empty()) << g.dims() << "D";
+    const Trial r = run(g, board, corners_alone);
     expect_consistent(g, r);
     EXPECT_EQ(wrong_points(g, r, board), 0u) << g.dims() << "D";
     // The refined blocks are exactly the candidates a face of a square crosses.
@@ -372,14 +414,20 @@ TEST(Refine, AFieldThatDiffersEverywhereSolvesTheWholeFineGrid) {
   for (std::size_t p = 0; p < g.fine_size(); ++p) EXPECT_EQ(r.out.computed[p], 1);
 }
 
-TEST(Refine, BlockByBlockDecisionsAgreeWithTheReferenceRun) {
+namespace {
+
+// The reference run's decisions against block-by-block ones from local reads; returns the
+// inherited points that lie on faces shared by several candidate blocks.
+std::size_t expect_local_decisions_agree(bool speckle) {
   // A smooth field of several classes over law x 3 split axes.
   const RefineGrid g({2, 6, 5, 4}, {false, true, true, true}, 2);
   const Field field = [](const GridIndex& i) {
     return std::floor(2.0 + std::sin(coord(i, 1) / 5.1 + coord(i, 0)) + std::cos(coord(i, 2) / 3.7) +
                       0.5 * std::sin(coord(i, 3) / 2.3));
   };
-  const Trial r = run(g, field);
+  RefineOptions options;
+  options.speckle = speckle;
+  const Trial r = run(g, field, options);
   expect_consistent(g, r);
   std::size_t asked_unsolved = 0;
   const PointsDiffer differ = [&](std::size_t a, std::size_t b) {
@@ -391,11 +439,11 @@ TEST(Refine, BlockByBlockDecisionsAgreeWithTheReferenceRun) {
     flags[static_cast<std::size_t>(l)].assign(g.block_count(l), 0);
     for (std::size_t id : r.out.refined_blocks[static_cast<std::size_t>(l)]) flags[static_cast<std::size_t>(l)][id] = 1;
     for (std::size_t id = 0; id < g.block_count(l); ++id)
-      ASSERT_EQ(block_is_refined(g, g.block(l, id), differ), flags[static_cast<std::size_t>(l)][id] != 0) << id;
+      EXPECT_EQ(block_is_refined(g, g.block(l, id), differ, speckle), flags[static_cast<std::size_t>(l)][id] != 0) << id;
   }
   // The plan of each level from local reads only (a block's chain of corners, its face
   // neighbours' decisions), as a streaming planner makes it: the points the reference solved.
-  const BlockPredicate local = [&](const RefineBlock& b) { return block_is_refined(g, b, differ); };
+  const BlockPredicate local = [&](const RefineBlock& b) { return block_is_refined(g, b, differ, speckle); };
   std::vector<std::size_t> fresh;
   for (int l = 1; l <= 2; ++l) {
     std::vector<std::size_t> planned, reference;
@@ -425,12 +473,64 @@ TEST(Refine, BlockByBlockDecisionsAgreeWithTheReferenceRun) {
     for (const RefineBlock& b : holders) {
       if (b.level > 1 && !refined(g.parent(b))) continue;
       ++candidates;
-      ASSERT_EQ(g.nearest_corner(b, g.unravel(p)), d.source) << "point " << p;
+      EXPECT_EQ(g.nearest_corner(b, g.unravel(p)), d.source) << "point " << p;
     }
-    ASSERT_GE(candidates, 1u);
+    EXPECT_GE(candidates, 1u);
     shared += candidates > 1 ? 1 : 0;
   }
-  EXPECT_GT(shared, 0u);  // the claim was put to the test on faces
+  return shared;
+}
+
+}  // namespace
+
+TEST(Refine, BlockByBlockDecisionsAgreeWithTheReferenceRun) {
+  EXPECT_GT(expect_local_decisions_agree(false), 0u);  // the claim was put to the test on faces
+  expect_local_decisions_agree(true);
+}
+
+TEST(Refine, ASpeckledQuarterIsSolvedWholeAndItsCleanEdgeIsNot) {
+  // 2 classes split by an oblique line, and in the quarter i0, i1 >= 48 (of 97) every fine
+  // point one of 3 classes at random: structure below the fine spacing, which a coarse cell's
+  // agreeing corners hide. Speckle solves that quarter whole (and the cells touching it); the
+  // clean edge elsewhere is refined by corners alone.
+  const RefineGrid g({13, 13}, {true, true}, 3);  // 97 x 97, coarse spacing 8
+  const auto in_quarter = [](const GridIndex& i) { return i[0] >= 48 && i[1] >= 48; };
+  const Field field = [&](const GridIndex& i) {
+    if (!in_quarter(i)) return coord(i, 0) + 1.37 * coord(i, 1) > 41.3 ? 1.0 : 0.0;
+    std::uint64_t h = (i[0] * 1000003u) ^ (i[1] * 998244353u);
+    h = (h ^ (h >> 29)) * 0xbf58476d1ce4e5b9ull;
+    return 2.0 + static_cast<double>((h >> 32) % 3);
+  };
+  RefineOptions corners_alone;
+  corners_alone.speckle = false;
+  const Trial plain = run(g, field, corners_alone);
+  const Trial r = run(g, field);
+  expect_consistent(g, r);
+  std::size_t wrong_inside = 0, wrong_plain = 0, solved_far = 0;
+  for (std::size_t p = 0; p < g.fine_size(); ++p) {
+    const GridIndex i = g.unravel(p);
+    const double truth = field(i);
+    if (in_quarter(i)) {
+      wrong_inside += r.value[r.out.decision[p].source] != truth ? 1 : 0;
+      wrong_plain += plain.value[plain.out.decision[p].source] != truth ? 1 : 0;
+    } else if (i[0] < 24 && i[1] < 24 && coord(i, 0) + 1.37 * coord(i, 1) > 60.0) {
+      solved_far += r.out.computed[p] != 0 ? 1 : 0;  // far from the edge and the quarter
+    }
+  }
+  EXPECT_EQ(wrong_inside, 0u);
+  EXPECT_GT(wrong_plain, 50u);  // of 2401 quarter points (111 with this hash)
+  EXPECT_EQ(wrong_points(g, r, field), 0u);
+  EXPECT_EQ(wrong_points(g, plain, field), wrong_plain);  // the edge is exact either way
+  for (std::size_t id : r.out.whole) {  // solved whole: only cells touching a speckled one
+    const RefineBlock b = g.block(1, id);
+    EXPECT_GE(b.lo[0] + 2 * 8, 48u) << id;
+    EXPECT_GE(b.lo[1] + 2 * 8, 48u) << id;
+  }
+  std::size_t unsolved_inside = 0;  // every point of the quarter solved
+  for (std::size_t p = 0; p < g.fine_size(); ++p) unsolved_inside += in_quarter(g.unravel(p)) && r.out.computed[p] == 0;
+  EXPECT_EQ(unsolved_inside, 0u);
+  const std::size_t coarse_far = 3;  // (0, 16), (8, 16), (16, 8) ... the coarse points there
+  EXPECT_LE(solved_far, coarse_far * 2);
 }
 
 TEST(Refine, TheAuditFindsWhatTheCornersMissed) {

@@ -20,8 +20,18 @@
 //
 //   Candidate: every level-1 block; at l > 1 the children of refined level-(l-1) blocks. The
 //   corners of a candidate are solved points (by induction).
-//   Refined: a candidate whose corners are not all alike, i.e. some pair of corners differs
-//   (within a cell every pair of corners are neighbours, diagonals included). A refined block
+//   Flagged: a candidate whose corners are not all alike, i.e. some pair of corners differs
+//   (within a cell every pair of corners are neighbours, diagonals included).
+//   Speckled: a flagged level-1 block around which the answer changes twice along every
+//   axis: on each split axis some line of the coarse points of the block and the blocks
+//   touching it (up to 4 points a line) changes value at least twice (A B A, A B C). A flat
+//   edge, a hyperplane on the scale of those 3 cells, is crossed at most once by any straight
+//   line, so it never trips this in any number of axes; structure finer than the coarse grid
+//   in every direction (speckle, islands and bands narrower than 3 cells) does. There a block
+//   whose corners agree can hide points of another class, which corners alone never see. A
+//   speckled block and every block touching it are solved whole: all their descendants are
+//   refined, so every fine point in them is solved (RefineOptions::speckle; on by default).
+//   Refined: a flagged candidate, or any block inside one solved whole. A refined block
 //   has its new points solved. A new point on a face shared by refined blocks is solved once:
 //   it is owned by the containing refined block of least id (`owns`).
 //   Inherited: a fine point never solved takes the values of the nearest corner of the deepest
@@ -114,8 +124,12 @@ class RefineGrid {
   // The 2^R blocks of level + 1 inside b, ascending id (none when b.level == levels()).
   void children(const RefineBlock& b, std::vector<RefineBlock>& out) const;
   RefineBlock parent(const RefineBlock& b) const;  // b.level >= 2
+  RefineBlock ancestor(const RefineBlock& b, int level) const;  // the block of `level` <= b.level holding b
   // The blocks of level l whose closed cell holds p, ascending id (1 to 2^R of them).
   void containing_blocks(int level, const GridIndex& p, std::vector<RefineBlock>& out) const;
+  // The blocks of b's level whose closed cells share a point with b's, b included, ascending id
+  // (3^R of them inside the grid; never across an unsplit axis).
+  void touching(const RefineBlock& b, std::vector<RefineBlock>& out) const;
   // The corner of b nearest to p (p in b): per split axis the nearer end, the lower on a tie.
   std::size_t nearest_corner(const RefineBlock& b, const GridIndex& p) const;
 
@@ -135,9 +149,16 @@ using BlockPredicate = std::function<bool(const RefineBlock&)>;
 // Some pair of b's corners differ. `scratch` holds the corners (reused to spare allocations).
 bool corners_differ(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ,
                     std::vector<std::size_t>& scratch);
-// b is refined: its ancestors (level 1 first) and b itself all have corners that differ. Calls
-// `differ` only on solved points (it stops at the first ancestor that is not refined).
-bool block_is_refined(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ);
+// The level-1 block b is speckled (above). Reads the coarse points of b and the blocks touching it.
+bool speckled(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ);
+// The level-1 block b is solved whole: it or a block touching it is speckled.
+bool solved_whole(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ);
+// solved_whole for every level-1 block (block id order), once the coarse points are solved.
+std::vector<bool> whole_blocks(const RefineGrid& g, const PointsDiffer& differ);
+// b is refined: with `speckle`, its level-1 ancestor is solved whole; else (or also) its
+// ancestors (level 1 first) and b itself all have corners that differ. Calls `differ` only on
+// solved points (it stops at the first ancestor that is not refined).
+bool block_is_refined(const RefineGrid& g, const RefineBlock& b, const PointsDiffer& differ, bool speckle = true);
 // The refined block b owns its new point p: no refined block of b's level with a smaller id
 // holds p.
 bool owns(const RefineGrid& g, const RefineBlock& b, const GridIndex& p, const BlockPredicate& refined);
@@ -160,6 +181,7 @@ PointDecision decide_point(const RefineGrid& g, const GridIndex& p, const BlockP
 struct RefineOptions {
   double audit_fraction = 0.0;  // [0, 1]
   std::uint64_t audit_seed = 0;
+  bool speckle = true;          // speckled level-1 blocks and their touching ones solved whole
 };
 struct RefineOutcome {
   std::vector<std::int8_t> computed;              // per fine point: 1 solved, 0 inherited, 2 audited
@@ -167,6 +189,7 @@ struct RefineOutcome {
   std::vector<std::size_t> solved_per_level;      // [0..L]: points solved at each level
   std::vector<std::size_t> refined_per_level;     // [0..L]: refined blocks (index 0 unused: 0)
   std::vector<std::vector<std::size_t>> refined_blocks;  // [l]: ids of the refined blocks of level l
+  std::vector<std::size_t> whole;                 // ids of the level-1 blocks solved whole (speckle)
   std::size_t audited = 0, mismatches = 0;
 };
 RefineOutcome refine_in_memory(const RefineGrid& g, const std::function<void(std::size_t)>& solve,

@@ -111,6 +111,7 @@ struct MapLayout {
   int refine_levels = 0;
   std::string refine_on = {};
   double refine_audit = 0.0;
+  bool refine_speckle = false;  // root attribute refine_speckle (absent in maps made before it: false)
 };
 
 // What an adaptive map's run did: points solved (per level, then in all), inherited, audited
@@ -119,6 +120,7 @@ struct RefineFigures {
   std::vector<std::uint64_t> solved_per_level;  // [0..L]
   std::uint64_t solved = 0, inherited = 0, audited = 0, mismatches = 0;
   double mismatch_bound = 1.0;
+  std::uint64_t whole_blocks = 0;  // coarse cells solved whole (speckle)
 };
 
 // The root attributes an adaptive map's figures are written to (refine_solved, ...), and how

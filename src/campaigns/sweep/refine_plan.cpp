@@ -8,8 +8,8 @@
 namespace vibromap::detail {
 
 RefinePlan::RefinePlan(const std::vector<Axis>& coarse_axes, int levels, std::vector<RefineOn> on,
-                       double audit_fraction)
-    : grid_(coarse_axes, levels), on_(std::move(on)), audit_fraction_(audit_fraction) {
+                       double audit_fraction, bool speckle)
+    : grid_(coarse_axes, levels), on_(std::move(on)), audit_fraction_(audit_fraction), speckle_(speckle) {
   const std::size_t n = grid_.fine_size();
   values_.assign(n * on_.size(), 0.0);
   computed_.assign(n, -1);
@@ -41,7 +41,8 @@ void RefinePlan::record(std::uint64_t flat, const CellResult& c) {
 }
 
 // Which candidate blocks of `level` are refined: every level-1 block is a candidate, at deeper
-// levels the children of refined blocks. Their corners are solved points (earlier phases).
+// levels the children of refined blocks. Their corners are solved points (earlier phases). A
+// block inside a level-1 block solved whole (speckle, decided at level 1) is refined.
 void RefinePlan::decide_level(int level) {
   std::vector<bool>& bits = refined_[static_cast<std::size_t>(level)];
   bits.assign(grid_.block_count(level), false);
@@ -51,10 +52,14 @@ void RefinePlan::decide_level(int level) {
   };
   std::vector<std::size_t> scratch;
   const auto consider = [&](const RefineBlock& b) {
-    if (corners_differ(grid_, b, d, scratch)) bits[grid_.block_id(b)] = true;
+    const bool whole = !whole_.empty() && whole_[grid_.block_id(grid_.ancestor(b, 1))];
+    if (whole || corners_differ(grid_, b, d, scratch)) bits[grid_.block_id(b)] = true;
   };
   if (level == 1) {
     for (std::size_t id = 0; id < bits.size(); ++id) consider(grid_.block(1, id));
+    if (!speckle_) return;
+    whole_ = whole_blocks(grid_, d);
+    for (std::size_t id = 0; id < bits.size(); ++id) bits[id] = bits[id] || whole_[id];
     return;
   }
   const std::vector<bool>& parents = refined_[static_cast<std::size_t>(level) - 1];
@@ -170,6 +175,7 @@ RefineFigures RefinePlan::figures() const {
     }
   }
   f.mismatch_bound = mismatch_upper_bound(f.mismatches, f.audited);
+  f.whole_blocks = static_cast<std::uint64_t>(std::count(whole_.begin(), whole_.end(), true));
   return f;
 }
 

@@ -30,7 +30,8 @@ constexpr std::uint64_t kRefineAuditSeed = 30;
 
 class RefinePlan {
  public:
-  RefinePlan(const std::vector<Axis>& coarse_axes, int levels, std::vector<RefineOn> on, double audit_fraction);
+  RefinePlan(const std::vector<Axis>& coarse_axes, int levels, std::vector<RefineOn> on, double audit_fraction,
+             bool speckle);
 
   const RefineGrid& grid() const { return grid_; }
   int levels() const { return grid_.levels(); }
@@ -69,6 +70,8 @@ class RefinePlan {
   std::vector<double> values_;                // per point, on_.size() refine quantities
   std::vector<std::int8_t> computed_, level_;  // per point, -1: not recorded
   std::vector<std::vector<bool>> refined_;    // [l][block id], l = 1..L, once decided
+  bool speckle_;
+  std::vector<bool> whole_;                   // [level-1 block id]: solved whole (speckle), once level 1 is decided
   std::vector<std::pair<CellSpan, std::vector<CellResult>>> cache_;  // fill: chunks read
   std::vector<bool> inferred_bit_;            // per point: counted in inferred_
   std::uint64_t solved_ = 0, inferred_ = 0;

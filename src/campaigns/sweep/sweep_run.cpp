@@ -78,10 +78,11 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   const SweepOptions& sweep = *scene.sweep;
   std::optional<detail::RefinePlan> plan;
   if (sweep.refine > 0) {
-    plan.emplace(sweep.axes, sweep.refine, sweep.refine_on, sweep.refine_audit);
+    plan.emplace(sweep.axes, sweep.refine, sweep.refine_on, sweep.refine_audit, sweep.refine_speckle);
     layout.refine_levels = sweep.refine;
     for (const RefineOn& on : sweep.refine_on) layout.refine_on += (layout.refine_on.empty() ? "" : " ") + refine_on_text(on);
     layout.refine_audit = sweep.refine_audit;
+    layout.refine_speckle = sweep.refine_speckle;
   }
   detail::MapTally tally;
   tally.census_k = scene.census ? scene.census->initial_conditions : 0;

@@ -102,6 +102,7 @@ std::vector<KeyRow> sweep_rows() {
   rows.push_back({"sweep.refine_on", detail::refine_on_list(default_refine_on()), "-", "refine quantity names",
                   detail::refine_on_meaning()});
   rows.push_back(key_row(detail::sweep_refine_keys()[1]));
+  rows.push_back(key_row(detail::sweep_refine_keys()[2]));
   return rows;
 }
 
@@ -199,6 +200,7 @@ void write_reference_sweep(std::ostream& os) {
   write_example_line(os, cat("refine = ", refine[0].default_text), cat(refine[0].meaning, ", ", refine[0].allowed()));
   write_example_line(os, cat("refine_on = ", detail::refine_on_list(default_refine_on())), detail::refine_on_meaning());
   write_example_line(os, cat("refine_audit = ", refine[1].default_text), cat(refine[1].meaning, ", ", refine[1].allowed()));
+  write_example_line(os, cat("refine_speckle = ", refine[2].default_text), refine[2].meaning);
 }
 
 }  // namespace

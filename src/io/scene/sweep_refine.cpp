@@ -111,7 +111,12 @@ const std::vector<SceneKey>& sweep_refine_keys() {
       {kSweep, "refine_audit", SceneKeyType::real, interval(0, 1, false, false), {}, "-",
        "share of the inherited points solved again, drawn at random, to count how often inheritance was wrong "
        "(with a 95 % upper bound)",
-       {}, "0.01", true}};
+       {}, "0.01", true},
+      {kSweep, "refine_speckle", SceneKeyType::boolean, any_finite(), {}, "-",
+       "solve speckled coarse cells whole: where the answer changes twice within 3 coarse cells along every axis "
+       "around a cell whose corners differ, that cell and the cells touching it are solved at every fine point "
+       "(false: corners alone decide: cheaper, blind to what a cell's agreeing corners hide)",
+       {}, "true", true}};
   return rows;
 }
 
@@ -139,6 +144,8 @@ void read_refine(const toml::table& sec, const Context& ctx, bool census, SweepO
   }
   if (const toml::node* node = sec.get("refine_audit"))
     sweep.refine_audit = read_real(keys[1], *node, locate(ctx, keys[1], *node));
+  if (const toml::node* node = sec.get("refine_speckle"))
+    sweep.refine_speckle = read_boolean(keys[2], *node, locate(ctx, keys[2], *node)) != 0;
   if (const toml::node* node = sec.get("refine_on")) {
     const std::string loc = locate(ctx, kSweep, "refine_on", *node);
     std::vector<RefineOn> list;
@@ -165,7 +172,8 @@ std::vector<std::string> refine_lines(const SweepOptions& sweep) {
   if (sweep.refine == 0) return {};  // a uniform map's identity is as before
   return {cat("sweep.refine = ", std::to_string(sweep.refine)),
           cat("sweep.refine_on = ", refine_on_list(sweep.refine_on)),
-          cat("sweep.refine_audit = ", shortest(sweep.refine_audit))};
+          cat("sweep.refine_audit = ", shortest(sweep.refine_audit)),
+          cat("sweep.refine_speckle = ", sweep.refine_speckle ? "true" : "false")};
 }
 
 }  // namespace detail

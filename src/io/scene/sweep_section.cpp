@@ -20,7 +20,8 @@ constexpr double kMaxCells = 1e12;         // far beyond any run; keeps the flat
 
 const std::vector<std::string_view>& sweep_option_keys() {
   static const std::vector<std::string_view> keys = {"order", "store", "checkpoint_interval", "progress_interval",
-                                                          "refine", "refine_on", "refine_audit"};
+                                                          "refine", "refine_on", "refine_audit",
+                                                          "refine_speckle"};
   return keys;
 }
 
