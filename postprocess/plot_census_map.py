@@ -81,6 +81,8 @@ def parse_args(argv: list[str] | None):
         parser.error(str(exc).replace("--fix", "--at" if args.at else "--fix"))
     if args.dpi <= 0:
         parser.error("--dpi must be positive")
+    if args.solved and args.show == "cell":
+        parser.error("--solved marks the solved points of a map: not with --show cell")
     if args.output is None:
         import os
 
@@ -213,7 +215,11 @@ def main(argv: list[str] | None = None) -> int:
         require_census(sweep)
         if args.show == "cell":
             return plot_cell(sweep, cell_index(sweep, args.at_values))
-        return plot_map(sweep, maps.choose_slice(sweep, args.x, args.y, args.fixed), args.show)
+        sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
+        fig = plot_map(sweep, sl, args.show)
+        if args.solved:
+            maps.mark_solved(fig, sweep, sl)
+        return fig
 
     return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError))
 

@@ -227,7 +227,10 @@ def main(argv: list[str] | None = None) -> int:
         require_kcon(sweep)
         info = add_soft_cells(sweep, args.threshold)
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        save_figure(plot(sweep, sl, info), args.output, args.dpi)
+        fig = plot(sweep, sl, info)
+        if args.solved:
+            maps.mark_solved(fig, sweep, sl)
+        save_figure(fig, args.output, args.dpi)
     except (VibromapFileError, MapSliceError) as exc:
         print(f"{PROG}: error: {exc}", file=sys.stderr)
         return 2

@@ -32,6 +32,7 @@ try:
 
     matplotlib.use("Agg")  # files only: no display needed on a cluster node
     import matplotlib.colors
+    import matplotlib.legend
     import matplotlib.pyplot as plt
     import numpy as np
     from matplotlib.collections import PolyCollection
@@ -116,6 +117,12 @@ def make_parser(prog: str = PROG, description: str | None = None, suffix: str = 
     )
     parser.add_argument("-o", "--output", metavar="OUT.png", help=f"image to write (default: MAP{suffix}.png)")
     parser.add_argument("--dpi", type=int, default=150, help="resolution of the image (default: 150)")
+    parser.add_argument(
+        "--solved",
+        action="store_true",
+        help="an adaptive map (sweep.refine > 0): mark the points solved (computed == 1) with small dots and "
+        "the audited ones (computed == 2) with crosses over the picture; the other points inherited their values",
+    )
     return parser
 
 
@@ -299,6 +306,38 @@ def plot(sweep: SweepMap, sl: MapSlice):
     return fig
 
 
+SOLVED_GID, AUDITED_GID = "solved-points", "audited-points"  # gids of the --solved markers (tests find them)
+# computed code -> (gid, marker, size in points^2, colour, legend label)
+SOLVED_MARKERS = ((1, SOLVED_GID, ".", 4.0, "black", "solved"), (2, AUDITED_GID, "x", 16.0, "#e7298a", "audited"))
+
+
+def solved_points(sl: MapSlice, code: int) -> tuple[np.ndarray, np.ndarray]:
+    """(x, y) where the slice's /computed is `code`, at the points' own coordinates (a strip's
+    points at y = 0.5)."""
+    rows, cols = np.nonzero(np.asarray(sl.data["computed"]) == code)
+    x = np.asarray(sl.x.plot_values, dtype=float)[cols]
+    y = np.full(len(rows), 0.5) if sl.y is None else np.asarray(sl.y.plot_values, dtype=float)[rows]
+    return x, y
+
+
+def mark_solved(fig, sweep: SweepMap, sl: MapSlice) -> None:
+    """--solved: dots on the points an adaptive map solved, crosses on the audited ones, over the
+    map (the figure's first axes), with a legend of their counts beside the picture's own."""
+    if "computed" not in sl.data:
+        raise MapSliceError(f"{sweep.path}: no dataset 'computed': not an adaptive map (sweep.refine > 0), "
+                            "so --solved has no solved points to draw")  # fmt: skip
+    ax = fig.axes[0]
+    handles = []
+    for code, gid, marker, size, color, label in SOLVED_MARKERS:
+        x, y = solved_points(sl, code)
+        handles.append(ax.scatter(x, y, s=size, marker=marker, c=color, linewidths=0.8, gid=gid, zorder=3,
+                                  label=f"{label}: {len(x)} point{'s' if len(x) != 1 else ''}"))  # fmt: skip
+    # An artist of its own inside the map, so that the picture's legend (laid out beside the map)
+    # stays where it is: a second ax.legend() would replace it.
+    ax.add_artist(matplotlib.legend.Legend(ax, handles, [h.get_label() for h in handles], loc="lower right",
+                                           fontsize=8, framealpha=0.85, title="adaptive map", title_fontsize=8))
+
+
 def cells_text(count: int) -> str:
     return f"{count} cell{'s' if count != 1 else ''}"
 
@@ -308,7 +347,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         sweep = read_map(args.map)
         sl = choose_slice(sweep, args.x, args.y, args.fixed)
-        save_figure(plot(sweep, sl), args.output, args.dpi)
+        fig = plot(sweep, sl)
+        if args.solved:
+            mark_solved(fig, sweep, sl)
+        save_figure(fig, args.output, args.dpi)
     except (VibromapFileError, MapSliceError) as exc:
         print(f"{PROG}: error: {exc}", file=sys.stderr)
         return 2

@@ -206,7 +206,10 @@ def main(argv: list[str] | None = None) -> int:
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)  # a bad axis is named first
         require_soft(sweep, info)
         notes.extend(maps.snapped_notes(sl) + maps.soft_notes(info))
-        return plot(sweep, sl, info)
+        fig = plot(sweep, sl, info)
+        if args.solved:
+            maps.mark_solved(fig, sweep, sl)
+        return fig
 
     return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError), notes)
 

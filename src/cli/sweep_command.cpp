@@ -40,6 +40,11 @@ std::string default_output(const std::string& scene_path) {
 // A census map: initial states followed per second (K per cell computed).
 double state_rate(const SweepReport& r) { return r.farm.items_per_s() * r.census_initial_conditions; }
 
+// An adaptive map: its points solved per second of this run (the fill copies, it solves nothing).
+double solved_rate(const SweepReport& r) {
+  return r.farm.wall_s > 0 ? static_cast<double>(r.refine_solved_now) / r.farm.wall_s : 0.0;
+}
+
 void print_json(std::ostream& out, const SweepReport& r, const std::string& output) {
   const FarmReport& f = r.farm;
   JsonWriter w(out);
@@ -69,6 +74,8 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
     w.field("refine_levels", r.refine_levels).key("refine_solved_per_level").begin_array();
     for (const std::uint64_t n : x.solved_per_level) w.value(n);
     w.end_array()
+        .field("points_solved_now", r.refine_solved_now)
+        .field("points_solved_per_s", solved_rate(r))
         .field("refine_solved", x.solved)
         .field("refine_inherited", x.inherited)
         .field("refine_audited", x.audited)
@@ -82,14 +89,32 @@ void print_json(std::ostream& out, const SweepReport& r, const std::string& outp
   out << "\n";
 }
 
+// The counts and the rate: of cells for a uniform map; for an adaptive map of points, by how
+// each got its values, and the rate per point solved.
+void print_counts(std::ostream& out, const SweepReport& r) {
+  const FarmReport& f = r.farm;
+  if (r.refine_levels == 0) {
+    out << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
+        << " computed now)\n"
+        << "ranks          " << f.ranks << "\n"
+        << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s() << " cells/s\n";
+    return;
+  }
+  const RefineFigures& x = r.refine;
+  const std::uint64_t decided = x.solved + x.audited + x.inherited;
+  out << "points         " << f.items << " (" << x.solved << " solved, " << x.audited << " audited, " << x.inherited
+      << " inherited";
+  if (decided < f.items) out << ", " << f.items - decided << " not decided yet";
+  out << "; " << f.items_resumed << " from the resumed map, " << r.refine_solved_now << " solved now)\n"
+      << "ranks          " << f.ranks << "\n"
+      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << solved_rate(r) << " points solved/s\n";
+}
+
 void print_table(std::ostream& out, const SweepReport& r, const std::string& output) {
   const FarmReport& f = r.farm;
-  out << "map            " << output << stopped_note(f) << "\n"
-      << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
-      << " computed now)\n"
-      << "ranks          " << f.ranks << "\n"
-      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s() << " cells/s\n"
-      << "checkpoints    " << f.checkpoints << " (" << f.checkpoint_s << " s writing, longest " << f.checkpoint_max_s
+  out << "map            " << output << stopped_note(f) << "\n";
+  print_counts(out, r);
+  out << "checkpoints    " << f.checkpoints << " (" << f.checkpoint_s << " s writing, longest " << f.checkpoint_max_s
       << " s)\n";
   if (r.census_initial_conditions > 0)
     out << "census         " << r.census_initial_conditions << " initial states per cell, " << state_rate(r)

@@ -164,9 +164,9 @@ class Coordinator {
  public:
   Coordinator(const MpiSession& mpi, const FarmOptions& o, const ItemSolver& solve, FarmSink& sink)
       : o_(o), solve_(solve), sink_(sink), workers_(mpi.size() - 1), ranks_(mpi.size()), max_chunk_(max_chunk(o)),
-        resumed_(sink.items_done()), left_(sink.items_pending()),
+        resumed_(sink.items_done()), scope_done_(sink.scope_done()), left_(sink.items_pending()),
         progress_(std::cerr, o.progress, isatty(STDERR_FILENO) != 0, o.progress_interval, o.label, o.noun,
-                  sink.items(), resumed_) {}
+                  sink.scope_items(), scope_done_) {}
 
   FarmReport run() {
     const auto t0 = Clock::now();
@@ -360,7 +360,7 @@ class Coordinator {
 
   void report_progress() {
     std::lock_guard lock(mu_);
-    progress_.update(resumed_ + report_.items_computed, sink_.note());
+    progress_.update(scope_done_ + report_.items_computed, sink_.note());
   }
 
   // After every rank has been answered: the final checkpoint, or the error.
@@ -377,7 +377,7 @@ class Coordinator {
     }
     report_.final_checkpoint_s = seconds_since(t0);
     report_.checkpoint_max_s = std::max(report_.checkpoint_max_s, report_.final_checkpoint_s);
-    progress_.finish(resumed_ + report_.items_computed, sink_.note());
+    progress_.finish(scope_done_ + report_.items_computed, sink_.note());
     if (error_) std::rethrow_exception(error_);
   }
 
@@ -387,6 +387,7 @@ class Coordinator {
   const int workers_, ranks_;
   const std::uint64_t max_chunk_;
   const std::uint64_t resumed_;
+  const std::uint64_t scope_done_;      // what progress lines count as done before this run
   std::uint64_t left_;                  // pending items not yet handed out (an upper bound)
   std::uint64_t cursor_ = 0;            // where the next sink_.pending() scan starts
   std::vector<ItemRange> buffer_;       // pending items fetched from the sink, not handed out

@@ -334,3 +334,14 @@ vibromap_cli_test(run_measure_overflow_is_a_failed_point RC 0
                   ARGS run jobs/paper/table1.toml --set "solver.method=\"rk4\"" --set solver.rk4_steps=2048
                   --set initial.v2=1e9 --set analysis.max_periods=5 --set "analysis.steady=\"integrate\"" -f json
                   OUT "\"status\": \"failed\",[^}]*\"message\": \"non-finite F_max: the integration diverged[^}]*\"F_max\": null")
+
+# sweep.refine_on names a quantity the map must keep, since a resume plans from the file: the
+# census's attractors and soft_fraction need [census] (#30).
+set(VIBROMAP_CLI_REFINE_SCENE ${CMAKE_CURRENT_BINARY_DIR}/cli_refine_on_census.toml)
+file(WRITE ${VIBROMAP_CLI_REFINE_SCENE}
+     "[sweep]\nE1 = { from = 1e9, to = 2e11, n = 3 }\nrefine = 1\nrefine_on = [\"regime\", \"soft_fraction:0.1\"]\n")
+vibromap_cli_test(sweep_refine_on_census_quantity_without_census RC 2 ARGS sweep ${VIBROMAP_CLI_REFINE_SCENE} -o no_file.h5
+                  ERR "cli_refine_on_census\\.toml:4[:0-9]*: \\[sweep\\] refine_on = .*: sweep\\.refine_on names soft_fraction, a census quantity, but the scene has no \\[census\\] section: add one")
+vibromap_cli_test(sweep_refine_on_attractors_by_set_without_census RC 2 ARGS sweep jobs/demo/e1_e2.toml
+                  --set sweep.refine=1 --set "sweep.refine_on=[\"attractors\"]" -o no_file.h5
+                  ERR "jobs/demo/e1_e2\\.toml: --set sweep\\.refine_on=\\[\"attractors\"\\]: sweep\\.refine_on names attractors, a census quantity, but the scene has no \\[census\\] section")

@@ -542,7 +542,7 @@ TEST(SweepScene, HelpSummaryListsTheSweepKeys) {
   std::ostringstream os;
   write_scene_key_summary(os);
   EXPECT_NE(os.str().find("  [sweep]     KEY (an axis: any real or integer key above) order store checkpoint_interval "
-                          "progress_interval refine refine_on refine_audit\n"),
+                          "progress_interval refine refine_on refine_audit refine_speckle\n"),
             std::string::npos)
       << os.str();
 }

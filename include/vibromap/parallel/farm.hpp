@@ -67,6 +67,10 @@ class FarmSink {
   virtual void checkpoint() = 0;              // makes what was stored durable and done
   virtual void finish(bool complete) = 0;     // the last checkpoint; complete: every item done
   virtual std::string note() const { return {}; }  // appended to progress lines
+  // What progress lines count: the items of this run's scope and those of it done before the
+  // run started (all items; a sink whose run covers some of them, a phase, says so).
+  virtual std::uint64_t scope_items() const { return items(); }
+  virtual std::uint64_t scope_done() const { return items_done(); }
 };
 
 // FarmSink::pending for a sink that can say of each item whether it is done: appends the items

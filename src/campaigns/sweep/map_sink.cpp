@@ -82,7 +82,8 @@ void RefineSink::store_results(const ItemRange& range, std::vector<CellResult>& 
 }
 
 std::string RefineSink::note() const {  // the phase is the progress line's label
-  return MapSink::note();
+  return std::to_string(plan_.solved()) + " solved, " + std::to_string(plan_.inferred()) + " inferred of " +
+         std::to_string(items()) + " points | " + MapSink::note();
 }
 
 void RefineSink::fill() {

@@ -56,10 +56,12 @@ class RefineSink : public MapSink {
   // Plans `phase` and returns how many of its points remain to solve.
   std::uint64_t begin_phase(int phase);
   std::uint64_t items_pending() const override { return left_; }
+  std::uint64_t scope_items() const override { return points_.size(); }  // progress: the phase's points
+  std::uint64_t scope_done() const override { return points_.size() - left_; }
   std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) override;
   void store_results(const ItemRange& range, std::vector<CellResult>& results) override;
   void finish(bool) override { writer_.checkpoint(); }  // a phase's end; close() ends the map
-  std::string note() const override;
+  std::string note() const override;  // the fine grid's points solved and inferred so far, the regimes
   // The fill of the inherited points, then the last checkpoint and the figures; closes.
   void fill();
   void close();

@@ -14,6 +14,7 @@ RefinePlan::RefinePlan(const std::vector<Axis>& coarse_axes, int levels, std::ve
   values_.assign(n * on_.size(), 0.0);
   computed_.assign(n, -1);
   level_.assign(n, -1);
+  inferred_bit_.assign(n, false);
   refined_.resize(static_cast<std::size_t>(levels) + 1);
 }
 
@@ -30,6 +31,11 @@ void RefinePlan::record(std::uint64_t flat, const CellResult& c) {
   const auto p = static_cast<std::size_t>(flat);
   const std::size_t f = on_.size();
   for (std::size_t q = 0; q < f; ++q) values_[p * f + q] = refine_value(c, on_[q].field);
+  if (c.computed >= 1 && computed_[p] < 1) ++solved_;
+  if (c.computed >= 0 && (c.computed >= 1) == inferred_bit_[p]) {  // audited after counted as inferred, or filled
+    inferred_bit_[p] = !inferred_bit_[p];
+    inferred_ = inferred_bit_[p] ? inferred_ + 1 : inferred_ - 1;
+  }
   computed_[p] = c.computed;
   level_[p] = c.level;
 }
@@ -65,6 +71,24 @@ void RefinePlan::decide_level(int level) {
   }
 }
 
+// Counts the points not recorded that no level after `level` can solve: those outside every
+// refined block of `level` (the candidates of level + 1 are their children, as decide_level
+// says), or every one when `level` is the audit's. Progress lines only: the plan never reads it.
+void RefinePlan::infer(int level) {
+  std::vector<RefineBlock> around;
+  const std::vector<bool>* bits = level <= levels() ? &refined_[static_cast<std::size_t>(level)] : nullptr;
+  for (std::size_t p = 0; p < computed_.size(); ++p) {
+    if (computed_[p] >= 0 || inferred_bit_[p]) continue;
+    if (bits) {
+      grid_.containing_blocks(level, grid_.unravel(p), around);
+      if (std::any_of(around.begin(), around.end(), [&](const RefineBlock& b) { return (*bits)[grid_.block_id(b)]; }))
+        continue;
+    }
+    inferred_bit_[p] = true;
+    ++inferred_;
+  }
+}
+
 PointDecision RefinePlan::decide(std::size_t flat) const {
   const BlockPredicate refined = [this](const RefineBlock& b) {
     return refined_[static_cast<std::size_t>(b.level)][grid_.block_id(b)];
@@ -82,6 +106,7 @@ std::vector<std::uint64_t> RefinePlan::plan(int phase) {
   }
   if (phase <= levels()) {
     decide_level(phase);
+    infer(phase);
     const std::vector<bool>& bits = refined_[static_cast<std::size_t>(phase)];
     std::vector<std::size_t> fresh;
     for (std::size_t id = 0; id < bits.size(); ++id) {
@@ -94,6 +119,7 @@ std::vector<std::uint64_t> RefinePlan::plan(int phase) {
     return points;
   }
   // The audit: the points the levels did not solve (inherited, filled or audited already).
+  infer(phase);
   for (std::size_t p = 0; p < computed_.size(); ++p)
     if (computed_[p] != 1 && audit_selects(kRefineAuditSeed, p, audit_fraction_)) points.push_back(p);
   return points;

@@ -11,7 +11,8 @@
 // Memory (a first step, not yet the O(chunk) of design-refine.md): per fine point the refine
 // quantities (8 bytes each) and two bytes (computed, level), plus one bit per block of each
 // level and 8 bytes per point of the phase in progress: 8 F + 2 bytes a point, F the number of
-// refine_on quantities (the default 4: 34 bytes, 340 MB for 10^7 points).
+// refine_on quantities (the default 4: 34 bytes, 340 MB for 10^7 points), and one bit a point
+// for the progress lines' count of points known to be inherited.
 
 #include <cstdint>
 #include <vector>
@@ -49,11 +50,17 @@ class RefinePlan {
   void fill(MapWriter& writer, Visit visit);
   // The figures of the points recorded (the audit's mismatches compared in the refine quantities).
   RefineFigures figures() const;
+  // For progress lines: points solved so far (audited too), and points known to be inherited
+  // and not solved: outside every refined block of the last level planned (no later level
+  // solves them), every point the levels left once the audit is planned, and those filled.
+  std::uint64_t solved() const { return solved_; }
+  std::uint64_t inferred() const { return inferred_; }
 
  private:
   bool differ(std::size_t a, std::size_t b) const;
   void decide_level(int level);
   PointDecision decide(std::size_t flat) const;
+  void infer(int level);
   void fill_run(MapWriter& writer, std::uint64_t first, std::vector<CellResult>& run);
   const CellResult& source_cell(MapWriter& writer, std::uint64_t flat);
 
@@ -66,6 +73,8 @@ class RefinePlan {
   bool speckle_;
   std::vector<bool> whole_;                   // [level-1 block id]: solved whole (speckle), once level 1 is decided
   std::vector<std::pair<CellSpan, std::vector<CellResult>>> cache_;  // fill: chunks read
+  std::vector<bool> inferred_bit_;            // per point: counted in inferred_
+  std::uint64_t solved_ = 0, inferred_ = 0;
 };
 
 template <class Visit>

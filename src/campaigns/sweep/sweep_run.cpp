@@ -164,7 +164,10 @@ FarmReport run_phases(const MpiSession& mpi, const FarmOptions& options, const C
     }
     if (mpi.broadcast(points) == 0) continue;
     FarmOptions o = options;
-    o.label = phase <= levels ? cat("sweep level ", std::to_string(phase), "/", std::to_string(levels)) : "sweep audit";
+    o.label = phase == 0        ? std::string("sweep coarse")
+              : phase <= levels ? cat("sweep level ", std::to_string(phase), "/", std::to_string(levels))
+                                : std::string("sweep audit");
+    o.noun = "points";
     add_phase(total, run_campaign(mpi, o, campaign));
     total.stop_signal = mpi.broadcast(total.stop_signal);
     if (total.stop_signal != 0) break;
@@ -199,7 +202,10 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
     report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
   }
   report.refine_levels = levels;
-  if (auto* refine = dynamic_cast<detail::RefineSink*>(sink.get())) report.refine = refine->figures();
+  if (auto* refine = dynamic_cast<detail::RefineSink*>(sink.get())) {
+    report.refine = refine->figures();
+    report.refine_solved_now = report.farm.items_computed - refine->filled();
+  }
   if (sink) {
     report.regimes = sink->tally().regimes;
     report.census_budget_states = sink->tally().census_budget_states;

@@ -158,12 +158,12 @@ struct SweepInterval {
 };
 const std::vector<SweepInterval>& sweep_intervals();
 // The refinement keys (sweep_refine.cpp): the rows of refine and refine_audit (refine_on is a
-// list, documented by refine_on_meaning()); the reader; a refined map's identity lines (none
-// when refine = 0).
+// list, documented by refine_on_meaning()); the reader (`census`: the scene has [census], which
+// attractors and soft_fraction need); a refined map's identity lines (none when refine = 0).
 const std::vector<SceneKey>& sweep_refine_keys();
 std::string refine_on_list(const std::vector<RefineOn>& list);  // ["regime", "k_con:0.1"]
 std::string refine_on_meaning();
-void read_refine(const toml::table& sweep_table, const Context& ctx, SweepOptions& sweep);
+void read_refine(const toml::table& sweep_table, const Context& ctx, bool census, SweepOptions& sweep);
 std::vector<std::string> refine_lines(const SweepOptions& sweep);
 const std::vector<std::string>& quantity_names();  // the storable quantities, cell_result.hpp's order
 

@@ -75,6 +75,31 @@ void check_fine_size(const SweepOptions& sweep, const std::string& loc) {
              " points: at most ", shortest(kMaxFineCells)));
 }
 
+// A census's quantities: a map has them only when the scene has [census].
+bool census_field(RefineField f) { return f == RefineField::attractors || f == RefineField::soft_fraction; }
+
+// Every map keeps the classes regime, n, k and soft; a storable quantity the plan compares is
+// added to sweep.store (read_refine).
+bool every_map_keeps(RefineField f) {
+  if (f == RefineField::regime || f == RefineField::n || f == RefineField::k || f == RefineField::soft) return true;
+  const std::vector<Quantity>& all = all_quantities();
+  return std::any_of(all.begin(), all.end(), [&](Quantity q) { return to_string(q) == to_string(f); });
+}
+
+// The plan reads each refine quantity from the map (a resume plans from the file): the map
+// must keep it.
+void check_kept(const std::vector<RefineOn>& list, bool census, const std::string& loc) {
+  for (const RefineOn& on : list) {
+    const std::string name = to_string(on.field);
+    if (census_field(on.field) && !census)
+      fail(cat(loc, ": sweep.refine_on names ", name, ", a census quantity, but the scene has no [census] section: add "
+               "one (a census map keeps ", name, ") or take ", name, " out of sweep.refine_on"));
+    if (!census_field(on.field) && !every_map_keeps(on.field))
+      fail(cat(loc, ": sweep.refine_on names ", name, ", which a map does not store: refine on ",
+               "regime, n, k, soft or a quantity of sweep.store"));
+  }
+}
+
 }  // namespace
 
 const std::vector<SceneKey>& sweep_refine_keys() {
@@ -105,10 +130,10 @@ std::string refine_on_meaning() {
   return cat("the quantities whose difference between neighbours refines a cell: classes compared exactly (",
              "regime, n, k, soft, hertz_valid, attractors: a census's count), continuous ones (k_con, T_con, F_max, "
              "z_ratio, soft_fraction) as \"name:rel\", differing when |a - b| > rel max(|a|, |b|) (no \":rel\": any "
-             "difference); a continuous quantity is stored in the map");
+             "difference); a continuous quantity is stored in the map; attractors and soft_fraction need a [census] section");
 }
 
-void read_refine(const toml::table& sec, const Context& ctx, SweepOptions& sweep) {
+void read_refine(const toml::table& sec, const Context& ctx, bool census, SweepOptions& sweep) {
   const std::vector<SceneKey>& keys = sweep_refine_keys();
   if (const toml::node* node = sec.get("refine")) {
     const std::string loc = locate(ctx, keys[0], *node);
@@ -130,6 +155,7 @@ void read_refine(const toml::table& sec, const Context& ctx, SweepOptions& sweep
     for (std::size_t i = 0; i < list.size(); ++i)
       for (std::size_t j = 0; j < i; ++j)
         if (list[i].field == list[j].field) fail(cat(loc, ": ", to_string(list[i].field), " is listed twice"));
+    check_kept(list, census, loc);
     sweep.refine_on = std::move(list);
   }
   if (sweep.refine == 0) return;

@@ -268,7 +268,7 @@ std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& 
     if (const toml::node* node = sec->get(row.info.key)) sweep.*row.field = read_real(row.info, *node, locate(ctx, row.info, *node));
   }
   check_grid_size(sweep.axes, ctx);
-  read_refine(*sec, ctx, sweep);
+  read_refine(*sec, ctx, table.get_as<toml::table>(kCensus) != nullptr, sweep);
   return sweep;
 }
 

@@ -4,11 +4,13 @@
   point done, computed/level consistent with the refine attributes;
 - it does not depend on the number of ranks (1, 2, 3): every dataset but wall_s identical, and
   the refine attributes too;
-- a run killed with SIGKILL in the middle of its phases and resumed gives the same map.
+- a run killed with SIGKILL in the middle of its phases and resumed gives the same map;
+- a uniform map (refine = 0) reports cells as it always did.
 
 Run by ctest (tests/sweep_tests.cmake), which sets VIBROMAP_EXE and VIBROMAP_MPIEXEC.
 """
 import json
+import re
 import os
 import subprocess
 import sys
@@ -33,8 +35,10 @@ def write_scene(tmp_path, n1=4, n2=3, checkpoint=60.0):
     return path
 
 
-def sweep(ranks, scene, out, *extra):
-    cmd = [MPIEXEC, "-n", str(ranks), EXE, "sweep", str(scene), "-o", str(out), "--quiet", *REFINE, *extra]
+def sweep(ranks, scene, out, *extra, refine=REFINE, quiet=True):
+    """`vibromap sweep` on `ranks` ranks with the refine keys `refine` (none: the scene's own)."""
+    cmd = [MPIEXEC, "-n", str(ranks), EXE, "sweep", str(scene), "-o", str(out), *(["--quiet"] if quiet else []),
+           *refine, *extra]
     proc = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr
     return proc
@@ -117,3 +121,13 @@ def test_killed_adaptive_sweep_resumes_to_the_same_map(tmp_path):
     report = json.loads(sweep(2, scene, out, "--resume", "--format", "json").stdout)
     assert report["cells_resumed"] == int(done.sum()) and report["complete"]
     assert_same_map(reference, out)
+
+
+def test_uniform_map_report_counts_cells_as_before(tmp_path):
+    # refine = 0: the report's lines are a uniform map's, cells computed and cells/s (an adaptive
+    # map's points line is checked by test_refine_census_3d.py).
+    scene = write_scene(tmp_path, n1=2, n2=2)
+    proc = sweep(1, scene, tmp_path / "uniform.h5", refine=[])
+    assert "cells          4 (0 from the resumed map, 4 computed now)\n" in proc.stdout
+    assert re.search(r"\nwall time      [0-9.e+-]+ s, [0-9.e+-]+ cells/s\n", proc.stdout), proc.stdout
+    assert "\npoints " not in proc.stdout and "\nrefine " not in proc.stdout

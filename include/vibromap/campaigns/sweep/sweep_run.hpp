@@ -40,6 +40,7 @@ struct SweepReport {
   // (solved per level, inherited, audited, mismatches and their 95 % bound).
   int refine_levels = 0;
   RefineFigures refine;
+  std::uint64_t refine_solved_now = 0;   // points solved (audited too) by this run: farm.items_computed less the fill
 };
 
 // Collective: every rank calls it with the same scene and config. Throws SceneError (no
