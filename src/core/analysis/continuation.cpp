@@ -39,6 +39,7 @@ std::string to_string(BifurcationType t) {
 namespace {
 
 using continuation_detail::Eval;
+using continuation_detail::kMaxTurn;
 using continuation_detail::Problem;
 using continuation_detail::Vector5d;
 
@@ -60,8 +61,6 @@ int ns_count(const Eval& e) {
 // in the step makes the Jacobian jump); such a change has no critical multiplier and is no
 // bifurcation of the smooth theory: it is not reported (the grazing is).
 constexpr double kCriticalMultiplier = 1e-2;
-// The largest turn of the tangent over one accepted step, rad.
-constexpr double kMaxTurn = 0.3;
 // A fold, period doubling or Neimark-Sacker point located within this fraction of the interval of
 // a grazing located in the same step is the grazing's own jump of the multipliers (the map is not
 // smooth there), not a bifurcation of the smooth theory: only the grazing is reported.
