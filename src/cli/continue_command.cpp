@@ -249,7 +249,7 @@ std::vector<CurveSpec> curve_specs(const ContinueArgs& args) {
   for (const std::string& text : args.curves) {
     std::string error;
     const std::optional<CurveSpec> spec = parse_curve_spec(text, error);
-    if (!spec) throw SceneError("--curve " + error);
+    if (!spec) throw SceneError("--curve " + error);  // "--curve KIND: what is wrong"
     specs.push_back(*spec);
   }
   return specs;

@@ -140,6 +140,52 @@ TEST(CurveContinuation, TheFoldCurveEndsOnTheFoldsOfTheBranchesAtItsEnds) {
               c.points.front().param2, c.points.back().param2, worst_residual(c), c.stop.c_str(), seconds_since(t0));
 }
 
+// The period doubling of Table 1's (1,1) branch (omega 7.23 -> 6.3 at F0 = 500 N) followed in
+// (omega, F0) over [450, 550] N: a multiplier at -1 at every point, and the curve's ends on the
+// box's sides agree with the period doubling the branch locates at that force.
+TEST(CurveContinuation, ThePeriodDoublingCurveEndsOnTheDoublingsOfTheBranches) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Parameters base;  // Table 1
+  const PointOptions options;
+  const auto pd_at = [&](double F0) {
+    Parameters p = base;
+    p.F0 = F0;
+    const PointSummary s = solve_point(p, options);
+    return continue_orbit(path(p, options, "omega"), 7.23, 6.3, s.final_state, ContinuationOptions{});
+  };
+  const Branch b = pd_at(base.F0);
+  const Bifurcation* pd = first_of(b, BifurcationType::period_doubling);
+  ASSERT_NE(pd, nullptr) << b.stop;
+  CurveOptions o;
+  const CurveBox box{7.23, 6.3, 450.0, 550.0, "forcing.omega", "forcing.F0"};
+  const CurveSpec spec{CurveKind::period_doubling, LevelQuantity::k_con, 0.0, "period-doubling"};
+  const Curve c = continue_curve(plane(base, options, "omega", "F0"), box, spec, 1, pd->at.param, base.F0, pd->at.y, o);
+  ASSERT_GT(c.points.size(), 3u) << c.stop;
+  EXPECT_LE(worst_residual(c), o.condition_tol);
+  double nearest = 0.0;  // the worst over the points of the multiplier nearest -1
+  for (const CurvePoint& q : c.points) {
+    double d = 1e300;
+    for (const auto& mu : q.multipliers) d = std::min(d, std::abs(mu + 1.0));
+    nearest = std::max(nearest, d);
+  }
+  EXPECT_LT(nearest, 1e-6);
+  int ends = 0;
+  for (const CurvePoint* end : {&c.points.front(), &c.points.back()}) {
+    if (end->param2 != 450.0 && end->param2 != 550.0) continue;
+    ++ends;
+    const Branch e = pd_at(end->param2);
+    const Bifurcation* pe = first_of(e, BifurcationType::period_doubling);
+    ASSERT_NE(pe, nullptr) << e.stop;
+    EXPECT_NEAR(end->param, pe->at.param, 1e-9 * (7.23 - 6.3)) << "F0 = " << end->param2;  // locate_tol
+    std::printf("period-doubling curve at F0 = %.0f N: omega %.10f, the branch's %.10f (difference %.1e)\n",
+                end->param2, end->param, pe->at.param, end->param - pe->at.param);
+  }
+  EXPECT_GE(ends, 1) << c.stop;
+  std::printf("period-doubling curve: %zu points, worst residual %.1e, multipliers within %.1e of -1, stop: %s; "
+              "%.1f s\n",
+              c.points.size(), worst_residual(c), nearest, c.stop.c_str(), seconds_since(t0));
+}
+
 // c. The level k_con = 10 of the (1,1) family at omega = 7.23 found along E2 in [1e6, 2e6] Pa
 // and continued in E1 over [1e9, 1e11] Pa: at three of its points a plain solve from rest
 // gives k_con = 10.
@@ -189,10 +235,11 @@ TEST(CurveContinuation, KindsAreParsedAndBadOnesSaid) {
   EXPECT_EQ(level->quantity, LevelQuantity::z_ratio);
   EXPECT_EQ(level->value, 0.01);
   EXPECT_FALSE(parse_curve_spec("cusp", error).has_value());
-  EXPECT_EQ(error, "'cusp' is not one of fold, period-doubling, neimark-sacker, grazing, level:NAME=VALUE");
+  EXPECT_EQ(error, "cusp: not one of fold, period-doubling, neimark-sacker, grazing, level:NAME=VALUE");
   EXPECT_FALSE(parse_curve_spec("level:x1=3", error).has_value());
-  EXPECT_EQ(error, "level NAME 'x1' is not one of k_con, T_con, F_max, z_ratio");
+  EXPECT_EQ(error, "level:x1=3: NAME x1 is not one of k_con, T_con, F_max, z_ratio");
   EXPECT_FALSE(parse_curve_spec("level:k_con=ten", error).has_value());
+  EXPECT_EQ(error, "level:k_con=ten: VALUE must be a finite number");
 }
 
 }  // namespace

@@ -35,18 +35,18 @@ std::optional<CurveSpec> parse_curve_spec(const std::string& text, std::string& 
     else if (name == "F_max") s.quantity = LevelQuantity::F_max;
     else if (name == "z_ratio") s.quantity = LevelQuantity::z_ratio;
     else {
-      error = "level NAME '" + name + "' is not one of k_con, T_con, F_max, z_ratio";
+      error = text + ": NAME " + name + " is not one of k_con, T_con, F_max, z_ratio";
       return std::nullopt;
     }
     const std::string value = eq == std::string::npos ? std::string() : rest.substr(eq + 1);
     char* end = nullptr;
     s.value = std::strtod(value.c_str(), &end);
     if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(s.value)) {
-      error = "level:" + name + "=VALUE needs a finite number VALUE, got '" + value + "'";
+      error = text + ": VALUE must be a finite number";
       return std::nullopt;
     }
   } else {
-    error = "'" + text + "' is not one of fold, period-doubling, neimark-sacker, grazing, level:NAME=VALUE";
+    error = text + ": not one of fold, period-doubling, neimark-sacker, grazing, level:NAME=VALUE";
     return std::nullopt;
   }
   return s;
