@@ -223,7 +223,8 @@ void curves_table(std::ostream& out, const std::string& key, const std::string& 
     for (const CurvePoint& q : c.points) worst = std::max(worst, q.residual);
     out << "  curve " << i << "  " << c.spec.label << " (period " << c.n << " T): " << c.points.size() << " points, "
         << key << " " << range_of(c, false) << ", " << key2 << " " << range_of(c, true) << ", worst residual "
-        << std::setprecision(2) << worst << std::setprecision(6) << "\n    stop: " << c.stop << "\n";
+        << std::setprecision(2) << worst << ", from the point located at " << key << " = " << std::setprecision(10)
+        << c.points[static_cast<std::size_t>(c.start)].param << std::setprecision(6) << "\n    stop: " << c.stop << "\n";
     for (const Codim2Point& x : c.codim2)
       out << "    codim-2: " << x.kind << " at " << key << " = " << std::setprecision(10) << x.param << ", " << key2
           << " = " << x.param2 << std::setprecision(6) << "\n";

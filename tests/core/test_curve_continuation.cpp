@@ -168,7 +168,7 @@ TEST(CurveContinuation, ThePeriodDoublingCurveEndsOnTheDoublingsOfTheBranches) {
     for (const auto& mu : q.multipliers) d = std::min(d, std::abs(mu + 1.0));
     nearest = std::max(nearest, d);
   }
-  EXPECT_LT(nearest, 1e-6);
+  EXPECT_LT(nearest, 1e-9 * (12.0 - 3.0));  // locate_tol
   int ends = 0;
   for (const CurvePoint* end : {&c.points.front(), &c.points.back()}) {
     if (end->param2 != 450.0 && end->param2 != 550.0) continue;
@@ -184,6 +184,52 @@ TEST(CurveContinuation, ThePeriodDoublingCurveEndsOnTheDoublingsOfTheBranches) {
   std::printf("period-doubling curve: %zu points, worst residual %.1e, multipliers within %.1e of -1, stop: %s; "
               "%.1f s\n",
               c.points.size(), worst_residual(c), nearest, c.stop.c_str(), seconds_since(t0));
+}
+
+// The last Neimark-Sacker point of Table 2's branch over omega in [3, 12] rad/s (near 6.4015)
+// followed in (omega, F0) over [450, 550] N: a complex pair on the unit circle at every point,
+// and the curve's end at 450 N is a Neimark-Sacker point the branch locates at that force.
+TEST(CurveContinuation, TheNeimarkSackerCurveKeepsAComplexPairOnTheUnitCircle) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Parameters base = table2();
+  const PointOptions options;
+  const auto branch_at = [&](double F0) {
+    Parameters p = base;
+    p.F0 = F0;
+    p.omega = 3.0;
+    const PointSummary s = solve_point(p, options);
+    return continue_orbit(path(p, options, "omega"), 3.0, 12.0, s.final_state, ContinuationOptions{});
+  };
+  const Branch b = branch_at(base.F0);
+  const Bifurcation* ns = nullptr;
+  for (const Bifurcation& x : b.bifurcations)
+    if (x.type == BifurcationType::neimark_sacker) ns = &x;
+  ASSERT_NE(ns, nullptr) << b.stop;
+  ASSERT_NEAR(ns->at.param, 6.4015, 1e-3);
+  CurveOptions o;
+  const CurveBox box{3.0, 12.0, 450.0, 550.0, "forcing.omega", "forcing.F0"};
+  const CurveSpec spec{CurveKind::neimark_sacker, LevelQuantity::k_con, 0.0, "neimark-sacker"};
+  const Curve c = continue_curve(plane(base, options, "omega", "F0"), box, spec, 1, ns->at.param, base.F0, ns->at.y, o);
+  ASSERT_GT(c.points.size(), 3u) << c.stop;
+  EXPECT_EQ(c.stop, "left the box at forcing.F0 = 550; left the box at forcing.F0 = 450");
+  double worst = 0.0;  // over the points: the complex pair's distance from the unit circle
+  for (const CurvePoint& q : c.points) {
+    double d = 1e300;
+    for (const auto& mu : q.multipliers)
+      if (std::abs(mu.imag()) > 1e-6) d = std::min(d, std::abs(std::abs(mu) - 1.0));
+    worst = std::max(worst, d);
+  }
+  EXPECT_LT(worst, 1e-9);
+  const CurvePoint& end = c.points.front();
+  ASSERT_EQ(end.param2, 450.0);
+  const Branch e = branch_at(450.0);
+  double nearest = 1e300;
+  for (const Bifurcation& x : e.bifurcations)
+    if (x.type == BifurcationType::neimark_sacker) nearest = std::min(nearest, std::abs(x.at.param - end.param));
+  EXPECT_LT(nearest, 1e-9 * (12.0 - 3.0));  // locate_tol
+  std::printf("neimark-sacker curve: %zu points, abs(mu) - 1 within %.1e, its end at 450 N %.1e rad/s from the "
+              "branch's; %.1f s\n",
+              c.points.size(), worst, nearest, seconds_since(t0));
 }
 
 // c. The level k_con = 10 of the (1,1) family at omega = 7.23 found along E2 in [1e6, 2e6] Pa

@@ -99,3 +99,51 @@ def test_the_fold_curve_brackets_the_up_sweeps_jump_at_its_ends(tmp_path):
         off = next(i for i, s in enumerate(up) if abs(s["strobe_x1"][0] - s["strobe_x1"][1]) > 1e-4)
         assert off > 0
         assert up[off - 1]["param"] <= end["param"] < up[off]["param"], (end, up[off - 1]["param"], up[off]["param"])
+
+
+def test_a_codim2_point_is_found_alike_on_both_its_curves(tmp_path):
+    """With the doubled branch (--pd-depth 1), the fold curve and the period-doubling curve of
+    Table 2's period-2 orbit cross over F0 in [400, 600] N: the fold curve sees det(M + I) change
+    sign and the period-doubling curve det(M - I), each located by bisection along its own curve;
+    both name the same point (measured 2026-11-26: omega 7.4147796061, F0 445.4172491 N, the two
+    within 8e-11 rad/s and 1e-7 N)."""
+    report = json.loads(vibromap("continue", "jobs/paper/table2.toml", "--param", "omega", "--from", "7.23",
+                                 "--to", "8.3", "--curve", "fold", "--curve", "period-doubling", "--param2",
+                                 "forcing.F0", "--from2", "400", "--to2", "600", "--format", "json", "-o",
+                                 tmp_path / "c.h5"))
+    found = {x["kind"]: (x["param"], x["param2"], c["n"]) for c in report["curves"] for x in c["codim2"]}
+    a, b = found["fold+period-doubling"], found["period-doubling+fold"]
+    assert a[2] == b[2] == 2
+    assert abs(a[0] - b[0]) < 1e-6 and abs(a[1] - b[1]) < 1e-4, (a, b)
+    assert abs(a[0] - 7.41478) < 1e-4 and abs(a[1] - 445.417) < 1e-2
+    with h5py.File(tmp_path / "c.h5", "r") as f:  # the file holds them too, kind as a string
+        stored = {}
+        for i, c in enumerate(report["curves"]):
+            g = f[f"curve_{i}/codim2"]
+            assert g.attrs.get("kind") is None and f[f"curve_{i}"].attrs["kind"] == c["kind"]
+            for k, p, q in zip(g["kind"][()], g["param"][()], g["param2"][()]):
+                stored[k.decode()] = (p, q)
+        assert stored["fold+period-doubling"] == a[:2] and stored["period-doubling+fold"] == b[:2]
+
+
+def test_the_grazing_curve_is_the_linear_closed_form():
+    """The grazing of Table 2's contact-free orbit (followed down from omega = 11 rad/s) as a curve
+    in (omega, F0) over [300, 700] N: without contact the system is linear, and the orbit touches
+    where F0 |U1 - U2| = D, U = (K - omega^2 M + i omega C)^-1 (1, 0) the response of x1 and
+    x2 - D per unit force (Table 2: m1 = 1000, m2 = 310 kg, omega1 = 6.283, omega2 = 3.606 rad/s,
+    xi1 = xi2 = 0.01, D = 0.05 m). Every point at the scene's tolerance to 1e-7 (measured
+    2026-11-26: 3.2e-10, 26 points)."""
+    report = json.loads(vibromap("continue", "jobs/paper/table2.toml", "--param", "omega", "--from", "11",
+                                 "--to", "7.3", "--pd-depth", "0", "--curve", "grazing", "--param2", "F0",
+                                 "--from2", "300", "--to2", "700", "--format", "json"))
+    m1, m2, D = 1000.0, 310.0, 0.05
+    k1, k2 = m1 * 6.283**2, m2 * 3.606**2
+    c1, c2 = 2 * 0.01 * np.sqrt(m1 * k1), 2 * 0.01 * np.sqrt(m2 * k2)
+    M, C = np.diag([m1, m2]), np.array([[c1 + c2, -c2], [-c2, c2]])
+    K = np.array([[k1 + k2, -k2], [-k2, k2]])
+    (curve,) = report["curves"]
+    assert curve["kind"] == "grazing" and len(curve["points"]) > 10
+    for p in curve["points"]:
+        w, F0 = p["param"], p["param2"]
+        U = np.linalg.solve(K - w * w * M + 1j * w * C, np.array([1.0, 0.0]))
+        assert abs(F0 * abs(U[1] - U[0]) / D - 1.0) < 1e-7, p
