@@ -40,6 +40,8 @@ namespace {
 
 using continuation_detail::Eval;
 using continuation_detail::kMaxTurn;
+using continuation_detail::kStallPoints;
+using continuation_detail::kStallStep;
 using continuation_detail::Problem;
 using continuation_detail::Vector5d;
 
@@ -75,10 +77,6 @@ constexpr double kRejoinGap = 1e-4;
 // ... and the period doubling where it rejoins is that one of the parent's located within this
 // fraction of the interval (its end is located on the doubled branch, to the branch's accuracy).
 constexpr double kSameDoubling = 1e-3;
-// A branch whose step stays below kStallStep for kStallPoints accepted points in a row stops:
-// Newton converges only on tiny steps (a nonsmooth stretch the grazing logic does not cross).
-constexpr double kStallStep = 1e-4;
-constexpr int kStallPoints = 200;
 // Crossings of one grazing point after the first before a branch stops there.
 constexpr int kMaxCrossings = 8;
 bool has_critical_multiplier(BifurcationType type, const std::vector<std::complex<double>>& mu) {

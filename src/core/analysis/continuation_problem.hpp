@@ -20,6 +20,10 @@ using Matrix5d = Eigen::Matrix<double, 5, 5>;
 
 // The largest turn of the tangent over one accepted step, rad (branches and curves alike).
 inline constexpr double kMaxTurn = 0.3;
+// A branch or curve whose step stays below kStallStep for kStallPoints accepted points in a row
+// stops: Newton converges only on tiny steps (a nonsmooth stretch, e.g. a grazing of stiff contact).
+inline constexpr double kStallStep = 1e-4;
+inline constexpr int kStallPoints = 200;
 
 // Newton's corrector of pseudo-arclength continuation, shared by the branch (N = 5: y, lambda)
 // and the curves of two parameters (N = 6: y, P, Q; curve_problem.hpp): from z_pred, solves

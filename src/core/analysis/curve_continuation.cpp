@@ -136,6 +136,7 @@ class CurveTracer {
   Curve& curve_;
   std::vector<CurvePoint>& out_;
   double ds_;
+  int stalled_ = 0;  // accepted steps in a row below kStallStep
   std::string stop_;
 };
 
@@ -167,6 +168,11 @@ std::string CurveTracer::run(bool& closed) {
     const double step = (next->z - last_.z).norm();
     last_ = *next;
     out_.push_back(next->p);
+    stalled_ = ds_ < continuation_detail::kStallStep ? stalled_ + 1 : 0;
+    if (stalled_ >= continuation_detail::kStallPoints)
+      return "stalled at " + pb_.box().key + " = " + number(last_.p.param) + ", " + pb_.box().key2 + " = " +
+             number(last_.p.param2) + ": " + std::to_string(continuation_detail::kStallPoints) +
+             " steps in a row below 1e-4 (Newton converges only on tiny steps: the map is not smooth here)";
     if (iterations <= 3) ds_ = std::min(1.5 * ds_, o_.ds_max);
     if (out_.size() > 3 && (last_.z - start_).norm() < 0.5 * step) {
       closed = true;
