@@ -39,6 +39,13 @@ struct ParamScene {
 using SceneLoader = std::function<Scene(const std::vector<std::string>& sets)>;
 ParamScene scene_with_param(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
                             const std::string& axis);
+// The same with a second key `param2` stepped over `axis2` (`continue --curve ... --param2`).
+struct ParamScene2 {
+  Scene scene;
+  Axis axis, axis2;
+};
+ParamScene2 scene_with_params(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
+                              const std::string& axis, const std::string& param2, const std::string& axis2);
 std::string short_number(double x);  // 12 digits: 7.23, for messages
 std::string exact_number(double x);  // 17 digits: the double itself, for overrides
 

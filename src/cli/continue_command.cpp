@@ -5,12 +5,14 @@
 #include <filesystem>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
 #include "command.hpp"
 #include "commands.hpp"
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
+#include "vibromap/campaigns/continuation/curve_run.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/report.hpp"
@@ -33,6 +35,9 @@ struct ContinueArgs {
   bool overwrite = false;        // replace an existing branch file
   bool points = false;           // table: every point of every branch too (json always has them)
   std::string format = "table";
+  std::vector<std::string> curves;  // --curve KIND (issue #31): curves in (param, param2)
+  std::string param2;
+  double from2 = NAN, to2 = NAN;  // NaN: not given
 };
 int continue_command(const ContinueArgs& args, std::ostream& out);
 
@@ -137,7 +142,10 @@ void print_table(std::ostream& out, const ContinueArgs& args, const std::string&
   if (args.points) points_table(out, branches, measured);
 }
 
-void print_json(std::ostream& out, const std::string& key, const ContinuationReport& report) {
+void curves_json(JsonWriter& w, const CurvesReport& r);
+
+void print_json(std::ostream& out, const std::string& key, const ContinuationReport& report,
+                const CurvesReport* curves = nullptr) {
   const std::vector<Branch>& branches = report.branches;
   const Branch& branch = branches.front();
   JsonWriter w(out);
@@ -154,8 +162,116 @@ void print_json(std::ostream& out, const std::string& key, const ContinuationRep
     bifurcations_json(w, s.bifurcations);
     w.end_object();
   }
-  w.end_array().end_object();
+  w.end_array();
+  if (curves) curves_json(w, *curves);
+  w.end_object();
   out << "\n";
+}
+
+void curves_json(JsonWriter& w, const CurvesReport& r) {
+  w.key("curves").begin_array();
+  for (const MeasuredCurve& mc : r.curves) {
+    const Curve& c = mc.curve;
+    w.begin_object().field("kind", c.spec.label).field("n", c.n).field("stop", c.stop).field("start", c.start);
+    w.key("codim2").begin_array();
+    for (const Codim2Point& x : c.codim2)
+      w.begin_object().field("param", x.param).field("param2", x.param2).field("kind", x.kind).end_object();
+    w.end_array();
+    w.key("points").begin_array();
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const CurvePoint& q = c.points[i];
+      const PointSummary& m = mc.orbits[i];
+      w.begin_object().field("param", q.param).field("param2", q.param2);
+      w.field("T_con", m.T_con).field("k_con", m.k_con).field("z_ratio", m.z_ratio).field("F_max", m.F_max);
+      w.field("impacts", static_cast<long>(m.impacts.size())).field("stable", q.stable);
+      multipliers_json(w, q.multipliers);
+      w.field("residual", q.residual).field("orbit_residual", q.orbit_residual);
+      write_state_json(w.key("y"), q.y);
+      w.end_object();
+    }
+    w.end_array().end_object();
+  }
+  w.end_array();
+  w.key("skipped").begin_array();
+  for (const std::string& s : r.skipped) w.value(s);
+  w.end_array();
+}
+
+// The range of one coordinate of a curve's points.
+std::string range_of(const Curve& c, bool second) {
+  if (c.points.empty()) return "-";
+  double lo = INFINITY, hi = -INFINITY;
+  for (const CurvePoint& q : c.points) {
+    const double x = second ? q.param2 : q.param;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  std::ostringstream os;
+  os << std::setprecision(7) << lo << " .. " << hi;
+  return os.str();
+}
+
+// One paragraph per curve: kind, points, the ranges of both keys, the worst residual, why it
+// stopped, and its codimension-two points.
+void curves_table(std::ostream& out, const std::string& key, const std::string& key2, const CurvesReport& r) {
+  out << "\ncurves         " << r.curves.size() << " in (" << key << ", " << key2 << "), started at " << key2 << " = "
+      << short_number(r.q0) << " (" << std::setprecision(3) << std::fixed << r.wall_s << " s in all)\n"
+      << std::defaultfloat;
+  for (std::size_t i = 0; i < r.curves.size(); ++i) {
+    const Curve& c = r.curves[i].curve;
+    double worst = 0.0;
+    for (const CurvePoint& q : c.points) worst = std::max(worst, q.residual);
+    out << "  curve " << i << "  " << c.spec.label << " (period " << c.n << " T): " << c.points.size() << " points, "
+        << key << " " << range_of(c, false) << ", " << key2 << " " << range_of(c, true) << ", worst residual "
+        << std::setprecision(2) << worst << ", from the point located at " << key << " = " << std::setprecision(10)
+        << c.points[static_cast<std::size_t>(c.start)].param << std::setprecision(6) << "\n    stop: " << c.stop << "\n";
+    for (const Codim2Point& x : c.codim2)
+      out << "    codim-2: " << x.kind << " at " << key << " = " << std::setprecision(10) << x.param << ", " << key2
+          << " = " << x.param2 << std::setprecision(6) << "\n";
+  }
+  for (const std::string& s : r.skipped) out << "  not followed: " << s << "\n";
+}
+
+// The --curve options: KIND parsed, --param2/--from2/--to2 given with it (and only with it).
+std::vector<CurveSpec> curve_specs(const ContinueArgs& args) {
+  const bool has_from2 = !std::isnan(args.from2), has_to2 = !std::isnan(args.to2);
+  const bool any2 = !args.param2.empty() || has_from2 || has_to2;
+  if (args.curves.empty()) {
+    if (any2) throw SceneError("--param2/--from2/--to2: only with --curve KIND");
+    return {};
+  }
+  if (args.param2.empty() || !has_from2 || !has_to2)
+    throw SceneError("--curve: needs --param2 KEY --from2 C --to2 D (the second key and its range)");
+  if (!(std::isfinite(args.from2) && std::isfinite(args.to2) && args.from2 < args.to2))
+    throw SceneError(cat("--from2 ", short_number(args.from2), " --to2 ", short_number(args.to2),
+                         ": need finite values with --from2 < --to2"));
+  if (args.param2 == args.param) throw SceneError(cat("--param2 ", args.param2, ": the same key as --param"));
+  std::vector<CurveSpec> specs;
+  for (const std::string& text : args.curves) {
+    std::string error;
+    const std::optional<CurveSpec> spec = parse_curve_spec(text, error);
+    if (!spec) throw SceneError("--curve " + error);  // "--curve KIND: what is wrong"
+    specs.push_back(*spec);
+  }
+  return specs;
+}
+
+int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, std::vector<CurveSpec> specs,
+                    std::ostream& out) {
+  const auto range = [](double a, double b) {
+    return cat("{values=[", exact_number(std::min(a, b)), ",", exact_number(std::max(a, b)), "]}");
+  };
+  const ParamScene2 ps = scene_with_params([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
+                                           args.param, range(args.from, args.to), args.param2,
+                                           range(args.from2, args.to2));
+  const CurvesReport r = run_curves(ps.scene, ps.axis, ps.axis2, config, {std::move(specs), args.from2, args.to2});
+  if (args.format == "json") {
+    print_json(out, ps.axis.key, r.branch, &r);
+    return code(ExitCode::ok);
+  }
+  print_table(out, args, ps.axis.key, r.branch.n, r.branch.start_regime, r.branch.branches, r.branch.measured);
+  curves_table(out, ps.axis.key, ps.axis2.key, r);
+  return code(ExitCode::ok);
 }
 
 }  // namespace
@@ -166,10 +282,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   if (!std::isfinite(args.to - args.from))
     throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to),
                          ": the span B - A must be finite (it scales the key)"));
-  const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
-                                         args.param,
-                                         cat("{values=[", exact_number(std::min(args.from, args.to)), ",",
-                                             exact_number(std::max(args.from, args.to)), "]}"));
+  std::vector<CurveSpec> specs = curve_specs(args);
   ContinuationConfig config;
   config.from = args.from;
   config.to = args.to;
@@ -178,6 +291,11 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   config.pd_depth = args.pd_depth;
   config.output = args.output;
   config.overwrite = args.overwrite;
+  if (!specs.empty()) return continue_curves(args, config, std::move(specs), out);
+  const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
+                                         args.param,
+                                         cat("{values=[", exact_number(std::min(args.from, args.to)), ",",
+                                             exact_number(std::max(args.from, args.to)), "]}"));
   const ContinuationReport report = run_continuation(ps.scene, ps.axis, config);
   if (args.format == "json") {
     print_json(out, ps.axis.key, report);
@@ -201,7 +319,18 @@ std::string continue_footer() {
       "the unit circle), grazing (the number of contacts per cycle changes: an impact appears\n"
       "or vanishes; the map is not smooth there, and the branch goes on across it with the new\n"
       "count). At each period doubling the doubled branch (period 2n T) is switched onto and\n"
-      "followed until it leaves [A, B] or rejoins the period-n orbit, to --pd-depth generations.";
+      "followed until it leaves [A, B] or rejoins the period-n orbit, to --pd-depth generations.\n"
+      "\n"
+      "With --curve KIND --param2 KEY2 --from2 C --to2 D, every KIND point on the branch (at the\n"
+      "scene's KEY2) is then followed as a curve in (KEY, KEY2) while KEY2 stays in [C, D] and KEY in\n"
+      "[A, B], both ways: pseudo-arclength on the extended system P^n(y) - y = 0, g = 0, with g\n"
+      "det(M - I) (fold), det(M + I) (period-doubling), |mu|^2 - 1 of the complex pair nearest the\n"
+      "unit circle (neimark-sacker), the least x2 - x1 over the cycle (grazing), or NAME - VALUE\n"
+      "(level:NAME=VALUE, NAME one of k_con, T_con, F_max, z_ratio; level points are located on the\n"
+      "branch where NAME crosses VALUE). Along each curve the other kinds' test functions are\n"
+      "watched and their changes located (codimension-two points). The table gives one summary per\n"
+      "curve, --format json adds `curves` (every point), -o writes the curve file instead of the\n"
+      "branch file (docs/file-formats.md).";
 }
 
 }  // namespace
@@ -228,10 +357,21 @@ Command declare_continue(CLI::App& app) {
                 "Period-doubling generations to switch onto: 0 none, 1 the doubled branches of the first, 2 also theirs, ...")
       ->check(kNumber & CLI::Range(0, 8))
       ->capture_default_str();
-  add_output_option(*c, "-o,--output", args->output, "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it)");
+  add_output_option(*c, "-o,--output", args->output,
+                    "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it); with --curve, the curve file");
   c->add_flag("--overwrite", args->overwrite, "Replace an existing branch file");
   c->add_flag("--points", args->points,
               "Table: print every point of every branch too (by default a summary: branches and bifurcations)");
+  c->add_option("--curve", args->curves,
+                "Also follow every KIND point of the branch in (KEY, KEY2): fold, period-doubling, neimark-sacker, "
+                "grazing or level:NAME=VALUE (NAME k_con, T_con, F_max, z_ratio); may be repeated")
+      ->type_name("KIND");
+  c->add_option("--param2", args->param2, "With --curve: the second key (a model parameter: forcing.F0, contact.E1, ...)")
+      ->type_name("KEY2");
+  c->add_option("--from2", args->from2, "With --curve: the second key's lower end (SI units)")->check(kNumber)->type_name("C");
+  c->add_option("--to2", args->to2, "With --curve: its upper end (> C; the scene's value must lie in [C, D])")
+      ->check(kNumber)
+      ->type_name("D");
   add_format_option(*c, args->format, "Output on stdout: table or json");
   return {.app = c, .footer = continue_footer(), .topic = "the continuation of a periodic orbit", .campaign = {},
           .run = [args](std::ostream& out) { return continue_command(*args, out); }};

@@ -337,6 +337,24 @@ Dataset Group::create_dataset(std::string_view name, ElementType type, const Sha
   return write_numbers(name, nullptr, count, type, shape.empty() ? Shape{0} : shape, options);
 }
 
+Dataset Group::write_strings(std::string_view name, std::span<const std::string> values) {
+  const std::string full_name = child_name(name);
+  const std::string what = detail::describe("dataset", full_name);
+  const hsize_t dims[1] = {values.size()};
+  const Handle type = detail::vlen_string_type(file_path_);
+  const Handle space = detail::make_handle(H5Screate_simple(1, dims, nullptr), HandleKind::dataspace, file_path_,
+                                           "create dataspace for " + what);
+  const Handle lcpl = detail::link_creation_list(file_path_);
+  Handle dataset = detail::make_handle(
+      H5Dcreate2(id(), std::string(name).c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+      HandleKind::dataset, file_path_, "create " + what);
+  std::vector<const char*> data;
+  for (const std::string& v : values) data.push_back(v.c_str());
+  if (!data.empty())
+    check(H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), file_path_, "write " + what);
+  return Dataset(std::move(dataset), file_path_, full_name);
+}
+
 Dataset Group::write_dataset(std::string_view name, std::span<const double> data, const Shape& shape,
                              const DatasetOptions& options) {
   return write_numbers(name, data.data(), data.size(), ElementType::float64, shape, options);

@@ -279,6 +279,39 @@ vibromap_cli_test(continue_file_exists RC 2 ARGS continue jobs/paper/table1.toml
                   -o jobs/paper/table2.toml
                   ERR "jobs/paper/table2\\.toml: --output: already exists. use --overwrite to replace it")
 
+# `vibromap continue --curve` (issue #31): curves in two parameters. The grazing of Table 2's
+# contact-free orbit (followed down from omega = 11 rad/s) as a curve in (omega, F0): it crosses
+# the box from F0 = 700 N to omega = 7.3 rad/s (checked against the linear closed form in
+# tests/core/test_curve_continuation.cpp); one line for each bad use of the options.
+vibromap_cli_test(continue_curve_grazing RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 11 --to 7.3
+                  --pd-depth 0 --curve grazing --param2 forcing.F0 --from2 300 --to2 700
+                  OUT "\ncurves +1 in \\(forcing\\.omega, forcing\\.F0\\), started at forcing\\.F0 = 500 [^\n]*\n +curve 0 +grazing \\(period 1 T\\): [0-9]+ points, forcing\\.omega 7\\.3 \\.\\. 7\\.88[0-9]+, forcing\\.F0 [0-9.]+ \\.\\. 700, worst residual [^\n]+\n +stop: left the box at forcing\\.F0 = 700. left the box at forcing\\.omega = 7\\.3\n")
+vibromap_cli_test(continue_curve_json RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 11 --to 7.3
+                  --pd-depth 0 --curve grazing --param2 F0 --from2 300 --to2 700 --format json
+                  OUT "\"curves\": \\[[ \n]*\\{[ \n]*\"kind\": \"grazing\",[ \n]*\"n\": 1,[ \n]*\"stop\": \"left the box at forcing\\.F0 = 700. left the box at forcing\\.omega = 7\\.3\",[ \n]*\"start\": [0-9]+,[ \n]*\"codim2\": \\[\\],[ \n]*\"points\": \\[[ \n]*\\{[ \n]*\"param\": 7\\.3,[ \n]*\"param2\": [0-9.]+,[ \n]*\"T_con\": ")
+vibromap_cli_test(continue_curve_without_param2 RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold ERR "--curve: needs --param2 KEY --from2 C --to2 D \\(the second key and its range\\)")
+vibromap_cli_test(continue_param2_without_curve RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --param2 F0 --from2 1 --to2 2 ERR "--param2/--from2/--to2: only with --curve KIND")
+vibromap_cli_test(continue_curve_bad_kind RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve cusp --param2 F0 --from2 1 --to2 2
+                  ERR "--curve cusp: not one of fold, period-doubling, neimark-sacker, grazing, level:NAME=VALUE")
+vibromap_cli_test(continue_curve_bad_level RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve level:x1=3 --param2 F0 --from2 1 --to2 2
+                  ERR "--curve level:x1=3: NAME x1 is not one of k_con, T_con, F_max, z_ratio")
+vibromap_cli_test(continue_curve_reversed_range RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 F0 --from2 700 --to2 300
+                  ERR "--from2 700 --to2 300: need finite values with --from2 < --to2")
+vibromap_cli_test(continue_curve_scene_value_outside RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 forcing.F0 --from2 600 --to2 700
+                  ERR "--param2 forcing\\.F0: the scene's value 500 is outside \\[600, 700\\]")
+vibromap_cli_test(continue_curve_same_key RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 omega --from2 6 --to2 9 ERR "--param2 omega: the same key as --param")
+vibromap_cli_test(continue_curve_not_a_parameter RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 solver.rtol --from2 1e-12 --to2 1e-8
+                  ERR "--param2 solver\\.rtol: not a model parameter")
+vibromap_cli_test(continue_curve_help RC 0 ARGS continue --help OUT "--curve KIND.*--param2 KEY2.*--from2 C.*--to2 D.*followed as a curve in \\(KEY, KEY2\\)")
+
 # `vibromap restitution` (issue #13): the effective restitution of a free impact per law and e
 # (values checked against an independent integration in tests/core/test_contact_laws.cpp);
 # e = 1 gives chi = 0 (elastic Hertz); one line for an unknown law or an e outside (0, 1].

@@ -18,46 +18,13 @@
 #include "vibromap/core/analysis/orbit_diagram.hpp"
 #include "vibromap/core/analysis/orbit_extent.hpp"
 #include "vibromap/core/analysis/shooting.hpp"
+#include "support/linear_response.hpp"
 
 namespace vibromap {
 namespace {
 
-using cd = std::complex<double>;
-
-struct Linear {
-  Eigen::Matrix2d M, C, K;
-  explicit Linear(const Parameters& p) {
-    const double k1 = p.spring1.stiffness(p.m1), k2 = p.spring2.stiffness(p.m2);
-    const double c1 = p.damper1.coefficient(p.m1, k1), c2 = p.damper2.coefficient(p.m2, k2);
-    M << p.m1, 0, 0, p.m2;
-    C << c1 + c2, -c2, -c2, c2;
-    K << k1 + k2, -k2, -k2, k2;
-  }
-  // (x1, x2, v1, v2) at a period start of the periodic response at p.omega.
-  Eigen::Vector4d orbit(const Parameters& p) const {
-    const double w = p.omega;
-    Eigen::Matrix2cd Z = K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>();
-    Eigen::Vector2cd f(p.lambda * p.F0 * std::exp(cd(0, p.phi0)), 0.0);
-    const Eigen::Vector2cd Q = Z.lu().solve(f);
-    return {Q[0].real(), Q[1].real() + p.D, (cd(0, w) * Q[0]).real(), (cd(0, w) * Q[1]).real()};
-  }
-  // The complex amplitudes (Q1, Q2) of x1 and x2 - D at p.omega.
-  Eigen::Vector2cd amplitudes(const Parameters& p) const {
-    const double w = p.omega;
-    Eigen::Matrix2cd Z = K.cast<cd>() - w * w * M.cast<cd>() + cd(0, w) * C.cast<cd>();
-    return Z.lu().solve(Eigen::Vector2cd(p.lambda * p.F0 * std::exp(cd(0, p.phi0)), 0.0));
-  }
-  std::vector<cd> multipliers(double T) const {
-    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
-    A.topRightCorner<2, 2>() = Eigen::Matrix2d::Identity();
-    A.bottomLeftCorner<2, 2>() = -M.inverse() * K;
-    A.bottomRightCorner<2, 2>() = -M.inverse() * C;
-    const Eigen::EigenSolver<Eigen::Matrix4d> es(A, false);
-    std::vector<cd> mu;
-    for (int i = 0; i < 4; ++i) mu.push_back(std::exp(es.eigenvalues()[i] * T));
-    return mu;
-  }
-};
+using test::cd;
+using test::Linear;
 
 // The points of base with the forcing frequency omega.
 PointAt omega_path(const Parameters& base, const PointOptions& options) {

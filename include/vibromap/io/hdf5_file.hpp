@@ -275,6 +275,8 @@ class Group : public Hdf5Object {
                         const DatasetOptions& options = {});
   Dataset write_dataset(std::string_view name, std::span<const std::uint8_t> data, const Shape& shape = {},
                         const DatasetOptions& options = {});
+  // A 1-D dataset of variable-length UTF-8 strings (netCDF-4's string type).
+  Dataset write_strings(std::string_view name, std::span<const std::string> values);
   // A new dataset of `shape` holding only fill values (write it with Dataset::write_flat).
   Dataset create_dataset(std::string_view name, ElementType type, const Shape& shape, const DatasetOptions& options);
   Dataset open_dataset(std::string_view name) const;

@@ -39,6 +39,9 @@ std::string to_string(BifurcationType t) {
 namespace {
 
 using continuation_detail::Eval;
+using continuation_detail::kMaxTurn;
+using continuation_detail::kStallPoints;
+using continuation_detail::kStallStep;
 using continuation_detail::Problem;
 using continuation_detail::Vector5d;
 
@@ -60,8 +63,6 @@ int ns_count(const Eval& e) {
 // in the step makes the Jacobian jump); such a change has no critical multiplier and is no
 // bifurcation of the smooth theory: it is not reported (the grazing is).
 constexpr double kCriticalMultiplier = 1e-2;
-// The largest turn of the tangent over one accepted step, rad.
-constexpr double kMaxTurn = 0.3;
 // A fold, period doubling or Neimark-Sacker point located within this fraction of the interval of
 // a grazing located in the same step is the grazing's own jump of the multipliers (the map is not
 // smooth there), not a bifurcation of the smooth theory: only the grazing is reported.
@@ -76,10 +77,6 @@ constexpr double kRejoinGap = 1e-4;
 // ... and the period doubling where it rejoins is that one of the parent's located within this
 // fraction of the interval (its end is located on the doubled branch, to the branch's accuracy).
 constexpr double kSameDoubling = 1e-3;
-// A branch whose step stays below kStallStep for kStallPoints accepted points in a row stops:
-// Newton converges only on tiny steps (a nonsmooth stretch the grazing logic does not cross).
-constexpr double kStallStep = 1e-4;
-constexpr int kStallPoints = 200;
 // Crossings of one grazing point after the first before a branch stops there.
 constexpr int kMaxCrossings = 8;
 bool has_critical_multiplier(BifurcationType type, const std::vector<std::complex<double>>& mu) {

@@ -41,38 +41,25 @@ std::optional<Eval> Problem::eval(const Vector5d& z) {
   return e;
 }
 
+namespace {
+void branch_rows(const Eval& e, Matrix5d& A, Vector5d& r) {
+  A.topLeftCorner<4, 4>() = e.Jy;
+  A.topRightCorner<4, 1>() = e.Jl;
+  r.head<4>() = e.F;
+}
+}  // namespace
+
 std::optional<std::pair<Vector5d, Eval>> Problem::correct(const Vector5d& z_pred, const Vector5d& t, int* iterations) {
-  Vector5d z = z_pred;
-  for (int it = 0; it <= o_.max_corrections; ++it) {
-    const std::optional<Eval> e = eval(z);
-    if (!e) return std::nullopt;
-    if (e->F.cwiseAbs().maxCoeff() <= o_.tol) {
-      if (iterations) *iterations = it;
-      return std::make_pair(z, *e);
-    }
-    Matrix5d A;
-    A.topLeftCorner<4, 4>() = e->Jy;
-    A.topRightCorner<4, 1>() = e->Jl;
-    A.bottomRows<1>() = t.transpose();
-    Vector5d r;
-    r.head<4>() = e->F;
-    r[4] = t.dot(z - z_pred);
-    const Vector5d dz = A.fullPivLu().solve(-r);
-    if (!dz.allFinite() || dz.norm() > 0.5) return std::nullopt;  // far from the predictor: a smaller step
-    z += dz;
-  }
-  return std::nullopt;
+  return arclength_correct<5, Eval>([this](const Vector5d& z) { return eval(z); },
+                                    [this](const Eval& e) { return e.F.cwiseAbs().maxCoeff() <= o_.tol; }, branch_rows,
+                                    z_pred, t, o_.max_corrections, iterations);
 }
 
 Vector5d Problem::tangent(const Eval& e, const Vector5d& previous) {
   Matrix5d A;
-  A.topLeftCorner<4, 4>() = e.Jy;
-  A.topRightCorner<4, 1>() = e.Jl;
-  A.bottomRows<1>() = previous.transpose();
-  Vector5d rhs = Vector5d::Zero();
-  rhs[4] = 1.0;
-  Vector5d t = A.fullPivLu().solve(rhs);
-  return t / t.norm();
+  Vector5d unused;
+  branch_rows(e, A, unused);
+  return arclength_tangent<5>(A, previous);
 }
 
 BranchPoint Problem::point(const Vector5d& z, const Eval& e) {

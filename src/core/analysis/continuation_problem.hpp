@@ -18,6 +18,55 @@ namespace vibromap::continuation_detail {
 using Vector5d = Eigen::Matrix<double, 5, 1>;
 using Matrix5d = Eigen::Matrix<double, 5, 5>;
 
+// The largest turn of the tangent over one accepted step, rad (branches and curves alike).
+inline constexpr double kMaxTurn = 0.3;
+// A branch or curve whose step stays below kStallStep for kStallPoints accepted points in a row
+// stops: Newton converges only on tiny steps (a nonsmooth stretch, e.g. a grazing of stiff contact).
+inline constexpr double kStallStep = 1e-4;
+inline constexpr int kStallPoints = 200;
+
+// Newton's corrector of pseudo-arclength continuation, shared by the branch (N = 5: y, lambda)
+// and the curves of two parameters (N = 6: y, P, Q; curve_problem.hpp): from z_pred, solves
+// [R(z) = 0, t.(z - z_pred) = 0], R of N - 1 equations. eval(z) -> std::optional<E> (none: the
+// integration failed); done(e): converged; rows(e, A, r) fills the first N - 1 rows of the
+// Jacobian A and of the residual r. A step further than 0.5 (scaled) from the predictor fails
+// (a smaller step is wanted).
+template <int N, class E, class EvalF, class Done, class Rows>
+std::optional<std::pair<Eigen::Matrix<double, N, 1>, E>> arclength_correct(EvalF&& eval, Done&& done, Rows&& rows,
+                                                                           const Eigen::Matrix<double, N, 1>& z_pred,
+                                                                           const Eigen::Matrix<double, N, 1>& t,
+                                                                           int max_corrections, int* iterations) {
+  Eigen::Matrix<double, N, 1> z = z_pred;
+  for (int it = 0; it <= max_corrections; ++it) {
+    const std::optional<E> e = eval(z);
+    if (!e) return std::nullopt;
+    if (done(*e)) {
+      if (iterations) *iterations = it;
+      return std::make_pair(z, *e);
+    }
+    Eigen::Matrix<double, N, N> A;
+    Eigen::Matrix<double, N, 1> r;
+    rows(*e, A, r);
+    A.template bottomRows<1>() = t.transpose();
+    r[N - 1] = t.dot(z - z_pred);
+    const Eigen::Matrix<double, N, 1> dz = A.fullPivLu().solve(-r);
+    if (!dz.allFinite() || dz.norm() > 0.5) return std::nullopt;  // far from the predictor: a smaller step
+    z += dz;
+  }
+  return std::nullopt;
+}
+
+// The unit tangent of the solution curve of N - 1 equations whose Jacobian's rows A (the first
+// N - 1 rows filled), oriented along `previous`.
+template <int N>
+Eigen::Matrix<double, N, 1> arclength_tangent(Eigen::Matrix<double, N, N> A, const Eigen::Matrix<double, N, 1>& previous) {
+  A.template bottomRows<1>() = previous.transpose();
+  Eigen::Matrix<double, N, 1> rhs = Eigen::Matrix<double, N, 1>::Zero();
+  rhs[N - 1] = 1.0;
+  Eigen::Matrix<double, N, 1> t = A.fullPivLu().solve(rhs);
+  return t / t.norm();
+}
+
 // G and its Jacobian at one point z = (y scaled by the motion's scale, l): lambda = from + l span.
 struct Eval {
   Eigen::Vector4d F = Eigen::Vector4d::Zero();   // (P^n(y) - y) / unit

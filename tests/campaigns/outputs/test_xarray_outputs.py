@@ -2,7 +2,8 @@
 
 Each file kind is written by build/vibromap from a tiny scene: a sweep map, a census map, a
 trajectory (run -t), a basins file, an optimisation (its result file with groups, its _map.h5
-and its _trajectory.h5), a branch file (continue -o) and an orbit diagram (orbit-diagram -o).
+and its _trajectory.h5), a branch file (continue -o), an orbit diagram (orbit-diagram -o) and a
+curve file (continue --curve -o).
 Every group of every file is opened as xarray opens a group (open_dataset(path, group=...))
 with engine netcdf4 and with h5netcdf, and:
 
@@ -102,7 +103,7 @@ def files(tmp_path_factory):
     """Every file kind, written once: {kind: path}."""
     tmp = tmp_path_factory.mktemp("xarray")
     out = {kind: tmp / f"{kind}.h5" for kind in ("sweep", "census", "trajectory", "basins", "optimise", "branch",
-                                                  "orbit")}
+                                                  "orbit", "curves")}
     vibromap("sweep", scene(tmp, "sweep.toml", SWEEP), "-q", "-o", out["sweep"])
     vibromap("sweep", scene(tmp, "census.toml", CENSUS), "-q", "-o", out["census"])
     vibromap("run", "jobs/paper/table1.toml", "-t", out["trajectory"])
@@ -114,6 +115,8 @@ def files(tmp_path_factory):
              out["branch"])
     vibromap("orbit-diagram", "jobs/paper/table1.toml", "-p", "omega", "--from", "7.2", "--to", "7.25", "-n", "3",
              "--transient", "5", "--keep", "2", "-q", "-o", out["orbit"])
+    vibromap("continue", "jobs/paper/table2.toml", "-p", "omega", "--from", "11", "--to", "7.3", "--pd-depth", "0",
+             "--curve", "grazing", "--param2", "F0", "--from2", "300", "--to2", "700", "-o", out["curves"])
     return out
 
 
@@ -153,7 +156,7 @@ def open_with(path, engine, group=None):
 
 @pytest.mark.parametrize("engine", list(ENGINES))
 @pytest.mark.parametrize("kind", ["sweep", "census", "trajectory", "basins", "optimise", "optimise_map",
-                                  "optimise_trajectory", "branch", "orbit"])
+                                  "optimise_trajectory", "branch", "orbit", "curves"])
 def test_every_group_opens_with_every_dataset_as_h5py_reads_it(files, kind, engine):
     path = files[kind]
     for group in groups(path):

@@ -1,0 +1,174 @@
+// Curves in two parameters: see curve_run.hpp.
+
+#include "vibromap/campaigns/continuation/curve_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "vibromap/core/text.hpp"
+#include "vibromap/io/curve_file.hpp"
+#include "vibromap/io/output_file.hpp"
+#include "vibromap/io/scene/keys.hpp"
+
+namespace vibromap {
+namespace {
+
+std::string short_number(double x) {  // 12 digits, for messages
+  std::ostringstream os;
+  os << std::setprecision(12) << x;
+  return os.str();
+}
+
+// A point of a branch a curve starts from.
+struct Start {
+  int n = 1;
+  double param = 0.0;
+  Eigen::Vector4d y = Eigen::Vector4d::Zero();
+};
+
+// A grazing point whose closest approach is within this fraction of the clearance D of zero is
+// one where an impact appears (the grazing curve's defining condition clearance_min = 0).
+constexpr double kTouching = 1e-5;
+
+std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSpec& spec, double D,
+                                      std::vector<std::string>& skipped) {
+  BifurcationType type = BifurcationType::fold;
+  if (spec.kind == CurveKind::period_doubling) type = BifurcationType::period_doubling;
+  if (spec.kind == CurveKind::neimark_sacker) type = BifurcationType::neimark_sacker;
+  if (spec.kind == CurveKind::grazing) type = BifurcationType::grazing;
+  std::vector<Start> out;
+  for (const Branch& b : r.branches)
+    for (const Bifurcation& x : b.bifurcations) {
+      if (x.type != type) continue;
+      if (type == BifurcationType::grazing && !(std::abs(x.at.clearance_min) <= kTouching * D)) {
+        skipped.push_back(cat("grazing at ", short_number(x.at.param), ": an impact vanishes or a further one appears ",
+                              "(clearance_min ", short_number(x.at.clearance_min), " m): not followed"));
+        continue;
+      }
+      out.push_back({b.n, x.at.param, x.at.y});
+    }
+  return out;
+}
+
+std::vector<Start> level_starts(const PointAt2& at, const CurveBox& box, const CurveSpec& spec, double q0,
+                                const ContinuationReport& r, const CurveOptions& co, std::vector<std::string>& skipped) {
+  std::vector<Start> out;
+  for (std::size_t k = 0; k < r.branches.size(); ++k) {
+    const std::vector<MeasuredPoint>& m = r.measured[k];
+    for (std::size_t i = 1; i < m.size(); ++i) {
+      const PointSummary &a = m[i - 1].orbit, &b = m[i].orbit;
+      if (a.status != SolveStatus::ok || b.status != SolveStatus::ok || a.impacts.empty() || b.impacts.empty()) continue;
+      const double va = level_value(spec.quantity, a), vb = level_value(spec.quantity, b);
+      if (!((va - spec.value) * (vb - spec.value) < 0.0)) continue;
+      const auto p = locate_level(at, box, spec, r.branches[k].n, q0, m[i - 1].point, va, m[i].point, vb, co);
+      if (p) out.push_back({r.branches[k].n, p->param, p->y});
+      else skipped.push_back(cat(spec.label, " between ", short_number(m[i - 1].point.param), " and ",
+                                 short_number(m[i].point.param), ": not located (Newton does not converge)"));
+    }
+  }
+  return out;
+}
+
+// Whether (P, Q) lies on a curve of the same kind and period already found (within 1e-3 of the
+// box, scaled, of one of its segments).
+bool on_known_curve(const std::vector<MeasuredCurve>& curves, const CurveSpec& spec, int n, const CurveBox& box,
+                    double P, double Q) {
+  const auto scaled = [&](double p, double q) {
+    return Eigen::Vector2d((p - box.from) / (box.to - box.from), (q - box.from2) / (box.to2 - box.from2));
+  };
+  const Eigen::Vector2d x = scaled(P, Q);
+  for (const MeasuredCurve& c : curves) {
+    if (c.curve.spec.label != spec.label || c.curve.n != n) continue;
+    for (std::size_t i = 0; i < c.curve.points.size(); ++i) {
+      const Eigen::Vector2d a = scaled(c.curve.points[i].param, c.curve.points[i].param2);
+      const Eigen::Vector2d b = i + 1 < c.curve.points.size()
+                                    ? scaled(c.curve.points[i + 1].param, c.curve.points[i + 1].param2)
+                                    : a;
+      const double len2 = (b - a).squaredNorm();
+      const double s = len2 > 0.0 ? std::clamp((x - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+      if ((a + s * (b - a) - x).norm() < 1e-3) return true;
+    }
+  }
+  return false;
+}
+
+CurveOptions curve_options(const Scene& scene, const ContinuationConfig& config, const CurveSpec& spec) {
+  CurveOptions co;
+  co.base.ds_max = config.ds_max;
+  co.base.ds = std::min(co.base.ds, co.base.ds_max);
+  co.base.max_points = config.max_points;
+  co.base.tol = newton_tolerance(scene.options);  // the scene's own (10 rtol by default)
+  co.condition_tol = spec.kind == CurveKind::grazing ? 1e-10 : 1e-9;
+  return co;
+}
+
+double scene_value(const Scene& scene, const Axis& axis2) {
+  try {
+    return get_parameter(scene.params, axis2.name);
+  } catch (const std::invalid_argument&) {
+    throw SceneError(cat("--param2 ", axis2.key, ": not a model parameter (a key of [system], [contact] or [forcing])"));
+  }
+}
+
+}  // namespace
+
+CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2, const ContinuationConfig& config,
+                        const CurveConfig& curves) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CurvesReport report;
+  report.q0 = scene_value(scene, axis2);
+  if (!(curves.from2 < curves.to2))
+    throw SceneError(cat("--from2 ", short_number(curves.from2), " --to2 ", short_number(curves.to2),
+                         ": need --from2 < --to2"));
+  if (!(report.q0 >= curves.from2 && report.q0 <= curves.to2))
+    throw SceneError(cat("--param2 ", axis2.key, ": the scene's value ", short_number(report.q0), " is outside [",
+                         short_number(curves.from2), ", ", short_number(curves.to2), "]"));
+  if (!config.output.empty()) check_output(config.output, {.overwrite = config.overwrite});
+  ContinuationConfig branch_config = config;
+  branch_config.output.clear();
+  report.branch = run_continuation(scene, axis, branch_config);
+  const PointSetter set = point_setter(axis.key), set2 = point_setter(axis2.key);
+  const PointAt2 at = [&](double P, double Q) {
+    std::pair<Parameters, PointOptions> point{scene.params, scene.options};
+    set2(point.first, point.second, Q);
+    set(point.first, point.second, P);
+    return point;
+  };
+  const CurveBox box{config.from, config.to, curves.from2, curves.to2, axis.key, axis2.key};
+  for (const CurveSpec& spec : curves.specs) {
+    const CurveOptions co = curve_options(scene, config, spec);
+    const std::vector<Start> starts =
+        spec.kind == CurveKind::level ? level_starts(at, box, spec, report.q0, report.branch, co, report.skipped)
+                                      : bifurcation_starts(report.branch, spec, scene.params.D, report.skipped);
+    for (const Start& s : starts) {
+      if (on_known_curve(report.curves, spec, s.n, box, s.param, report.q0)) continue;
+      MeasuredCurve mc{continue_curve(at, box, spec, s.n, s.param, report.q0, s.y, co), {}};
+      if (mc.curve.points.empty()) {
+        report.skipped.push_back(cat(spec.label, " at ", short_number(s.param), ": ", mc.curve.stop));
+        continue;
+      }
+      for (const CurvePoint& q : mc.curve.points) {
+        const auto [p, o] = at(q.param, q.param2);
+        mc.orbits.push_back(measure_orbit(p, o, q.y, s.n));
+      }
+      report.curves.push_back(std::move(mc));
+    }
+  }
+  if (!config.output.empty()) {
+    CurveFileData data{axis, axis2, {}, {}, scene.text};
+    for (const MeasuredCurve& c : report.curves) {
+      data.curves.push_back(c.curve);
+      data.cycles.emplace_back();
+      for (const PointSummary& m : c.orbits)
+        data.cycles.back().push_back({m.T_con, m.k_con, m.z_ratio, m.F_max, static_cast<int>(m.impacts.size())});
+    }
+    write_curves(config.output, data);
+  }
+  report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return report;
+}
+
+}  // namespace vibromap
