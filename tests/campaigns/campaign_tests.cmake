@@ -74,3 +74,6 @@ vibromap_campaign_pytest(basins_mpi basins)
 # opening in xarray with both netCDF-4 engines, group by group (test_xarray_outputs.py).
 vibromap_campaign_pytest(outputs outputs)
 vibromap_campaign_pytest(stop_mpi stop)
+# continuation: `vibromap continue` against the closed-form linear response, its corrector at the
+# scene's Newton tolerance (issue #31, item 5).
+vibromap_campaign_pytest(continue_linear continuation)
