@@ -336,10 +336,18 @@ def curve_style(kind: str, levels: list[str]) -> tuple[str, object, str]:
     return (*OTHER_CURVE_STYLE, f"{kind} curve")
 
 
+def codim2_kind(kind: str) -> str:
+    """A codim-2 point's kind as one name whichever of its curves found it: the kinds that meet
+    there in alphabetical order ("period-doubling+fold" and "fold+period-doubling" are one point,
+    "fold+period-doubling")."""
+    return "+".join(sorted(kind.split("+")))
+
+
 def draw_curves(ax, sl: MapSlice, curve_files: list[tuple[str, list[dict]]], x_edges, y_edges) -> list:
     """Draws every curve of curve_files (read_curve_files) over the map, each a line (gid
     CURVE_GID) through its points, (param2, param) when the plot's axes are the other way round,
-    and its codimension-two points as markers (gid CODIM2_GID, one Line2D per kind of point);
+    and its codimension-two points as markers (gid CODIM2_GID, one Line2D per kind of point, as
+    codim2_kind names it);
     keeps the axes on the map's extent, which clips them. Returns the legend entries: one per
     kind of curve and per kind of codim-2 point, in the order met."""
     handles: dict[str, Line2D] = {}
@@ -356,7 +364,7 @@ def draw_curves(ax, sl: MapSlice, curve_files: list[tuple[str, list[dict]]], x_e
             handles.setdefault(label, Line2D([], [], color=color, linestyle=style, linewidth=CURVE_WIDTH, label=label))
             for point in curve["codim2"]:
                 xy = (point["param2"], point["param"]) if swapped else (point["param"], point["param2"])
-                points.setdefault(point["kind"], []).append(xy)
+                points.setdefault(codim2_kind(point["kind"]), []).append(xy)
     for index, (kind, xy) in enumerate(points.items()):
         style = dict(linestyle="none", marker=CODIM2_MARKERS[index % len(CODIM2_MARKERS)], markersize=7,
                      markerfacecolor="white", markeredgecolor="black", markeredgewidth=1.2)  # fmt: skip

@@ -12,7 +12,7 @@ Curve file (HDF5, CF-1.8):
             ended, one sentence per direction joined by "; "), n (period of the orbit, int);
             datasets over the dimension `point` (N, a dimension scale 0..N-1):
               param, param2 (float64)       the curve in the plane, ordered along the curve
-              T_con, k_con, z_ratio (float64)  the orbit's values (NaN where no contact)
+              T_con, k_con, z_ratio, F_max (float64)  the orbit's values (NaN where no contact)
               stable (int8: 1 stable, 0 not)
               multipliers_re, multipliers_im (N x 4 float64, dimension `multiplier`)
               residual (float64)            |defining condition| at the point
@@ -35,7 +35,7 @@ from vibromap_h5io import VibromapFileError, _scalar, _text, open_h5, read_datas
 
 CURVE_FILE_KIND = "curves"  # the root attribute vibromap_file of a curve file
 CURVE_KINDS = ("fold", "period-doubling", "neimark-sacker", "grazing")  # and "level:NAME=VALUE"
-CURVE_VALUES = ("T_con", "k_con", "z_ratio")  # the orbit's values along a curve (NaN when absent)
+CURVE_VALUES = ("T_con", "k_con", "z_ratio", "F_max")  # the orbit's values along a curve (NaN when absent)
 _CURVE_GROUP = re.compile(r"curve_(\d+)")
 
 
@@ -124,7 +124,7 @@ def _curve(group: h5py.Group, path: str, names: tuple[str, str, str, str]) -> di
 def read_curves(path: str) -> list[dict]:
     """The curves of a curve file (see the module docstring), in the file's order: one dict each
     with kind, stop, n, param_name, param2_name (the plane's scene keys), param_unit,
-    param2_unit, param, param2 (float64 arrays along the curve), T_con, k_con, z_ratio,
+    param2_unit, param, param2 (float64 arrays along the curve), T_con, k_con, z_ratio, F_max,
     residual (float64, NaN when the file lacks them), stable (int8; -1 when the file lacks it),
     multipliers (complex N x 4, when present), group ("curve_0", ...) and codim2 (a list of
     {param, param2, kind})."""

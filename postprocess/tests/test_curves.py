@@ -34,16 +34,18 @@ LEVEL = make_curves.curve("level:k_con=10", [2.5e5, 2.5e5, 3e5], [1e4, 1e6, 1e9]
 PD = make_curves.curve("period-doubling", [1e8, 1e10, 1e12], [1e8, 1e9, 1e10], n=2)  # leaves the map at E1 = 10^10.5
 NS = make_curves.curve("neimark-sacker", [1e6, 1e7], [1e9, 1e8])
 GRAZING = make_curves.curve("grazing", [2e5, 2e9], [3e4, 3e4], codim2=[(2e5, 3e4, "grazing+fold")])
+# The grazing point of the fold, as the fold curve finds it: one point, one kind, one legend entry.
+FOLD_GRAZING = make_curves.curve("fold", [2e5, 1e6], [3e4, 1e5], codim2=[(2e5, 3e4, "fold+grazing")])
 LEVEL5 = make_curves.curve("level:k_con=5", [1e5, 1e6], [1e10, 1e9])
 
 
 @pytest.fixture
 def curve_files(tmp_path):
     """Two curve files in contact.E1 x contact.E2: (fold, level k_con=10, period-doubling) and
-    (neimark-sacker, grazing, level k_con=5, another fold)."""
+    (neimark-sacker, grazing, level k_con=5, another fold, meeting the grazing curve)."""
     first, second = tmp_path / "fold.h5", tmp_path / "more.h5"
     make_curves.write_curves(first, [FOLD, LEVEL, PD])
-    make_curves.write_curves(second, [NS, GRAZING, LEVEL5, FOLD])
+    make_curves.write_curves(second, [NS, GRAZING, LEVEL5, FOLD_GRAZING])
     return str(first), str(second)
 
 
@@ -71,6 +73,7 @@ def test_read_curves_gives_every_curve_of_the_file_in_order(curve_files):
     np.testing.assert_array_equal(fold["k_con"], [10.0, 11.0, 12.0, 13.0])
     np.testing.assert_array_equal(fold["T_con"], 1.0 / np.array([10.0, 11.0, 12.0, 13.0]))
     np.testing.assert_array_equal(fold["stable"], [0, 1, 0, 1])
+    assert np.isnan(fold["F_max"]).all() and fold["F_max"].shape == (4,)  # not in this file: NaN
     assert fold["stable"].dtype == np.int8
     assert fold["multipliers"].shape == (4, 4) and fold["multipliers"][0, 0] == pytest.approx(0.2 + 0.02j)
     assert fold["codim2"] == [{"param": 1e7, "param2": 1e6, "kind": "cusp"}]
@@ -125,7 +128,7 @@ def test_the_regime_map_draws_every_curve_through_its_points_with_a_legend_entry
     fig = maps.plot(m, sl, maps.read_curve_files(list(curve_files)))
     try:
         lines = curve_lines(fig)
-        drawn = [FOLD, LEVEL, PD, NS, GRAZING, LEVEL5, FOLD]
+        drawn = [FOLD, LEVEL, PD, NS, GRAZING, LEVEL5, FOLD_GRAZING]
         assert len(lines) == len(drawn)
         for line, c in zip(lines, drawn):
             np.testing.assert_array_equal(line.get_xdata(), c["param"])
@@ -137,12 +140,12 @@ def test_the_regime_map_draws_every_curve_through_its_points_with_a_legend_entry
         texts = legend_texts(fig)
         curve_entries = ["fold curve", "level curve k_con=10", "period-doubling curve", "neimark-sacker curve",
                          "grazing curve", "level curve k_con=5", "codim-2 point: cusp",
-                         "codim-2 point: fold+level:k_con=10", "codim-2 point: grazing+fold"]  # fmt: skip
+                         "codim-2 point: fold+level:k_con=10", "codim-2 point: fold+grazing"]  # fmt: skip
         assert texts[-len(curve_entries):] == curve_entries
         assert texts[0] == "(1,1): 6 cells"  # the regimes first, as without curves
         markers = codim2_lines(fig)
         assert [(list(line.get_xdata()), list(line.get_ydata())) for line in markers] == [
-            ([1e7, 1e7], [1e6, 1e6]), ([2.5e5], [1e6]), ([2e5], [3e4])]  # the cusp of the fold, drawn twice
+            ([1e7], [1e6]), ([2.5e5], [1e6]), ([2e5, 2e5], [3e4, 3e4])]  # grazing+fold and fold+grazing: one kind
         assert len({line.get_marker() for line in markers}) == 3
         ax = fig.axes[0]
         assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
