@@ -83,6 +83,8 @@ def parse_args(argv: list[str] | None):
         parser.error("--dpi must be positive")
     if args.solved and args.show == "cell":
         parser.error("--solved marks the solved points of a map: not with --show cell")
+    if args.curves and args.show == "cell":
+        parser.error("--curves draws over a map: not with --show cell")
     if args.output is None:
         import os
 
@@ -124,7 +126,7 @@ def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
     return text
 
 
-def plot_map(sweep: SweepMap, sl, show: str):
+def plot_map(sweep: SweepMap, sl, show: str, curves=()):
     done = np.asarray(sl.data["done"]) != 0
     fig, ax = plt.subplots(figsize=FIGSIZE_IN if sl.y is not None else maps.STRIP_FIGSIZE_IN, constrained_layout=True)
     x_edges, y_edges = maps.setup_axes(ax, sl)
@@ -156,6 +158,7 @@ def plot_map(sweep: SweepMap, sl, show: str):
         if (~done).any():
             title += f", not computed (grey): {maps.cells_text(int((~done).sum()))}"
     ax.set_title(maps.slice_title(title, sweep, sl), fontsize=10)
+    handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
     if handles:
         ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0, fontsize=9)
     return fig
@@ -216,7 +219,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.show == "cell":
             return plot_cell(sweep, cell_index(sweep, args.at_values))
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot_map(sweep, sl, args.show)
+        fig = plot_map(sweep, sl, args.show, maps.read_curve_files(args.curves))
         if args.solved:
             maps.mark_solved(fig, sweep, sl)
         return fig

@@ -187,10 +187,11 @@ def hertz_marks(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
     return maps.cell_patch(HERTZ_FACE, label, HERTZ_HATCH, HERTZ_HATCH_COLOR)
 
 
-def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
+def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     """The figure: log-coloured k_con, cells without k_con coloured by why (NO_KCON_KINDS) or not computed, Hertz-invalid
     cells greyed and hatched, the soft region (add_soft_cells' flag: never an invalid cell)
-    outlined (a LineCollection with gid SOFT_GID), a colorbar and a legend row below."""
+    outlined (a LineCollection with gid SOFT_GID), a colorbar and a legend row below; the curves
+    of maps.read_curve_files drawn over it (maps.draw_curves)."""
     k_con, no_impact, not_computed = kcon_cells(sl)
     fig, ax, ax_legend = maps.figure_with_legend_row(sl, FIGSIZE_IN, STRIP_FIGSIZE_IN)
     x_edges, y_edges = maps.setup_axes(ax, sl)
@@ -216,6 +217,7 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
     for mask, color, what in counts:
         if mask.any():
             handles.append(maps.cell_patch(color, f"{what}: {maps.cells_text(int(mask.sum()))}"))
+    handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
     maps.legend_row(fig, ax_legend, handles)
     return fig
 
@@ -227,7 +229,7 @@ def main(argv: list[str] | None = None) -> int:
         require_kcon(sweep)
         info = add_soft_cells(sweep, args.threshold)
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot(sweep, sl, info)
+        fig = plot(sweep, sl, info, maps.read_curve_files(args.curves))
         if args.solved:
             maps.mark_solved(fig, sweep, sl)
         save_figure(fig, args.output, args.dpi)

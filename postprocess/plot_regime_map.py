@@ -33,15 +33,18 @@ try:
     matplotlib.use("Agg")  # files only: no display needed on a cluster node
     import matplotlib.colors
     import matplotlib.legend
+    import matplotlib.patheffects
     import matplotlib.pyplot as plt
     import numpy as np
     from matplotlib.collections import PolyCollection
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     from vibromap_h5 import (
         NOT_COMPUTED,
         SOFT_FROM_MAP,
         STABLE_NO,
+        MapAxis,
         MapSlice,
         MapSliceError,
         SoftInfo,
@@ -50,6 +53,7 @@ try:
         axis_name,
         cell_edges,
         parse_fix,
+        read_curves,
         read_map,
         regime_counts,
         slice2d,
@@ -80,6 +84,17 @@ PERIODIC_COLORS = (
 OTHER_COLORS = ("#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173")  # labels of unknown codes
 UNSTABLE_HATCH = "////"  # over the regime colour of cells whose periodic orbit is unstable
 UNSTABLE_HATCH_COLOR = "0.15"
+# Curves of `vibromap continue --curve` drawn over a map (--curves F.h5): a colour and line style
+# per kind (plot_branch's colours for the bifurcations), level curves dashed, each level in a
+# colour of its own; codimension-two points as markers, one marker per kind of point.
+CURVE_STYLES = {"fold": ("#000000", "-"), "period-doubling": ("#ff7f0e", "-."), "neimark-sacker": ("#9467bd", ":"),
+                "grazing": ("#2ca02c", (0, (6, 1.5, 1, 1.5, 1, 1.5)))}  # fmt: skip
+LEVEL_COLORS = ("#e31a1c", "#1f78b4", "#b15928", "#6a3d9a", "#33a02c")
+LEVEL_STYLE = "--"
+OTHER_CURVE_STYLE = ("#7f7f7f", (0, (3, 1, 1, 1)))  # a kind this script does not know
+CODIM2_MARKERS = ("o", "s", "D", "^", "v", "P", "X", "*")
+CURVE_GID, CODIM2_GID = "curve", "codim2"  # gids of the curves' lines and of the codim-2 markers
+CURVE_WIDTH = 1.8
 
 
 def make_parser(prog: str = PROG, description: str | None = None, suffix: str = "_regime") -> argparse.ArgumentParser:
@@ -114,6 +129,15 @@ def make_parser(prog: str = PROG, description: str | None = None, suffix: str = 
         default=[],
         help="hold axis NAME at the grid value nearest VALUE (SI units), e.g. --fix R1=0.5 m2=310; "
         "may be repeated; give MAP.h5 before it (default: the middle grid value of every axis not plotted)",
+    )
+    parser.add_argument(
+        "--curves",
+        metavar="F.h5",
+        action="append",
+        default=[],
+        help="draw the curves of a curve file (vibromap continue --curve ... -o F.h5) over the map: one line "
+        "style per kind, codim-2 points as markers; their two keys must be the plot's x and y axes (either way "
+        "round); may be repeated",
     )
     parser.add_argument("-o", "--output", metavar="OUT.png", help=f"image to write (default: MAP{suffix}.png)")
     parser.add_argument("--dpi", type=int, default=150, help="resolution of the image (default: 150)")
@@ -280,8 +304,88 @@ def cell_patch(color: str, label: str, hatch: str | None = None, hatch_color: st
     return Patch(facecolor=color, edgecolor=hatch_color if hatch else "0.4", hatch=hatch, linewidth=0.5, label=label)
 
 
-def plot(sweep: SweepMap, sl: MapSlice):
-    """The figure: one colour per regime label, legend entries 'label: count cells'."""
+def read_curve_files(paths: list[str]) -> list[tuple[str, list[dict]]]:
+    """(path, read_curves(path)) of each --curves file, in the order given."""
+    return [(os.fspath(path), read_curves(path)) for path in paths]
+
+
+def axis_has_key(axis: MapAxis, key: str) -> bool:
+    """Whether a map axis is the scene key (forcing.omega): its full key, or, in a map written
+    before axes kept it, its name (omega)."""
+    if axis.key:
+        return axis.key == key
+    return axis.name in (key, key.rsplit(".", 1)[-1])
+
+
+def curve_swapped(sl: MapSlice, path: str, curve: dict) -> bool:
+    """Whether the curve's (param, param2) are the plot's (y, x) rather than (x, y); an error
+    naming the file, the curve's keys and the plot's axes when they are neither."""
+    keys = (curve["param_name"], curve["param2_name"])
+    shown = " and ".join(f"{axis.key or axis.name} ({role})" for axis, role in ((sl.x, "x"), (sl.y, "y")) if axis)
+    if sl.y is not None:
+        if axis_has_key(sl.x, keys[0]) and axis_has_key(sl.y, keys[1]):
+            return False
+        if axis_has_key(sl.x, keys[1]) and axis_has_key(sl.y, keys[0]):
+            return True
+    raise VibromapFileError(f"{path}: {curve['group']} ({curve['kind']}) is a curve in {keys[0]} and {keys[1]}, but "
+                            f"the plot's axes are {shown}; draw it over a map of these two keys (--x, --y)")  # fmt: skip
+
+
+def curve_style(kind: str, levels: list[str]) -> tuple[str, object, str]:
+    """(colour, line style, legend label) of a kind of curve; `levels` lists the level kinds met
+    so far (each level takes the next of LEVEL_COLORS)."""
+    if kind in CURVE_STYLES:
+        return (*CURVE_STYLES[kind], f"{kind} curve")
+    if kind.startswith("level:"):
+        if kind not in levels:
+            levels.append(kind)
+        return LEVEL_COLORS[levels.index(kind) % len(LEVEL_COLORS)], LEVEL_STYLE, f"level curve {kind[len('level:'):]}"
+    return (*OTHER_CURVE_STYLE, f"{kind} curve")
+
+
+def codim2_kind(kind: str) -> str:
+    """A codim-2 point's kind as one name whichever of its curves found it: the kinds that meet
+    there in alphabetical order ("period-doubling+fold" and "fold+period-doubling" are one point,
+    "fold+period-doubling")."""
+    return "+".join(sorted(kind.split("+")))
+
+
+def draw_curves(ax, sl: MapSlice, curve_files: list[tuple[str, list[dict]]], x_edges, y_edges) -> list:
+    """Draws every curve of curve_files (read_curve_files) over the map, each a line (gid
+    CURVE_GID) through its points, (param2, param) when the plot's axes are the other way round,
+    and its codimension-two points as markers (gid CODIM2_GID, one Line2D per kind of point, as
+    codim2_kind names it);
+    keeps the axes on the map's extent, which clips them. Returns the legend entries: one per
+    kind of curve and per kind of codim-2 point, in the order met."""
+    handles: dict[str, Line2D] = {}
+    levels: list[str] = []
+    points: dict[str, list[tuple[float, float]]] = {}
+    halo = [matplotlib.patheffects.withStroke(linewidth=CURVE_WIDTH + 1.6, foreground="white")]
+    for path, curves in curve_files:
+        for curve in curves:
+            swapped = curve_swapped(sl, path, curve)
+            x, y = (curve["param2"], curve["param"]) if swapped else (curve["param"], curve["param2"])
+            color, style, label = curve_style(curve["kind"], levels)
+            ax.plot(x, y, color=color, linestyle=style, linewidth=CURVE_WIDTH, path_effects=halo, gid=CURVE_GID,
+                    zorder=3)  # fmt: skip
+            handles.setdefault(label, Line2D([], [], color=color, linestyle=style, linewidth=CURVE_WIDTH, label=label))
+            for point in curve["codim2"]:
+                xy = (point["param2"], point["param"]) if swapped else (point["param"], point["param2"])
+                points.setdefault(codim2_kind(point["kind"]), []).append(xy)
+    for index, (kind, xy) in enumerate(points.items()):
+        style = dict(linestyle="none", marker=CODIM2_MARKERS[index % len(CODIM2_MARKERS)], markersize=7,
+                     markerfacecolor="white", markeredgecolor="black", markeredgewidth=1.2)  # fmt: skip
+        ax.plot([p[0] for p in xy], [p[1] for p in xy], gid=CODIM2_GID, zorder=4, **style)
+        handles[f"codim-2: {kind}"] = Line2D([], [], label=f"codim-2 point: {kind}", **style)
+    if curve_files:
+        ax.set_xlim(x_edges[0], x_edges[-1])
+        ax.set_ylim(y_edges[0], y_edges[-1])
+    return list(handles.values())
+
+
+def plot(sweep: SweepMap, sl: MapSlice, curves=()):
+    """The figure: one colour per regime label, legend entries 'label: count cells'; the curves of
+    read_curve_files drawn over it (draw_curves) with theirs."""
     labels = sl.labels()
     counts = regime_counts(labels)
     categories = list(counts)
@@ -302,6 +406,7 @@ def plot(sweep: SweepMap, sl: MapSlice):
     if unstable.any():
         hatch_cells(ax, x_edges, y_edges, unstable)
         handles.append(cell_patch("white", f"unstable orbit: {cells_text(int(unstable.sum()))}", UNSTABLE_HATCH))
+    handles += draw_curves(ax, sl, list(curves), x_edges, y_edges)
     ax.legend(handles=handles, title="regime", loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return fig
 
@@ -347,7 +452,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         sweep = read_map(args.map)
         sl = choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot(sweep, sl)
+        fig = plot(sweep, sl, read_curve_files(args.curves))
         if args.solved:
             mark_solved(fig, sweep, sl)
         save_figure(fig, args.output, args.dpi)

@@ -177,9 +177,10 @@ def caption(info: SoftInfo) -> str:
     return text if info.soft_source == SOFT_FROM_MAP else f"{text}\n(soft cells {info.soft_source}: the map has no /soft)"
 
 
-def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
+def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     """The figure: one colour per category, the Hertz-invalid cells hatched, a legend row below
-    with every category's cell count, the definition in the title."""
+    with every category's cell count, the definition in the title; the curves of
+    maps.read_curve_files drawn over it (maps.draw_curves)."""
     category = classify(sl, info)
     counts = category_counts(category)
     handles = legend_handles(counts, info, "k_con" in sl.data)
@@ -192,6 +193,7 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo):
     if invalid.any():
         maps.hatch_cells(ax, x_edges, y_edges, invalid, INVALID_HATCH, INVALID_HATCH_COLOR, gid="hertz-invalid")
     ax.set_title(maps.slice_title("where the motion is soft", sweep, sl) + "\n" + caption(info), fontsize=10)
+    handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
     maps.legend_row(fig, ax_legend, handles)
     return fig
 
@@ -206,7 +208,7 @@ def main(argv: list[str] | None = None) -> int:
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)  # a bad axis is named first
         require_soft(sweep, info)
         notes.extend(maps.snapped_notes(sl) + maps.soft_notes(info))
-        fig = plot(sweep, sl, info)
+        fig = plot(sweep, sl, info, maps.read_curve_files(args.curves))
         if args.solved:
             maps.mark_solved(fig, sweep, sl)
         return fig

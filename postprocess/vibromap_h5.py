@@ -11,6 +11,8 @@ every reader, whose code lives in modules of its own:
                     cells by the one definition of a soft motion
   vibromap_slice    slice2d, MapSlice, cell_edges, cell_boundary, parse_fix: slices to plot
   vibromap_files    read_trajectory, Trajectory, read_basins, Basins: trajectory and basins files
+  vibromap_curves   read_curves: a curve file of vibromap continue --curve (bifurcation and
+                    level curves in a plane of two scene keys)
 
 Every reader returns numpy arrays and plain Python numbers and strings, and raises
 VibromapFileError with a one-line message (naming the file) when the file is missing,
@@ -43,9 +45,12 @@ from vibromap_slice import (FixedValue, MapSlice, MapSliceError, _nearest_index,
 from vibromap_files import (BASINS_NOT_COMPUTED, BASINS_OVERLAP, BASINS_UNLISTED, BASINS_UNRESOLVED,
                             TRAJECTORY_ATTRIBUTES, TRAJECTORY_COLUMNS, BasinAttractor, Basins, Trajectory,
                             read_basins, read_trajectory)
+from vibromap_curves import (CURVE_FILE_KIND, CURVE_KINDS, CURVE_VALUES, _CURVE_GROUP, _check_kind, _codim2, _column,
+                             _curve, read_curves)
 # fmt: on
 
 # The modules whose names this one re-exports (the test of the re-export reads it).
-MODULES = ("vibromap_h5io", "vibromap_regimes", "vibromap_map", "vibromap_soft", "vibromap_slice", "vibromap_files")
+MODULES = ("vibromap_h5io", "vibromap_regimes", "vibromap_map", "vibromap_soft", "vibromap_slice", "vibromap_files",
+           "vibromap_curves")
 
 __all__ = [name for name in dir() if not name.startswith("_") and name != "MODULES"]  # the public names

@@ -74,5 +74,6 @@ vibromap_campaign_pytest(basins_mpi basins)
 # opening in xarray with both netCDF-4 engines, group by group (test_xarray_outputs.py).
 vibromap_campaign_pytest(outputs outputs)
 vibromap_campaign_pytest(stop_mpi stop)
-# continue --curve (issue #31): curves in two parameters against plain runs, and the curve file.
-vibromap_campaign_pytest(continuation_curves continuation)
+# continue (issue #31): curves in two parameters against plain runs and the curve file, and the
+# branch against the closed-form linear response at the scene's Newton tolerance (item 5).
+vibromap_campaign_pytest(continuation continuation)

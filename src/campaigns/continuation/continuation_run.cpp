@@ -20,6 +20,8 @@ std::string short_number(double x) {  // 12 digits: 7.23, for messages (as the c
   return os.str();
 }
 
+constexpr double kMaxContinuationTol = 1e-2;  // validate(ContinuationOptions): tol in (0, 0.01)
+
 bool is_periodic(const PointSummary& s) {
   return s.status == SolveStatus::ok &&
          (s.regime.kind == RegimeKind::periodic || s.regime.kind == RegimeKind::no_contact);
@@ -41,9 +43,22 @@ PointSummary start_orbit(const Scene& scene, const PointAt& at, const std::strin
   return start;
 }
 
-ContinuationOptions continuation_options(const PointSummary& start, const ContinuationConfig& config) {
+// The corrector's tolerance on the scaled residual |P^n(y) - y| of a point: the scene's Newton
+// tolerance at KEY = from (analysis.newton_tol; 0: 10 solver.rtol, 1e-9 at the defaults), the
+// same residual in the same scale (StateScale) as shooting's. SceneError, before any solve,
+// when it is not below the 0.01 continuation allows.
+double corrector_tolerance(const Scene& scene, const PointAt& at, double from) {
+  const double tol = newton_tolerance(at(from).second);
+  if (!(tol < kMaxContinuationTol))
+    throw SceneError(cat(scene.path, ": continue needs a Newton tolerance below ", short_number(kMaxContinuationTol),
+                         "; analysis.newton_tol gives ", short_number(tol), " (when 0: 10 solver.rtol)"));
+  return tol;
+}
+
+ContinuationOptions continuation_options(const PointSummary& start, const ContinuationConfig& config, double tol) {
   ContinuationOptions co;
   co.n = std::max(start.regime.n, 1);  // a motion without contact repeats every period
+  co.tol = tol;
   co.ds_max = config.ds_max;
   co.ds = std::min(co.ds, co.ds_max);
   co.max_points = config.max_points;
@@ -76,8 +91,9 @@ ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const 
     set(point.first, point.second, lambda);
     return point;
   };
+  const double tol = corrector_tolerance(scene, at, config.from);
   const PointSummary start = start_orbit(scene, at, axis.key, config.from);
-  const ContinuationOptions co = continuation_options(start, config);
+  const ContinuationOptions co = continuation_options(start, config, tol);
   ContinuationReport report;
   report.n = co.n;
   report.start_regime = start.regime.label();

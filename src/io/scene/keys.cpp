@@ -284,7 +284,7 @@ void add_analysis_keys(std::vector<Binding>& rows) {
                          "follow, shooting: forcing periods integrated before Newton starts",
                          field<an, &A::transient_periods>()));
   rows.push_back(real(s, "newton_tol", ge(0), "-",
-                      "shooting: scaled residual |P^n(y) - y| at which Newton stops; 0: auto, rtol",
+                      "shooting and continue: scaled residual |P^n(y) - y| at which Newton stops; 0: auto, 10 rtol",
                       field<an, &A::newton_tol>()));
   rows.push_back(integer(s, "newton_max_iterations", interval(1, 1000, false, false),
                          "shooting: Newton iterations before falling back to integrate",
