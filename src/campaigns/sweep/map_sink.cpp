@@ -51,38 +51,50 @@ RefineSink::RefineSink(const CellCodec& codec, MapWriter writer, MapTally tally,
 
 std::uint64_t RefineSink::begin_phase(int phase) {
   phase_ = phase;
-  points_ = plan_.plan(phase);
-  left_ = static_cast<std::uint64_t>(
-      std::count_if(points_.begin(), points_.end(), [&](std::uint64_t p) { return !plan_.recorded(p); }));
+  plan_.begin(phase, writer_);
+  left_ = 0;
+  std::vector<ItemRange> ranges;
+  for (std::uint64_t from = 0; from < items();) {
+    ranges.clear();
+    from = pending(from, std::uint64_t{1} << 20, ranges);
+    for (const ItemRange& r : ranges) left_ += r.end - r.begin;
+  }
+  phase_points_ = plan_.points_in(phase);
+  solved_ += phase_points_ - left_;  // solved by an earlier run (a resumed map)
+  // Decided now: every point but those a later level may still solve; of them, the solved ones
+  // are those of the phases so far, this one's included.
+  inferred_ = items() - plan_.open_after(phase) - (solved_ + left_);
   return left_;
 }
 
+// The points of the phase not done in the map: its not-done cells, asked of the plan one by one.
 std::uint64_t RefineSink::pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) {
+  spans_.clear();
+  const std::uint64_t next = writer_.pending(from, std::max<std::uint64_t>(max, 1 << 16), spans_);
   std::uint64_t taken = 0;
-  auto it = std::lower_bound(points_.begin(), points_.end(), from);
-  for (; it != points_.end() && taken < max; ++it) {
-    if (plan_.recorded(*it)) continue;
-    if (!out.empty() && out.back().end == *it) {
-      ++out.back().end;
-    } else {
-      out.push_back({*it, *it + 1});
+  for (const CellSpan& s : spans_) {
+    for (std::uint64_t p = s.begin; p < s.end; ++p) {
+      if (!plan_.in_phase(phase_, p)) continue;
+      if (taken == max) return p;  // the next call starts here
+      if (!out.empty() && out.back().end == p) {
+        ++out.back().end;
+      } else {
+        out.push_back({p, p + 1});
+      }
+      ++taken;
     }
-    ++taken;
   }
-  return it == points_.end() ? items() : *it;
+  return next;
 }
 
 void RefineSink::store_results(const ItemRange& range, std::vector<CellResult>& results) {
-  for (std::uint64_t i = range.begin; i < range.end; ++i) {
-    CellResult& c = results[static_cast<std::size_t>(i - range.begin)];
-    plan_.stamp(phase_, i, c);
-    plan_.record(i, c);
-  }
+  for (std::uint64_t i = range.begin; i < range.end; ++i) plan_.stamp(phase_, i, results[static_cast<std::size_t>(i - range.begin)]);
+  solved_ += range.end - range.begin;
   MapSink::store_results(range, results);
 }
 
 std::string RefineSink::note() const {  // the phase is the progress line's label
-  return std::to_string(plan_.solved()) + " solved, " + std::to_string(plan_.inferred()) + " inferred of " +
+  return std::to_string(solved_) + " solved, " + std::to_string(inferred_) + " inferred of " +
          std::to_string(items()) + " points | " + MapSink::note();
 }
 
@@ -91,10 +103,15 @@ void RefineSink::fill() {
     tally_.add(c);
     ++filled_;
   });
+  whole_ = true;
 }
 
 void RefineSink::close() {
-  figures_ = plan_.figures();
+  if (!whole_) {  // stopped: the map's figures stay "not finished" (zeros, bound 1)
+    writer_.finish(ranks_);
+    return;
+  }
+  figures_ = plan_.figures(writer_);
   writer_.finish(ranks_, &figures_);
 }
 

@@ -41,9 +41,7 @@ class MapSink : public ResultSink<CellResult> {
   MapWriter writer_;
   MapTally tally_;
   int ranks_;
-
- private:
-  std::vector<CellSpan> spans_;
+  std::vector<CellSpan> spans_;  // pending's scratch
 };
 
 // The sink of an adaptive map (sweep.refine > 0): one farm run per phase (refine_plan.hpp), the
@@ -56,14 +54,15 @@ class RefineSink : public MapSink {
   // Plans `phase` and returns how many of its points remain to solve.
   std::uint64_t begin_phase(int phase);
   std::uint64_t items_pending() const override { return left_; }
-  std::uint64_t scope_items() const override { return points_.size(); }  // progress: the phase's points
-  std::uint64_t scope_done() const override { return points_.size() - left_; }
+  std::uint64_t scope_items() const override { return phase_points_; }  // progress: the phase's points
+  std::uint64_t scope_done() const override { return phase_points_ - left_; }
   std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<ItemRange>& out) override;
   void store_results(const ItemRange& range, std::vector<CellResult>& results) override;
   void finish(bool) override { writer_.checkpoint(); }  // a phase's end; close() ends the map
   std::string note() const override;  // the fine grid's points solved and inferred so far, the regimes
-  // The fill of the inherited points, then the last checkpoint and the figures; closes.
+  // The fill of the inherited points (every phase done).
   void fill();
+  // The last checkpoint, and after a fill the figures; closes.
   void close();
   const RefineFigures& figures() const { return figures_; }
   std::uint64_t filled() const { return filled_; }
@@ -71,8 +70,12 @@ class RefineSink : public MapSink {
  private:
   RefinePlan plan_;
   int phase_ = 0;
-  std::vector<std::uint64_t> points_;  // the phase's points, ascending
   std::uint64_t left_ = 0, filled_ = 0;
+  std::uint64_t phase_points_ = 0;  // the phase's points, done or not
+  // For progress lines: points solved so far (audited too), and points known to be inherited:
+  // decided by the levels begun and solved by none of them.
+  std::uint64_t solved_ = 0, inferred_ = 0;
+  bool whole_ = false;  // filled: the run went through every phase
   RefineFigures figures_;
 };
 

@@ -92,10 +92,7 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   };
   if (target->resuming()) {
     MapWriter w = target->read([&](const std::string& path) {
-      return MapWriter::resume(path, [&](std::uint64_t i, const CellResult& c) {
-        tally.add(c);
-        if (plan) plan->record(i, c);
-      });
+      return MapWriter::resume(path, [&](std::uint64_t, const CellResult& c) { tally.add(c); });
     });
     check_same_run(*target, w, layout, scene);
     report_repair(w);
