@@ -252,8 +252,8 @@ def slice_title(what: str, sweep: SweepMap, sl: MapSlice) -> str:
     done, total = int(np.count_nonzero(sweep.data["done"])), int(np.asarray(sweep.data["done"]).size)
     if done < total:
         second += f";  partial run: {done} of {total} cells done"
-    warning = sweep.answer_warning()
-    return f"{first}\n{second}" + (f"\n{warning}" if warning else "")
+    notes = [line for line in (sweep.answer_warning(), sweep.refine_note()) if line]
+    return "\n".join([first, second] + notes)
 
 
 def unstable_cells(sl: MapSlice) -> np.ndarray:

@@ -57,6 +57,20 @@ def expected(computed, code):
     return sorted(zip(E1[rows].tolist(), E2[cols].tolist()))
 
 
+def test_an_adaptive_map_says_in_its_title_how_much_was_solved(tmp_path):
+    path = tmp_path / "refined.h5"
+    computed = refined_map(path)
+    with h5py.File(path, "a") as f:
+        f.attrs["refine_on"] = "soft hertz_valid"
+    sweep = vibromap_h5.read_map(str(path))
+    solved = int(np.count_nonzero(computed == 1))
+    assert solved + 2 == 9 * 5 - int(np.count_nonzero(computed == 0))
+    assert sweep.refine_note() == (f"adaptive: {solved} of 45 points solved ({100.0 * solved / 45:.3g} %), "
+                                   "2 audited, refined where soft, hertz_valid change; the rest inherited")
+    sl = plot_regime_map.choose_slice(sweep, "E1", "E2", {})
+    assert plot_regime_map.slice_title("regimes", sweep, sl).splitlines()[-1] == sweep.refine_note()
+
+
 def test_solved_draws_the_solved_and_audited_points_of_the_map(tmp_path):
     path = tmp_path / "refined.h5"
     computed = refined_map(path)
