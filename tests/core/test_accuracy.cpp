@@ -9,21 +9,14 @@
 #include <gtest/gtest.h>
 
 #include "vibromap/core/analysis/accuracy.hpp"
+#include "support/paper_points.hpp"
 
 namespace vibromap {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The paper's Table 2 (the softened system): a cheap point, ~0.1 s per solve.
-Parameters table2() {
-  Parameters p;
-  p.m2 = 310.0;
-  p.spring2 = Spring{Spring::Form::frequency, 3.606};
-  p.E1 = 1.4e10;
-  p.E2 = 1.0e6;
-  return p;
-}
+using test::table2;  // tests/support/paper_points.hpp
 
 // A solved (1,1) summary with one impact.
 PointSummary summary(double T_con, double F_max, double T = 0.869) {

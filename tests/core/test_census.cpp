@@ -18,18 +18,12 @@
 
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/analysis/shooting.hpp"
+#include "support/paper_points.hpp"
 
 namespace vibromap {
 namespace {
 
-Parameters table2() {
-  Parameters p;
-  p.m2 = 310.0;
-  p.spring2 = {Spring::Form::frequency, 3.606};
-  p.E1 = 1.4e10;
-  p.E2 = 1.0e6;
-  return p;
-}
+using test::table2;  // tests/support/paper_points.hpp
 
 TEST(CensusInitialStates, RestFirstThenInsideTheBoxApartAndReproducible) {
   const Parameters p = table2();

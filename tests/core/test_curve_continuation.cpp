@@ -13,21 +13,14 @@
 #include "support/linear_response.hpp"
 #include "vibromap/core/analysis/continuation.hpp"
 #include "vibromap/core/analysis/curve_continuation.hpp"
+#include "support/paper_points.hpp"
 
 namespace vibromap {
 namespace {
 
 using test::Linear;
 
-// Table 2's system (jobs/paper/table2.toml).
-Parameters table2() {
-  Parameters p;
-  p.m2 = 310.0;
-  p.spring2 = {Spring::Form::frequency, 3.606};
-  p.E1 = 1.4e10;
-  p.E2 = 1.0e6;
-  return p;
-}
+using test::table2;  // tests/support/paper_points.hpp
 
 // The points of base with one parameter (set_parameter's name) stepped; and with two.
 PointAt path(const Parameters& base, const PointOptions& o, const char* name) {

@@ -79,13 +79,14 @@ VALUE_OPTIONS = {
     "accuracy": ("--csv", "-f"),
     "optimise": ("-o", "-f"),
     "orbit-diagram": ("-p", "--from", "--to", "-n", "--scale", "--transient", "--keep", "-o", "-f"),
-    "continue": ("-p", "--from", "--to", "--ds-max", "--max-points", "--pd-depth", "-o", "-f"),
+    "continue": ("-p", "--from", "--to", "--ds-max", "--max-points", "--pd-depth", "--curve", "--param2", "--from2",
+                 "--to2", "-o", "-f"),
     "basins": ("--plane", "--grid", "--at", "-o", "--checkpoint", "-f"),
     "restitution": ("--law", "--e", "-f"),
     "keys": (),
 }
 NUMERIC_OPTIONS = ("--from", "--to", "-n", "--transient", "--keep", "--ds-max", "--max-points",
-                   "--pd-depth", "--checkpoint", "--e")
+                   "--pd-depth", "--checkpoint", "--e", "--from2", "--to2")
 # The option naming each writing command's output file.
 OUTPUT_OPTION = {"run": "-t", "sweep": "-o", "optimise": "-o", "basins": "-o",
                  "orbit-diagram": "-o", "continue": "-o", "accuracy": "--csv"}
@@ -635,6 +636,14 @@ def mut_special_option(draft, rng, keys):
     if c == "basins":
         opt, value = rng.choice((("--grid", rng.choice(BAD_GRIDS)), ("--plane", rng.choice(BAD_PLANES)),
                                  ("--at", rng.choice(BAD_AT)), ("--checkpoint", rng.choice(BAD_NUMBERS))))
+    elif c == "continue" and rng.randrange(4) == 0:  # a curve in two parameters, its options bent
+        k = rng.choice(keys)
+        set_option(draft.args, "--curve", rng.choice(("fold", "grazing", "level:k_con=10", "level:k_con=nan",
+                                                      "level:bogus=1", "level:z_ratio", "neimark-sacker", "")))
+        set_option(draft.args, "--param2", rng.choice((k.name, "forcing.F0", "forcing.omega", "bogus", "")))
+        lo, hi = rng.choice((("400", "600"), ("600", "400"), ("nan", "1"), ("-1e308", "1e308"), ("0", "0")))
+        set_option(draft.args, "--from2", lo)
+        opt, value = "--to2", hi
     elif c in ("orbit-diagram", "continue"):
         choice = rng.randrange(3)
         if choice == 0:

@@ -21,6 +21,7 @@
 #include "vibromap/core/optimise/objective.hpp"
 #include "vibromap/core/analysis/census.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
+#include "support/paper_points.hpp"
 
 namespace vibromap {
 namespace {
@@ -554,14 +555,7 @@ TEST(PointObjective, AShortStartImprovesOnTheProbedCorner) {
 // The Table 2 point (jobs/paper/table2.toml): a stable (1,1), soft (k_con 8.96 <= 10, z/R* 0.024),
 // beside a (3,3) beyond Hertz's range. A brute-force census of 1,000 states (issue #11's stop
 // note) gives the (1,1) 561 of them.
-Parameters table2() {
-  Parameters p;
-  p.m2 = 310.0;
-  set_parameter(p, "omega2", 3.606);
-  p.E1 = 1.4e10;
-  p.E2 = 1e6;
-  return p;
-}
+using test::table2;  // tests/support/paper_points.hpp
 constexpr double kTable2SoftFraction = 0.561;  // the (1,1)'s basin fraction, brute force, 1,000 states
 
 OptimiseOptions free_e2(double min_soft_fraction) {

@@ -44,6 +44,19 @@ def sweep(ranks, scene, out, *extra, refine=REFINE, quiet=True):
     return proc
 
 
+def kill_in_level(cmd, out, cells, poll=0.1):
+    """Starts the sweep `cmd` writing `out`, kills it (kill -9, every rank) once its map counts
+    `cells` done (past the coarse points: in level 1 or later) and returns /done as it was left."""
+    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wait_for_cells_done(proc, out, cells, poll=poll)
+    assert proc.poll() is None, "the sweep finished before it could be killed; make it longer"
+    kill_all(proc.pid)
+    proc.wait()
+    with h5py.File(out, "r") as f:
+        assert int(f.attrs["complete"]) == 0
+        return f["done"][()]
+
+
 def contents(path):
     with h5py.File(path, "r") as f:
         data = {name: f[name][()] for name in f if isinstance(f[name], h5py.Dataset) and name != "wall_s"}
@@ -108,15 +121,8 @@ def test_killed_adaptive_sweep_resumes_to_the_same_map(tmp_path):
 
     out = tmp_path / "killed.h5"
     cmd = [MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out), "--quiet", *REFINE]
-    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    wait_for_cells_done(proc, out, 30)  # past the 24 coarse points: in level 1 or later
-    assert proc.poll() is None, "the sweep finished before it could be killed; make it longer"
-    kill_all(proc.pid)
-    proc.wait()
-    with h5py.File(out, "r") as f:
-        done = f["done"][()]
-        assert int(f.attrs["complete"]) == 0
-        assert 0 < done.sum() < min(solved, done.size)
+    done = kill_in_level(cmd, out, 30)  # past the 24 coarse points
+    assert 0 < done.sum() < min(solved, done.size)
 
     report = json.loads(sweep(2, scene, out, "--resume", "--format", "json").stdout)
     assert report["cells_resumed"] == int(done.sum()) and report["complete"]
