@@ -311,8 +311,11 @@ std::string continue_footer() {
   return
       "The scene's point with KEY = A is solved from rest; its periodic orbit (period n T) is\n"
       "followed by pseudo-arclength continuation on the shooting equations P^n(y) - y = 0, the\n"
-      "state scaled by the motion's scale and the key by |B - A|, with step-size control. The\n"
-      "branch goes through folds (it turns back in the key) and ends when it leaves [A, B]. A\n"
+      "state scaled by the motion's scale and the key by |B - A|, with step-size control. A key\n"
+      "whose ends are both positive and B/A or A/B >= 100 is continued in ln KEY, scaled by\n"
+      "|ln(B/A)|, so that every decade gets its steps (the same rule for KEY2 over [C, D]); all\n"
+      "values printed and written stay in the key's own units. The branch goes through folds\n"
+      "(it turns back in the key) and ends when it leaves [A, B]. A\n"
       "point is corrected by Newton until the scaled residual |P^n(y) - y| is at most the scene's\n"
       "analysis.newton_tol (0: 10 solver.rtol, 1e-9 at the defaults), as shooting's. At\n"
       "every point: Floquet multipliers and stability, the orbit's regime, k_con and F_max.\n"

@@ -311,6 +311,12 @@ vibromap_cli_test(continue_curve_not_a_parameter RC 2 ARGS continue jobs/paper/t
                   --curve fold --param2 solver.rtol --from2 1e-12 --to2 1e-8
                   ERR "--param2 solver\\.rtol: not a model parameter")
 vibromap_cli_test(continue_curve_help RC 0 ARGS continue --help OUT "--curve KIND.*--param2 KEY2.*--from2 C.*--to2 D.*followed as a curve in \\(KEY, KEY2\\)")
+# A key over decades is continued in ln(KEY) (both ends > 0, ratio >= 100) and printed in its own
+# units: the demo plane's k_con = 10 curve reaches E1 = 1.48e6 Pa (in E1 itself: 3.8e9 at the least).
+vibromap_cli_test(continue_log_help RC 0 ARGS continue --help OUT "B/A or A/B >= 100 is continued in ln KEY")
+vibromap_cli_test(continue_curve_log_key RC 0 ARGS continue jobs/demo/e1_e2.toml --param contact.E2 --from 2e5 --to 2e7
+                  --curve level:k_con=10 --param2 contact.E1 --from2 2e4 --to2 2.1e11
+                  OUT "30 points, contact.E2 1375311 \\.\\. 2e\\+07, contact.E1 1476858 \\.\\. 2.1e\\+11.*stop: left the box at contact.E1 = 2.1e\\+11. left the box at contact.E2 = 20000000")
 
 # `vibromap restitution` (issue #13): the effective restitution of a free impact per law and e
 # (values checked against an independent integration in tests/core/test_contact_laws.cpp);

@@ -3,6 +3,7 @@
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -67,40 +68,82 @@ ContinuationOptions continuation_options(const PointSummary& start, const Contin
   return co;
 }
 
-// Every point's cycle measured, and the branch file's data of them.
-void measure_branches(const PointAt& at, ContinuationReport& report, BranchData& data) {
+// Every point's cycle measured.
+void measure_branches(const PointAt& at, ContinuationReport& report) {
   for (const Branch& branch : report.branches) {
     report.measured.emplace_back();
-    data.cycles.emplace_back();
     for (const BranchPoint& q : branch.points) {
       const auto [p, o] = at(q.param);
       report.measured.back().push_back({q, measure_orbit(p, o, q.y, branch.n)});
-      const PointSummary& m = report.measured.back().back().orbit;
-      data.cycles.back().push_back({m.T_con, m.k_con, m.F_max, static_cast<int>(m.impacts.size())});
     }
   }
 }
 
+// The branch file's data of a report (physical).
+BranchData branch_data(const Axis& axis, const ContinuationReport& report, const std::string& text) {
+  BranchData data{axis, report.branches, {}, text};
+  for (const std::vector<MeasuredPoint>& branch : report.measured) {
+    data.cycles.emplace_back();
+    for (const MeasuredPoint& q : branch) {
+      const PointSummary& m = q.orbit;
+      data.cycles.back().push_back({m.T_con, m.k_con, m.F_max, static_cast<int>(m.impacts.size())});
+    }
+  }
+  return data;
+}
+
 }  // namespace
 
-ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const ContinuationConfig& config) {
-  if (!config.output.empty()) check_output(config.output, {.overwrite = config.overwrite});
+KeyScale key_scale(double from, double to, double anchor) {
+  const double lo = std::min(from, to), hi = std::max(from, to);
+  return {.log = lo > 0.0 && hi >= kLogSpan * lo, .from = from, .to = to, .anchor = anchor};
+}
+
+double KeyScale::engine(double value) const { return log ? std::log(value) : value; }
+
+double KeyScale::physical(double u) const {
+  if (!log) return u;
+  for (const double v : {from, to, anchor})
+    if (u == std::log(v)) return v;
+  return std::exp(u);
+}
+
+void to_physical(ContinuationReport& report, const KeyScale& scale) {
+  if (!scale.log) return;
+  for (Branch& b : report.branches) {
+    for (BranchPoint& p : b.points) p.param = scale.physical(p.param);
+    for (Bifurcation& x : b.bifurcations) x.at.param = scale.physical(x.at.param);
+  }
+  for (std::vector<MeasuredPoint>& m : report.measured)
+    for (MeasuredPoint& p : m) p.point.param = scale.physical(p.point.param);
+}
+
+ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const ContinuationConfig& config,
+                                   const KeyScale& scale) {
   const PointSetter set = point_setter(axis.key);
-  const PointAt at = [&](double lambda) {
+  const PointAt at_value = [&](double lambda) {
     std::pair<Parameters, PointOptions> point{scene.params, scene.options};
     set(point.first, point.second, lambda);
     return point;
   };
-  const double tol = corrector_tolerance(scene, at, config.from);
-  const PointSummary start = start_orbit(scene, at, axis.key, config.from);
+  const PointAt at = scale.log ? PointAt([&](double u) { return at_value(scale.physical(u)); }) : at_value;
+  const double tol = corrector_tolerance(scene, at_value, config.from);
+  const PointSummary start = start_orbit(scene, at_value, axis.key, config.from);
   const ContinuationOptions co = continuation_options(start, config, tol);
   ContinuationReport report;
   report.n = co.n;
   report.start_regime = start.regime.label();
-  report.branches = continue_branches(at, config.from, config.to, start.final_state, co);
-  BranchData data{axis, report.branches, {}, scene.text};
-  measure_branches(at, report, data);
-  if (!config.output.empty()) write_branch(config.output, data);
+  report.branches = continue_branches(at, scale.engine(config.from), scale.engine(config.to), start.final_state, co);
+  measure_branches(at, report);
+  return report;
+}
+
+ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const ContinuationConfig& config) {
+  if (!config.output.empty()) check_output(config.output, {.overwrite = config.overwrite});
+  const KeyScale scale = key_scale(config.from, config.to, config.from);
+  ContinuationReport report = continue_scaled(scene, axis, config, scale);
+  to_physical(report, scale);
+  if (!config.output.empty()) write_branch(config.output, branch_data(axis, report, scene.text));
   return report;
 }
 

@@ -34,7 +34,7 @@ struct Start {
 constexpr double kTouching = 1e-5;
 
 std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSpec& spec, double D,
-                                      std::vector<std::string>& skipped) {
+                                      const KeyScale& sp, std::vector<std::string>& skipped) {
   BifurcationType type = BifurcationType::fold;
   if (spec.kind == CurveKind::period_doubling) type = BifurcationType::period_doubling;
   if (spec.kind == CurveKind::neimark_sacker) type = BifurcationType::neimark_sacker;
@@ -44,7 +44,7 @@ std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSp
     for (const Bifurcation& x : b.bifurcations) {
       if (x.type != type) continue;
       if (type == BifurcationType::grazing && !(std::abs(x.at.clearance_min) <= kTouching * D)) {
-        skipped.push_back(cat("grazing at ", short_number(x.at.param), ": an impact vanishes or a further one appears ",
+        skipped.push_back(cat("grazing at ", short_number(sp.physical(x.at.param)), ": an impact vanishes or a further one appears ",
                               "(clearance_min ", short_number(x.at.clearance_min), " m): not followed"));
         continue;
       }
@@ -54,7 +54,8 @@ std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSp
 }
 
 std::vector<Start> level_starts(const PointAt2& at, const CurveBox& box, const CurveSpec& spec, double q0,
-                                const ContinuationReport& r, const CurveOptions& co, std::vector<std::string>& skipped) {
+                                const ContinuationReport& r, const CurveOptions& co, const KeyScale& sp,
+                                std::vector<std::string>& skipped) {
   std::vector<Start> out;
   for (std::size_t k = 0; k < r.branches.size(); ++k) {
     const std::vector<MeasuredPoint>& m = r.measured[k];
@@ -65,8 +66,8 @@ std::vector<Start> level_starts(const PointAt2& at, const CurveBox& box, const C
       if (!((va - spec.value) * (vb - spec.value) < 0.0)) continue;
       const auto p = locate_level(at, box, spec, r.branches[k].n, q0, m[i - 1].point, va, m[i].point, vb, co);
       if (p) out.push_back({r.branches[k].n, p->param, p->y});
-      else skipped.push_back(cat(spec.label, " between ", short_number(m[i - 1].point.param), " and ",
-                                 short_number(m[i].point.param), ": not located (Newton does not converge)"));
+      else skipped.push_back(cat(spec.label, " between ", short_number(sp.physical(m[i - 1].point.param)), " and ",
+                                 short_number(sp.physical(m[i].point.param)), ": not located (Newton does not converge)"));
     }
   }
   return out;
@@ -113,6 +114,24 @@ double scene_value(const Scene& scene, const Axis& axis2) {
   }
 }
 
+// A curve's points and codimension-two points in the keys' own units.
+void to_physical(Curve& c, const KeyScale& sp, const KeyScale& sq) {
+  for (CurvePoint& p : c.points) p.param = sp.physical(p.param), p.param2 = sq.physical(p.param2);
+  for (Codim2Point& p : c.codim2) p.param = sp.physical(p.param), p.param2 = sq.physical(p.param2);
+}
+
+void write_curve_file(const std::string& path, const Axis& axis, const Axis& axis2, const CurvesReport& report,
+                      const std::string& text) {
+  CurveFileData data{axis, axis2, {}, {}, text};
+  for (const MeasuredCurve& c : report.curves) {
+    data.curves.push_back(c.curve);
+    data.cycles.emplace_back();
+    for (const PointSummary& m : c.orbits)
+      data.cycles.back().push_back({m.T_con, m.k_con, m.z_ratio, m.F_max, static_cast<int>(m.impacts.size())});
+  }
+  write_curves(path, data);
+}
+
 }  // namespace
 
 CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2, const ContinuationConfig& config,
@@ -127,27 +146,32 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
     throw SceneError(cat("--param2 ", axis2.key, ": the scene's value ", short_number(report.q0), " is outside [",
                          short_number(curves.from2), ", ", short_number(curves.to2), "]"));
   if (!config.output.empty()) check_output(config.output, {.overwrite = config.overwrite});
+  // P and Q each in the units key_scale gives (ln for decades); mapped back at the end.
+  const KeyScale sp = key_scale(config.from, config.to, config.from);
+  const KeyScale sq = key_scale(curves.from2, curves.to2, report.q0);
   ContinuationConfig branch_config = config;
   branch_config.output.clear();
-  report.branch = run_continuation(scene, axis, branch_config);
+  report.branch = continue_scaled(scene, axis, branch_config, sp);
   const PointSetter set = point_setter(axis.key), set2 = point_setter(axis2.key);
   const PointAt2 at = [&](double P, double Q) {
     std::pair<Parameters, PointOptions> point{scene.params, scene.options};
-    set2(point.first, point.second, Q);
-    set(point.first, point.second, P);
+    set2(point.first, point.second, sq.physical(Q));
+    set(point.first, point.second, sp.physical(P));
     return point;
   };
-  const CurveBox box{config.from, config.to, curves.from2, curves.to2, axis.key, axis2.key};
+  const CurveBox box{sp.engine(config.from), sp.engine(config.to), sq.engine(curves.from2), sq.engine(curves.to2),
+                     axis.key, axis2.key, sp.log, sq.log};
+  const double q0 = sq.engine(report.q0);
   for (const CurveSpec& spec : curves.specs) {
     const CurveOptions co = curve_options(scene, config, spec);
     const std::vector<Start> starts =
-        spec.kind == CurveKind::level ? level_starts(at, box, spec, report.q0, report.branch, co, report.skipped)
-                                      : bifurcation_starts(report.branch, spec, scene.params.D, report.skipped);
+        spec.kind == CurveKind::level ? level_starts(at, box, spec, q0, report.branch, co, sp, report.skipped)
+                                      : bifurcation_starts(report.branch, spec, scene.params.D, sp, report.skipped);
     for (const Start& s : starts) {
-      if (on_known_curve(report.curves, spec, s.n, box, s.param, report.q0)) continue;
-      MeasuredCurve mc{continue_curve(at, box, spec, s.n, s.param, report.q0, s.y, co), {}};
+      if (on_known_curve(report.curves, spec, s.n, box, s.param, q0)) continue;
+      MeasuredCurve mc{continue_curve(at, box, spec, s.n, s.param, q0, s.y, co), {}};
       if (mc.curve.points.empty()) {
-        report.skipped.push_back(cat(spec.label, " at ", short_number(s.param), ": ", mc.curve.stop));
+        report.skipped.push_back(cat(spec.label, " at ", short_number(sp.physical(s.param)), ": ", mc.curve.stop));
         continue;
       }
       for (const CurvePoint& q : mc.curve.points) {
@@ -157,16 +181,9 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
       report.curves.push_back(std::move(mc));
     }
   }
-  if (!config.output.empty()) {
-    CurveFileData data{axis, axis2, {}, {}, scene.text};
-    for (const MeasuredCurve& c : report.curves) {
-      data.curves.push_back(c.curve);
-      data.cycles.emplace_back();
-      for (const PointSummary& m : c.orbits)
-        data.cycles.back().push_back({m.T_con, m.k_con, m.z_ratio, m.F_max, static_cast<int>(m.impacts.size())});
-    }
-    write_curves(config.output, data);
-  }
+  to_physical(report.branch, sp);
+  for (MeasuredCurve& c : report.curves) to_physical(c.curve, sp, sq);
+  if (!config.output.empty()) write_curve_file(config.output, axis, axis2, report, scene.text);
   report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;
 }

@@ -72,6 +72,12 @@ std::string number(double x) {
   return os.str();
 }
 
+// "KEY = value" of P (second: Q) for the messages, in the key's own units (CurveBox::log).
+std::string key_value(const CurveBox& box, bool second, double x) {
+  const bool log = second ? box.log2 : box.log;
+  return (second ? box.key2 : box.key) + " = " + number(log ? std::exp(x) : x);
+}
+
 // The other kinds a curve watches (curve_continuation.hpp), by their label.
 enum class Watch { fold, period_doubling, neimark_sacker, grazing, cusp };
 const char* watch_label(Watch w) {
@@ -156,8 +162,8 @@ std::string CurveTracer::run(bool& closed) {
     if (!next) {
       ds_ /= 2.0;
       if (ds_ >= o_.ds_min) continue;
-      return "cannot be continued beyond " + pb_.box().key + " = " + number(last_.p.param) + ", " + pb_.box().key2 +
-             " = " + number(last_.p.param2) + " (Newton does not converge on steps down to ds_min)";
+      return "cannot be continued beyond " + key_value(pb_.box(), false, last_.p.param) + ", " +
+             key_value(pb_.box(), true, last_.p.param2) + " (Newton does not converge on steps down to ds_min)";
     }
     locate_codim2(*next);
     const double u = next->z[4], v = next->z[5];
@@ -170,8 +176,8 @@ std::string CurveTracer::run(bool& closed) {
     out_.push_back(next->p);
     stalled_ = ds_ < continuation_detail::kStallStep ? stalled_ + 1 : 0;
     if (stalled_ >= continuation_detail::kStallPoints)
-      return "stalled at " + pb_.box().key + " = " + number(last_.p.param) + ", " + pb_.box().key2 + " = " +
-             number(last_.p.param2) + ": " + std::to_string(continuation_detail::kStallPoints) +
+      return "stalled at " + key_value(pb_.box(), false, last_.p.param) + ", " +
+             key_value(pb_.box(), true, last_.p.param2) + ": " + std::to_string(continuation_detail::kStallPoints) +
              " steps in a row below 1e-4 (Newton converges only on tiny steps: the map is not smooth here)";
     if (iterations <= 3) ds_ = std::min(1.5 * ds_, o_.ds_max);
     if (out_.size() > 3 && (last_.z - start_).norm() < 0.5 * step) {
@@ -223,7 +229,7 @@ void CurveTracer::end_at_box(const End& next) {
   fixed[k] = 1.0;
   if (const auto end = pb_.correct(z_end, fixed)) out_.push_back(pb_.point(end->first, end->second));
   const double value = k == 4 ? pb_.P(bound) : pb_.Q(bound);
-  stop_ = "left the box at " + (k == 4 ? pb_.box().key : pb_.box().key2) + " = " + number(value);
+  stop_ = "left the box at " + key_value(pb_.box(), k == 5, value);
 }
 
 Vector6d fixed_q() {
@@ -247,7 +253,7 @@ Curve continue_curve(const PointAt2& at, const CurveBox& box, const CurveSpec& s
   const Vector6d z0 = pb.scaled(Model::to_internal(y0), start_param, q0);
   const std::optional<Corrected> s = pb.correct(z0, fixed_q());
   if (!s) {
-    c.stop = "the point located at " + box.key + " = " + number(start_param) +
+    c.stop = "the point located at " + key_value(box, false, start_param) +
              " does not solve the extended system (Newton with " + box.key2 + " fixed fails)";
     c.counters = pb.counters;
     return c;

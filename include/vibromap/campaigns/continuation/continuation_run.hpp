@@ -41,8 +41,28 @@ struct ContinuationReport {
   std::vector<std::vector<MeasuredPoint>> measured;  // per branch, one per point
 };
 
+// How a key's values are continued: in ln(value) when both ends of its interval are positive
+// and span a factor of 100 or more (moduli over decades: a step is then a fraction of the
+// decades, not of the interval's length), else in the value itself. The engine sees
+// u = engine(value); every reported value is physical(u), in the key's own units (exactly the
+// interval's ends and the anchor at their u).
+struct KeyScale {
+  bool log = false;
+  double from = 0.0, to = 0.0, anchor = 0.0;  // physical; anchor: the scene's value of a curve's Q
+  double engine(double value) const;
+  double physical(double u) const;
+};
+inline constexpr double kLogSpan = 100.0;  // to / from (either order) from which the key is continued in ln
+KeyScale key_scale(double from, double to, double anchor);
+// A report of continue_scaled, and curve points, mapped back to the key's own units.
+void to_physical(ContinuationReport& report, const KeyScale& scale);
+
+// run_continuation's branches in the engine's units of `scale` (no file written).
+ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const ContinuationConfig& config,
+                                   const KeyScale& scale);
+
 // Follows the scene's orbit along `axis` (a numeric scene key, as a one-axis [sweep] names it)
-// over [config.from, config.to] and writes the branch file when config.output is set (checked
+// over [config.from, config.to] (in ln of the key when key_scale says so) and writes the branch file when config.output is set (checked
 // before any solve). Throws SceneError (no periodic orbit at the start; bad --ds-max or
 // --max-points) and IoError (the file).
 ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const ContinuationConfig& config);

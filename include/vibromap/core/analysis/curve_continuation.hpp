@@ -72,6 +72,7 @@ struct CurveBox {
   double from = 0.0, to = 1.0;    // P: the branch's interval (either order), P scaled by to - from
   double from2 = 0.0, to2 = 1.0;  // Q: from2 < to2
   std::string key = "P", key2 = "Q";  // for the stop messages
+  bool log = false, log2 = false;     // P (Q) is ln of the key's value: the messages print exp(P)
 };
 
 struct CurveOptions {
