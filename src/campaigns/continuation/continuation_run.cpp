@@ -123,6 +123,7 @@ ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const C
   const PointSetter set = point_setter(axis.key);
   const PointAt at_value = [&](double lambda) {
     std::pair<Parameters, PointOptions> point{scene.params, scene.options};
+    point.second.analysis.trajectory_periods = 0;  // continue keeps no trajectory (run --trajectory does)
     set(point.first, point.second, lambda);
     return point;
   };

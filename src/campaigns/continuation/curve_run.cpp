@@ -155,6 +155,7 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
   const PointSetter set = point_setter(axis.key), set2 = point_setter(axis2.key);
   const PointAt2 at = [&](double P, double Q) {
     std::pair<Parameters, PointOptions> point{scene.params, scene.options};
+    point.second.analysis.trajectory_periods = 0;  // as for the branch: no trajectory kept
     set2(point.first, point.second, sq.physical(Q));
     set(point.first, point.second, sp.physical(P));
     return point;
