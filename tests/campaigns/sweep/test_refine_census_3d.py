@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import EXE, MPIEXEC  # noqa: E402
+from campaign_helpers import EXE, MPIEXEC, SLOW_SYSTEM  # noqa: E402
 from test_census_map import CENSUS_SCENE  # noqa: E402
 from test_refine_map import assert_same_map, kill_in_level, sweep  # noqa: E402
 
@@ -30,17 +30,7 @@ from test_refine_map import assert_same_map, kill_in_level, sweep  # noqa: E402
 CENSUS_REFINED = CENSUS_SCENE + 'refine = 1\nrefine_on = ["attractors"]\nrefine_audit = 0.25\nrefine_speckle = false\n'
 # Three axes, Table 2's system from rest, brute force (slow enough to be killed mid-run): n = 2
 # at the lowest E2 and F0 only, so some blocks are refined and others inherit: 7 x 5 x 3 fine.
-THREE_AXES = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[solver]
-method = "dopri5"
-
-[analysis]
-steady = "integrate"
-
+THREE_AXES = SLOW_SYSTEM + """
 [sweep]
 E1 = {{ from = 1e9, to = 2.1e11, n = 4, scale = "log" }}
 E2 = {{ from = 2e4, to = 1e7, n = 3, scale = "log" }}
