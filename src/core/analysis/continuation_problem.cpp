@@ -62,7 +62,9 @@ Vector5d Problem::tangent(const Eval& e, const Vector5d& previous) {
   return arclength_tangent<5>(A, previous);
 }
 
-BranchPoint Problem::point(const Vector5d& z, const Eval& e) {
+BranchPoint Problem::point(const Vector5d& z_corrected, const Eval& e) {
+  Vector5d z = z_corrected;
+  z.head<4>() = polished(z.head<4>(), e.F, e.Jy);
   BranchPoint b;
   b.param = lambda(z[4]);
   b.y = Model::to_physical(state(z));

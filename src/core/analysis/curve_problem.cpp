@@ -140,7 +140,9 @@ Vector6d CurveProblem::null_vector(const CurveEval& e) {
   return t / t.norm();
 }
 
-CurvePoint CurveProblem::point(const Vector6d& z, const CurveEval& e) {
+CurvePoint CurveProblem::point(const Vector6d& z_corrected, const CurveEval& e) {
+  Vector6d z = z_corrected;
+  z.head<4>() = continuation_detail::polished(z.head<4>(), e.F, e.J.topLeftCorner<4, 4>());
   CurvePoint c;
   c.param = P(z[4]);
   c.param2 = Q(z[5]);
