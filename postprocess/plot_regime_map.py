@@ -264,13 +264,33 @@ def unstable_cells(sl: MapSlice) -> np.ndarray:
     return (np.asarray(stable) == STABLE_NO) & (np.asarray(sl.data["done"]) != 0)
 
 
+def mask_rectangles(mask) -> list[tuple[int, int, int, int]]:
+    """The cells of a (ny, nx) mask as few rectangles (j0, j1, i0, i1), rows j0..j1 - 1 and
+    columns i0..i1 - 1: each row's runs of cells, a run merged with the same run of the rows
+    below it. A refined map's hatched region is thousands of cells but tens of rectangles, and
+    the renderer hatches each polygon on its own (9,094 cells took 3 s a draw)."""
+    mask = np.asarray(mask, dtype=bool)
+    open_runs: dict[tuple[int, int], int] = {}  # (i0, i1) -> first row
+    out = []
+    for j in range(mask.shape[0] + 1):
+        runs = set()
+        if j < mask.shape[0]:
+            padded = np.concatenate(([False], mask[j], [False])).astype(np.int8)
+            edges = np.flatnonzero(np.diff(padded))
+            runs = {(int(a), int(b)) for a, b in zip(edges[0::2], edges[1::2])}
+        for run in [r for r in open_runs if r not in runs]:
+            out.append((open_runs.pop(run), j, run[0], run[1]))
+        for run in runs:
+            open_runs.setdefault(run, j)
+    return sorted(out)
+
+
 def hatch_cells(ax, x_edges, y_edges, mask, hatch=UNSTABLE_HATCH, color=UNSTABLE_HATCH_COLOR, face="none", gid=None):
-    """Hatches the cells of `mask` (one polygon per cell, so only they are drawn) in `color`
-    over `face` ("none": the cell's own colour shows through); returns the PolyCollection."""
-    rows, cols = np.nonzero(mask)
+    """Hatches the cells of `mask` (polygons over exactly those cells, mask_rectangles) in
+    `color` over `face` ("none": the cell's own colour shows through); returns the PolyCollection."""
     quads = []
-    for j, i in zip(rows.tolist(), cols.tolist()):
-        x0, x1, y0, y1 = x_edges[i], x_edges[i + 1], y_edges[j], y_edges[j + 1]
+    for j0, j1, i0, i1 in mask_rectangles(mask):
+        x0, x1, y0, y1 = x_edges[i0], x_edges[i1], y_edges[j0], y_edges[j1]
         quads.append([(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
     cells = PolyCollection(quads, facecolors=face, edgecolors=color, linewidths=0.0, hatch=hatch, gid=gid)
     ax.add_collection(cells, autolim=False)

@@ -144,7 +144,7 @@ class SweepMap:
         return f"answer: {STEADY_ANSWERS['shooting']}" if self.steady == "shooting" else ""
 
     def refine_note(self) -> str:
-        """The line every picture of an adaptive map (sweep.refine > 0) carries ("" for any other
+        """The two lines every picture of an adaptive map (sweep.refine > 0) carries ("" for any other
         map): how many points were solved, on which quantities, and that the others are inherited,
         so that a class the map was not refined on is not read at the fine resolution."""
         if "refine_levels" not in self.attrs or "computed" not in self.data:
@@ -153,7 +153,7 @@ class SweepMap:
         solved, audited = int(np.count_nonzero(computed == 1)), int(np.count_nonzero(computed == 2))
         on = _text(self.attrs.get("refine_on", "")).replace(" ", ", ")
         return (f"adaptive: {solved} of {computed.size} points solved ({100.0 * solved / computed.size:.3g} %), "
-                f"{audited} audited, refined where {on or 'the refine quantities'} change; the rest inherited")
+                f"{audited} audited,\nrefined where {on or 'the refine quantities'} change; the rest inherited")
 
     @property
     def axis_names(self) -> list[str]:

@@ -250,3 +250,20 @@ def test_vmpy_runs_the_map_scripts(map3d, tmp_path, prog, size):
     assert png_size(out) == size
     listing = run([VMPY, "--help"])
     assert prog in listing.stdout.split()
+
+
+def test_hatched_cells_are_covered_by_disjoint_rectangles_exactly():
+    """mask_rectangles covers the mask's cells exactly, without overlap, in few rectangles: a block
+    of cells is one rectangle, an L shape two."""
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        mask = rng.random((int(rng.integers(1, 12)), int(rng.integers(1, 12)))) < rng.random()
+        covered = np.zeros(mask.shape, dtype=int)
+        for j0, j1, i0, i1 in plot_regime_map.mask_rectangles(mask):
+            covered[j0:j1, i0:i1] += 1
+        np.testing.assert_array_equal(covered, mask.astype(int))
+    block = np.zeros((6, 8), dtype=bool)
+    block[1:5, 2:7] = True
+    assert plot_regime_map.mask_rectangles(block) == [(1, 5, 2, 7)]
+    ell = np.array([[1, 1, 0], [1, 1, 0], [0, 1, 1]], dtype=bool)
+    assert plot_regime_map.mask_rectangles(ell) == [(0, 2, 0, 2), (2, 3, 1, 3)]

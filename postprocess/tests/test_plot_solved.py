@@ -66,9 +66,9 @@ def test_an_adaptive_map_says_in_its_title_how_much_was_solved(tmp_path):
     solved = int(np.count_nonzero(computed == 1))
     assert solved + 2 == 9 * 5 - int(np.count_nonzero(computed == 0))
     assert sweep.refine_note() == (f"adaptive: {solved} of 45 points solved ({100.0 * solved / 45:.3g} %), "
-                                   "2 audited, refined where soft, hertz_valid change; the rest inherited")
+                                   "2 audited,\nrefined where soft, hertz_valid change; the rest inherited")
     sl = plot_regime_map.choose_slice(sweep, "E1", "E2", {})
-    assert plot_regime_map.slice_title("regimes", sweep, sl).splitlines()[-1] == sweep.refine_note()
+    assert plot_regime_map.slice_title("regimes", sweep, sl).splitlines()[-2:] == sweep.refine_note().splitlines()
 
 
 def test_solved_draws_the_solved_and_audited_points_of_the_map(tmp_path):
