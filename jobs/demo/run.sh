@@ -60,7 +60,10 @@ sweep() {
 }
 
 map="$out/e1_e2.h5"
-sweep "$map" --set sweep.refine=3 --set 'sweep.refine_on=["soft", "hertz_valid"]'
+# The audit solves 0.3 % of the inherited points (78), drawn from the whole plane: its upper right
+# (non-periodic and unresolved cells) is the costly part, and the default 1 % would add half the
+# sweep's time; the map and its pictures state the audit's count and bound.
+sweep "$map" --set sweep.refine=3 --set 'sweep.refine_on=["soft", "hertz_valid"]' --set sweep.refine_audit=0.003
 
 edges="$out/soft_edges.h5"
 "$exe" continue "$here/e1_e2.toml" --param contact.E2 --from 2e4 --to 2.1e11 --curve level:k_con=10 \

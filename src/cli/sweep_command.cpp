@@ -130,9 +130,11 @@ void print_table(std::ostream& out, const SweepReport& r, const std::string& out
         << 100.0 * static_cast<double>(x.solved) / static_cast<double>(std::max<std::uint64_t>(f.items, 1))
         << " %; per level";
     for (const std::uint64_t n : x.solved_per_level) out << " " << n;
-    out << "; " << x.whole_blocks << " speckled coarse cells solved whole), " << x.inherited << " inherited, audit " << x.mismatches << " of " << x.audited
-        << " audited points differ (95 % upper bound on the mismatch rate " << std::setprecision(3) << x.mismatch_bound
-        << ")\n";
+    out << "; " << x.whole_blocks << " speckled coarse cells solved whole), " << x.inherited << " inherited, ";
+    if (x.audited == 0) out << "no audit (sweep.refine_audit = 0 or nothing inherited: the inherited points' mismatch is unmeasured)\n";
+    else
+      out << "audit " << x.mismatches << " of " << x.audited << " audited points differ (95 % upper bound on the mismatch rate "
+          << std::setprecision(3) << x.mismatch_bound << ")\n";
   }
   out << "regimes       ";
   for (const auto& [label, count] : r.regimes) out << " " << label << " " << count;

@@ -384,3 +384,10 @@ vibromap_cli_test(sweep_refine_on_census_quantity_without_census RC 2 ARGS sweep
 vibromap_cli_test(sweep_refine_on_attractors_by_set_without_census RC 2 ARGS sweep jobs/demo/e1_e2.toml
                   --set sweep.refine=1 --set "sweep.refine_on=[\"attractors\"]" -o no_file.h5
                   ERR "jobs/demo/e1_e2\\.toml: --set sweep\\.refine_on=\\[\"attractors\"\\]: sweep\\.refine_on names attractors, a census quantity, but the scene has no \\[census\\] section")
+
+# An adaptive map without an audit says that the inherited points' mismatch is unmeasured (it
+# printed "0 of 0 audited points differ (95 % upper bound 1)").
+set(VIBROMAP_CLI_REFINE_LINE ${CMAKE_CURRENT_BINARY_DIR}/cli_refine_line.toml)
+file(WRITE ${VIBROMAP_CLI_REFINE_LINE} "[system]\nD = 1000.0\n[sweep]\nE1 = { from = 1e9, to = 2e11, n = 3 }\nrefine = 1\nrefine_audit = 0\n")
+vibromap_cli_test(sweep_refine_without_audit RC 0 ARGS sweep ${VIBROMAP_CLI_REFINE_LINE} -o ${CMAKE_CURRENT_BINARY_DIR}/cli_refine_line.h5 --overwrite
+                  OUT "refine         1 levels: 3 points solved \\(60 %. per level 3 0. 0 speckled coarse cells solved whole\\), 2 inherited, no audit \\(sweep\\.refine_audit = 0 or nothing inherited: the inherited points' mismatch is unmeasured\\)")
