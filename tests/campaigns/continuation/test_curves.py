@@ -147,3 +147,27 @@ def test_the_grazing_curve_is_the_linear_closed_form():
         w, F0 = p["param"], p["param2"]
         U = np.linalg.solve(K - w * w * M + 1j * w * C, np.array([1.0, 0.0]))
         assert abs(F0 * abs(U[1] - U[0]) / D - 1.0) < 1e-7, p
+
+
+def test_the_period_two_grazings_are_followed():
+    """Table 2's period-2 orbit (doubled from the (1,1) branch over omega in [7.23, 12] rad/s)
+    grazes near 7.4636 and 7.5831 rad/s where a further impact appears on an orbit with one
+    (clearance_min < 0): both are followed as curves over F0 in [300, 700] N (none skipped), each
+    said to separate 1 impact per cycle at lower F0 from 2 at higher (checked against shooting
+    either side in tests/core/test_curve_continuation.cpp); the contact-free (1,1) grazing is the
+    other kind."""
+    report = json.loads(vibromap("continue", "jobs/paper/table2.toml", "--param", "forcing.omega", "--from", "7.23",
+                                 "--to", "12", "--curve", "grazing", "--param2", "forcing.F0", "--from2", "300",
+                                 "--to2", "700", "--format", "json"))
+    assert report["skipped"] == []
+    curves = report["curves"]
+    assert [c["n"] for c in curves] == [1, 2, 2]
+    assert curves[0]["grazing"] == "a contact-free orbit touches: 1 at higher forcing.F0, 0 at lower forcing.F0"
+    starts = []
+    for c in curves[1:]:
+        assert c["grazing"] == ("an impact appears on an orbit with 1 contact per cycle: 2 at higher forcing.F0, "
+                                "1 at lower forcing.F0")
+        assert c["stop"] == "left the box at forcing.F0 = 700; left the box at forcing.F0 = 300"
+        assert max(p["residual"] for p in c["points"]) <= 1e-10
+        starts.append(c["points"][c["start"]]["param"])
+    assert abs(starts[0] - 7.4636) < 1e-4 and abs(starts[1] - 7.5831) < 1e-4, starts
