@@ -173,6 +173,7 @@ void curves_json(JsonWriter& w, const CurvesReport& r) {
   for (const MeasuredCurve& mc : r.curves) {
     const Curve& c = mc.curve;
     w.begin_object().field("kind", c.spec.label).field("n", c.n).field("stop", c.stop).field("start", c.start);
+    if (!c.grazing.empty()) w.field("grazing", c.grazing);
     w.key("codim2").begin_array();
     for (const Codim2Point& x : c.codim2)
       w.begin_object().field("param", x.param).field("param2", x.param2).field("kind", x.kind).end_object();
@@ -225,6 +226,7 @@ void curves_table(std::ostream& out, const std::string& key, const std::string& 
         << key << " " << range_of(c, false) << ", " << key2 << " " << range_of(c, true) << ", worst residual "
         << std::setprecision(2) << worst << ", from the point located at " << key << " = " << std::setprecision(10)
         << c.points[static_cast<std::size_t>(c.start)].param << std::setprecision(6) << "\n    stop: " << c.stop << "\n";
+    if (!c.grazing.empty()) out << "    grazing: " << c.grazing << "\n";
     for (const Codim2Point& x : c.codim2)
       out << "    codim-2: " << x.kind << " at " << key << " = " << std::setprecision(10) << x.param << ", " << key2
           << " = " << x.param2 << std::setprecision(6) << "\n";
@@ -330,7 +332,8 @@ std::string continue_footer() {
       "scene's KEY2) is then followed as a curve in (KEY, KEY2) while KEY2 stays in [C, D] and KEY in\n"
       "[A, B], both ways: pseudo-arclength on the extended system P^n(y) - y = 0, g = 0, with g\n"
       "det(M - I) (fold), det(M + I) (period-doubling), |mu|^2 - 1 of the complex pair nearest the\n"
-      "unit circle (neimark-sacker), the least x2 - x1 over the cycle (grazing), or NAME - VALUE\n"
+      "unit circle (neimark-sacker), the signed clearance of the approach that touches (grazing:\n"
+      "a closest approach's gap, or minus a contact's peak penetration), or NAME - VALUE\n"
       "(level:NAME=VALUE, NAME one of k_con, T_con, F_max, z_ratio; level points are located on the\n"
       "branch where NAME crosses VALUE). Along each curve the other kinds' test functions are\n"
       "watched and their changes located (codimension-two points). The table gives one summary per\n"

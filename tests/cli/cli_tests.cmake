@@ -282,13 +282,14 @@ vibromap_cli_test(continue_file_exists RC 2 ARGS continue jobs/paper/table1.toml
 # `vibromap continue --curve` (issue #31): curves in two parameters. The grazing of Table 2's
 # contact-free orbit (followed down from omega = 11 rad/s) as a curve in (omega, F0): it crosses
 # the box from F0 = 700 N to omega = 7.3 rad/s (checked against the linear closed form in
-# tests/core/test_curve_continuation.cpp); one line for each bad use of the options.
+# tests/core/test_curve_continuation.cpp), a contact-free orbit touching, the contact at higher
+# F0; one line for each bad use of the options.
 vibromap_cli_test(continue_curve_grazing RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 11 --to 7.3
                   --pd-depth 0 --curve grazing --param2 forcing.F0 --from2 300 --to2 700
-                  OUT "\ncurves +1 in \\(forcing\\.omega, forcing\\.F0\\), started at forcing\\.F0 = 500 [^\n]*\n +curve 0 +grazing \\(period 1 T\\): [0-9]+ points, forcing\\.omega 7\\.3 \\.\\. 7\\.88[0-9]+, forcing\\.F0 [0-9.]+ \\.\\. 700, worst residual [^\n]+\n +stop: left the box at forcing\\.F0 = 700. left the box at forcing\\.omega = 7\\.3\n")
+                  OUT "\ncurves +1 in \\(forcing\\.omega, forcing\\.F0\\), started at forcing\\.F0 = 500 [^\n]*\n +curve 0 +grazing \\(period 1 T\\): [0-9]+ points, forcing\\.omega 7\\.3 \\.\\. 7\\.88[0-9]+, forcing\\.F0 [0-9.]+ \\.\\. 700, worst residual [^\n]+\n +stop: left the box at forcing\\.F0 = 700. left the box at forcing\\.omega = 7\\.3\n +grazing: a contact-free orbit touches: 1 at higher forcing\\.F0, 0 at lower forcing\\.F0\n")
 vibromap_cli_test(continue_curve_json RC 0 ARGS continue jobs/paper/table2.toml --param omega --from 11 --to 7.3
                   --pd-depth 0 --curve grazing --param2 F0 --from2 300 --to2 700 --format json
-                  OUT "\"curves\": \\[[ \n]*\\{[ \n]*\"kind\": \"grazing\",[ \n]*\"n\": 1,[ \n]*\"stop\": \"left the box at forcing\\.F0 = 700. left the box at forcing\\.omega = 7\\.3\",[ \n]*\"start\": [0-9]+,[ \n]*\"codim2\": \\[\\],[ \n]*\"points\": \\[[ \n]*\\{[ \n]*\"param\": 7\\.3,[ \n]*\"param2\": [0-9.]+,[ \n]*\"T_con\": ")
+                  OUT "\"curves\": \\[[ \n]*\\{[ \n]*\"kind\": \"grazing\",[ \n]*\"n\": 1,[ \n]*\"stop\": \"left the box at forcing\\.F0 = 700. left the box at forcing\\.omega = 7\\.3\",[ \n]*\"start\": [0-9]+,[ \n]*\"grazing\": \"a contact-free orbit touches: 1 at higher forcing\\.F0, 0 at lower forcing\\.F0\",[ \n]*\"codim2\": \\[\\],[ \n]*\"points\": \\[[ \n]*\\{[ \n]*\"param\": 7\\.3,[ \n]*\"param2\": [0-9.]+,[ \n]*\"T_con\": ")
 vibromap_cli_test(continue_curve_without_param2 RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
                   --curve fold ERR "--curve: needs --param2 KEY --from2 C --to2 D \\(the second key and its range\\)")
 vibromap_cli_test(continue_param2_without_curve RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8

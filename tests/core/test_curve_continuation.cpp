@@ -13,6 +13,8 @@
 #include "support/linear_response.hpp"
 #include "vibromap/core/analysis/continuation.hpp"
 #include "vibromap/core/analysis/curve_continuation.hpp"
+#include "vibromap/core/analysis/orbit_extent.hpp"
+#include "vibromap/core/analysis/shooting.hpp"
 #include "support/paper_points.hpp"
 
 namespace vibromap {
@@ -94,6 +96,82 @@ TEST(CurveContinuation, TheGrazingCurveOfAContactFreeOrbitIsTheLinearClosedForm)
               "%.1e, stop: %s; %.1f s\n",
               c.points.size(), c.points.front().param, c.points.back().param, worst, worst_residual(c), c.stop.c_str(),
               seconds_since(t0));
+}
+
+// a2. The grazings of Table 2's period-2 orbit (the branch doubled from the (1,1) one over omega
+// in [7.23, 12] rad/s at F0 = 500 N, near 7.4636 and 7.5831 rad/s) are a further impact appearing
+// on an orbit with one (clearance_min < 0 there: the old condition could not follow them). Each
+// as a curve in (omega, F0) over [300, 700] N, checked at its ends and middle against orbits
+// solved anew by shooting (Newton on P^2, independent of the curve's extended system): at the
+// point the tracked approach touches to within the condition tolerance, and 0.5 N either side in
+// F0 the orbit has 1 impact per cycle below and 2 above (measure_orbit, as `run` counts them),
+// as the curve's summary says.
+TEST(CurveContinuation, TheGrazingCurvesOfAFurtherImpactSeparateOneImpactFromTwo) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Parameters base = table2();
+  const PointOptions options;
+  const PointSummary s = solve_point(base, options);
+  ContinuationOptions co;
+  co.pd_depth = 1;
+  co.tol = 1e-11;
+  const std::vector<Branch> branches = continue_branches(path(base, options, "omega"), 7.23, 12.0, s.final_state, co);
+  std::vector<const Bifurcation*> grazings;
+  for (const Branch& b : branches)
+    for (const Bifurcation& x : b.bifurcations)
+      if (b.n == 2 && x.type == BifurcationType::grazing) grazings.push_back(&x);
+  ASSERT_EQ(grazings.size(), 2u);
+  CurveOptions o;
+  o.base = co;
+  const CurveBox box{7.23, 12.0, 300.0, 700.0, "forcing.omega", "forcing.F0"};
+  const CurveSpec spec{CurveKind::grazing, LevelQuantity::k_con, 0.0, "grazing"};
+  Parameters corner = base;  // the condition's length scale is the box corner's (curve_problem.cpp)
+  corner.omega = 7.23;
+  corner.F0 = 300.0;
+  const double L = StateScale(Model(corner)).length();
+  ShootingOptions so;
+  so.n = 2;
+  so.tol = 1e-12;
+  IntegrationCounters counters;
+  for (const Bifurcation* g : grazings) {
+    EXPECT_LT(g->at.clearance_min, -1e-4) << g->at.param;  // the orbit has a contact already
+    const Curve c = continue_curve(plane(base, options, "omega", "F0"), box, spec, 2, g->at.param, base.F0, g->at.y, o);
+    ASSERT_GT(c.points.size(), 10u) << c.stop;
+    EXPECT_EQ(c.stop, "left the box at forcing.F0 = 700; left the box at forcing.F0 = 300");
+    EXPECT_EQ(c.grazing, "an impact appears on an orbit with 1 contact per cycle: 2 at higher forcing.F0, 1 at lower "
+                         "forcing.F0");
+    EXPECT_LE(worst_residual(c), o.condition_tol);
+    for (const std::size_t i : {std::size_t{0}, c.points.size() / 2, c.points.size() - 1}) {
+      const CurvePoint& q = c.points[i];
+      Parameters p = base;
+      p.omega = q.param;
+      p.F0 = q.param2;
+      const ShootingResult r = shoot(Model(p), options.integrator, Model::to_internal(q.y), so, counters);
+      ASSERT_TRUE(r.converged) << r.message;
+      const OrbitExtent x = orbit_extent(Model(p), options.integrator, r.y, 2, counters);
+      const Approach* a = nearest_approach(x, q.phase);
+      ASSERT_NE(a, nullptr);
+      EXPECT_LE(std::abs(a->clearance) / L, o.condition_tol) << q.param << " " << q.param2;
+      std::size_t impacts[2] = {0, 0};
+      double side_clearance[2] = {0.0, 0.0};
+      for (const int side : {0, 1}) {
+        p.F0 = q.param2 + (side == 0 ? -0.5 : 0.5);
+        const ShootingResult rs = shoot(Model(p), options.integrator, r.y, so, counters);
+        ASSERT_TRUE(rs.converged) << rs.message;
+        impacts[side] = measure_orbit(p, options, Model::to_physical(rs.y), 2).impacts.size();
+        const OrbitExtent xs = orbit_extent(Model(p), options.integrator, rs.y, 2, counters);
+        side_clearance[side] = nearest_approach(xs, q.phase)->clearance;
+      }
+      EXPECT_EQ(impacts[0], 1u) << q.param << " " << q.param2;
+      EXPECT_EQ(impacts[1], 2u) << q.param << " " << q.param2;
+      std::printf("period-2 grazing curve from omega %.4f, point %zu (omega %.8f, F0 %.4f): tracked clearance %.1e "
+                  "of L; F0 -/+ 0.5 N: %zu / %zu impacts, clearance %+.2e / %+.2e m\n",
+                  g->at.param, i, q.param, q.param2, a->clearance / L, impacts[0], impacts[1], side_clearance[0],
+                  side_clearance[1]);
+    }
+    std::printf("period-2 grazing curve from omega %.4f: %zu points, worst residual %.1e\n", g->at.param,
+                c.points.size(), worst_residual(c));
+  }
+  std::printf("period-2 grazing curves: %.1f s\n", seconds_since(t0));
 }
 
 // b. The fold of Table 2's (1,1) branch (omega 7.23 -> 8.3 at F0 = 500 N) followed in

@@ -29,12 +29,9 @@ struct Start {
   Eigen::Vector4d y = Eigen::Vector4d::Zero();
 };
 
-// A grazing point whose closest approach is within this fraction of the clearance D of zero is
-// one where an impact appears (the grazing curve's defining condition clearance_min = 0).
-constexpr double kTouching = 1e-5;
-
-std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSpec& spec, double D,
-                                      const KeyScale& sp, std::vector<std::string>& skipped) {
+// Every located bifurcation of the spec's type starts a curve (grazings of every kind: the
+// condition tracks the approach that touches, curve_continuation.hpp).
+std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSpec& spec) {
   BifurcationType type = BifurcationType::fold;
   if (spec.kind == CurveKind::period_doubling) type = BifurcationType::period_doubling;
   if (spec.kind == CurveKind::neimark_sacker) type = BifurcationType::neimark_sacker;
@@ -43,11 +40,6 @@ std::vector<Start> bifurcation_starts(const ContinuationReport& r, const CurveSp
   for (const Branch& b : r.branches)
     for (const Bifurcation& x : b.bifurcations) {
       if (x.type != type) continue;
-      if (type == BifurcationType::grazing && !(std::abs(x.at.clearance_min) <= kTouching * D)) {
-        skipped.push_back(cat("grazing at ", short_number(sp.physical(x.at.param)), ": an impact vanishes or a further one appears ",
-                              "(clearance_min ", short_number(x.at.clearance_min), " m): not followed"));
-        continue;
-      }
       out.push_back({b.n, x.at.param, x.at.y});
     }
   return out;
@@ -167,7 +159,7 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
     const CurveOptions co = curve_options(scene, config, spec);
     const std::vector<Start> starts =
         spec.kind == CurveKind::level ? level_starts(at, box, spec, q0, report.branch, co, sp, report.skipped)
-                                      : bifurcation_starts(report.branch, spec, scene.params.D, sp, report.skipped);
+                                      : bifurcation_starts(report.branch, spec);
     for (const Start& s : starts) {
       if (on_known_curve(report.curves, spec, s.n, box, s.param, q0)) continue;
       MeasuredCurve mc{continue_curve(at, box, spec, s.n, s.param, q0, s.y, co), {}};

@@ -147,6 +147,7 @@ class CurveTracer {
 };
 
 std::optional<End> CurveTracer::predict_correct(int& iterations) {
+  pb_.track_phase(last_.p.phase);  // grazing: the approach tracked at the last point (the others keep it)
   const std::optional<Corrected> c = pb_.correct(last_.z + ds_ * last_.t, last_.t, &iterations);
   if (!c) return std::nullopt;
   const Vector6d t1 = CurveProblem::tangent(c->second, last_.t);
@@ -238,6 +239,25 @@ Vector6d fixed_q() {
   return t;
 }
 
+std::string contacts_text(int k) { return std::to_string(k) + (k == 1 ? " contact" : " contacts"); }
+
+// Which kind of grazing the start p of a grazing curve is: its other contacts k, and on which
+// side in Q the tracked impact exists. With P fixed, the rows of J without P's column give
+// (dy, dv) per unit dg; dv > 0: the clearance grows with Q, so the impact is at lower Q.
+std::string grazing_kind(const CurveEval& e, const CurvePoint& p, const CurveBox& box) {
+  Eigen::Matrix<double, 5, 5> A;
+  A.leftCols<4>() = e.J.leftCols<4>();
+  A.col(4) = e.J.col(5);
+  Eigen::Matrix<double, 5, 1> rhs = Eigen::Matrix<double, 5, 1>::Zero();
+  rhs[4] = 1.0;
+  const double dv = A.fullPivLu().solve(rhs)[4];
+  const int k = p.other_contacts;
+  const std::string more = dv > 0.0 ? "lower " : "higher ", fewer = dv > 0.0 ? "higher " : "lower ";
+  return (k == 0 ? std::string("a contact-free orbit touches: ")
+                 : "an impact appears on an orbit with " + contacts_text(k) + " per cycle: ") +
+         std::to_string(k + 1) + " at " + more + box.key2 + ", " + std::to_string(k) + " at " + fewer + box.key2;
+}
+
 }  // namespace
 
 Curve continue_curve(const PointAt2& at, const CurveBox& box, const CurveSpec& spec, int n, double start_param,
@@ -251,6 +271,11 @@ Curve continue_curve(const PointAt2& at, const CurveBox& box, const CurveSpec& s
   }
   CurveProblem pb(at, box, spec, n, options);
   const Vector6d z0 = pb.scaled(Model::to_internal(y0), start_param, q0);
+  if (spec.kind == CurveKind::grazing && !pb.track_touching(z0)) {
+    c.stop = "the orbit located at " + key_value(box, false, start_param) + " has no approach of the bodies";
+    c.counters = pb.counters;
+    return c;
+  }
   const std::optional<Corrected> s = pb.correct(z0, fixed_q());
   if (!s) {
     c.stop = "the point located at " + key_value(box, false, start_param) +
@@ -261,6 +286,7 @@ Curve continue_curve(const PointAt2& at, const CurveBox& box, const CurveSpec& s
   Vector6d t0 = CurveProblem::null_vector(s->second);
   if ((std::abs(t0[5]) > 1e-12 ? t0[5] : t0[4]) < 0.0) t0 = -t0;
   const End start{s->first, s->second, t0, pb.point(s->first, s->second)};
+  if (spec.kind == CurveKind::grazing) c.grazing = grazing_kind(s->second, start.p, box);
   std::vector<CurvePoint> up, down;
   bool closed = false;
   c.stop = CurveTracer(pb, start, c, up).run(closed);

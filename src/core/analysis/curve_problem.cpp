@@ -67,8 +67,9 @@ std::optional<double> CurveProblem::condition(const Vector6d& z, const Eigen::Ma
     case CurveKind::grazing: {
       const auto [p, opt] = at_(P(z[4]), Q(z[5]));
       const OrbitExtent x = orbit_extent(Model(p), opt.integrator, state(z), n_, counters);
-      if (!x.ok) return std::nullopt;
-      return x.clearance_min / unit_[0];
+      const Approach* a = x.ok ? tracked(x) : nullptr;
+      if (!a) return std::nullopt;
+      return a->clearance / unit_[0];
     }
     case CurveKind::level: break;
   }
@@ -77,6 +78,18 @@ std::optional<double> CurveProblem::condition(const Vector6d& z, const Eigen::Ma
   counters += s.counters;
   if (s.status != SolveStatus::ok) return std::nullopt;
   return (level_value(spec_.quantity, s) - spec_.value) / level_scale_;
+}
+
+bool CurveProblem::track_touching(const Vector6d& z) {
+  const auto [p, opt] = at_(P(z[4]), Q(z[5]));
+  const OrbitExtent x = orbit_extent(Model(p), opt.integrator, state(z), n_, counters);
+  const Approach* a = x.ok ? touching_approach(x) : nullptr;
+  if (a) phase_ = a->phase;
+  return a != nullptr;
+}
+
+const Approach* CurveProblem::tracked(const OrbitExtent& x) const {
+  return phase_ ? nearest_approach(x, *phase_) : touching_approach(x);
 }
 
 std::optional<CurveEval> CurveProblem::eval(const Vector6d& z) {
@@ -155,6 +168,12 @@ CurvePoint CurveProblem::point(const Vector6d& z_corrected, const CurveEval& e) 
   const OrbitExtent x = orbit_extent(Model(p), opt.integrator, state(z), n_, counters);
   c.contacts = x.contacts;
   c.clearance_min = x.clearance_min;
+  if (spec_.kind != CurveKind::grazing) return c;
+  if (const Approach* a = tracked(x)) {
+    c.phase = a->phase;
+    c.approach = a->clearance;
+    for (const Approach& b : x.approaches) c.other_contacts += &b != a && b.clearance < 0.0 ? 1 : 0;
+  }
   return c;
 }
 

@@ -50,6 +50,11 @@ class CurveProblem {
   static Vector6d null_vector(const CurveEval& e);
   CurvePoint point(const Vector6d& z, const CurveEval& e);
 
+  // Grazing: the approach the condition tracks (OrbitExtent::approaches) is the one whose phase is
+  // nearest `phase` (the previous point's), or with none set the one nearest touching.
+  void track_phase(double phase) { phase_ = phase; }
+  // Grazing: tracks the approach of the orbit at z nearest touching; false when it has none.
+  bool track_touching(const Vector6d& z);
   const CurveOptions& options() const { return o_; }
   const CurveBox& box() const { return box_; }
   const CurveSpec& spec() const { return spec_; }
@@ -60,6 +65,7 @@ class CurveProblem {
   // g at z (M: the monodromy at z); none when it cannot be evaluated.
   std::optional<double> condition(const Vector6d& z, const Eigen::Matrix4d& M);
   bool needs_monodromy() const;
+  const Approach* tracked(const OrbitExtent& x) const;
 
   static constexpr double kDz = 1e-7;  // forward-difference step in the scaled unknowns
   PointAt2 at_;
@@ -69,6 +75,7 @@ class CurveProblem {
   CurveOptions o_;
   Eigen::Array4d unit_;
   double level_scale_ = 1.0;
+  std::optional<double> phase_;  // grazing: the tracked approach's phase
 };
 
 // The test functions along a curve (curve_continuation.hpp), each a sign or a count.

@@ -54,7 +54,7 @@ void interior_maxima(const StepView& step, const Samples& s, const Part& part, T
     if (!(ga < 0.0 && gb > 0.0)) continue;  // a rate exactly 0 at a sample: that sample is the maximum
     const auto g = [&](double tau) { return -part.rate(Model::to_physical(step.eval(tau))); };
     const double t = illinois(g, s.tau[i], s.tau[i + 1], ga, gb, tol).x;
-    take(part.value(Model::to_physical(step.eval(t))));
+    take(t, part.value(Model::to_physical(step.eval(t))));
   }
 }
 
@@ -64,13 +64,25 @@ void interior_maxima(const StepView& step, const Samples& s, const Part& part, T
 double step_max(const StepView& step, const Samples& s, const Part& part) {
   double best = -std::numeric_limits<double>::infinity();
   for (const Physical& x : s.x) best = std::max(best, part.value(x));
-  interior_maxima(step, s, part, [&](double v) { best = std::max(best, v); });
+  interior_maxima(step, s, part, [&](double, double v) { best = std::max(best, v); });
   return best;
 }
 
+// The largest value of a quantity seen so far and where (phase) it was.
+struct Peak {
+  double value = -std::numeric_limits<double>::infinity();
+  double phase = 0.0;
+  bool seen() const { return value > -std::numeric_limits<double>::infinity(); }
+  void take(double v, double at) {
+    if (v > value) value = v, phase = at;
+  }
+};
+
 class ExtentObserver final : public Observer {
  public:
-  explicit ExtentObserver(const Model& model) : fast_(fast_frequency(model)) {}
+  ExtentObserver(const Model& model, int n) : fast_(fast_frequency(model)), period_(model.period()), n_(n) {}
+
+  void begin_period(int i) { index_ = i; }
 
   void on_step(const StepView& step) override {
     if (!(step.tau1 > step.tau0)) return;
@@ -83,17 +95,34 @@ class ExtentObserver final : public Observer {
   void on_event(const ContactEvent& event) override {
     if (event.kind == ContactEvent::Kind::entry) {
       ++contacts;
+      entered_ = true;
     } else {
       close_contact();
     }
   }
+  // The contact in progress ends: its peak penetration is an approach (and a graze_gap candidate).
   void close_contact() {
-    if (contact_peak > -std::numeric_limits<double>::infinity()) graze_gap = std::min(graze_gap, contact_peak);
-    contact_peak = -std::numeric_limits<double>::infinity();
+    if (!contact_peak.seen()) return;
+    graze_gap = std::min(graze_gap, contact_peak.value);
+    if (!entered_) first_open_ = static_cast<int>(approaches.size());  // it began before the cycle did
+    approaches.push_back({contact_peak.phase, -contact_peak.value});
+    contact_peak = Peak{};
+  }
+  // The cycle's end: a contact still in progress is closed; when it continues the one the cycle
+  // began in (the same contact, cut by the cycle's start), the two parts are one approach.
+  void finish() {
+    const bool open_at_end = contact_peak.seen();
+    close_contact();
+    if (!open_at_end || first_open_ < 0 || first_open_ + 1 >= static_cast<int>(approaches.size())) return;
+    const Approach last = approaches.back();
+    approaches.pop_back();
+    Approach& first = approaches[static_cast<std::size_t>(first_open_)];
+    if (last.clearance < first.clearance) first = last;
   }
   int contacts = 0;
   double graze_gap = std::numeric_limits<double>::infinity();
-  double contact_peak = -std::numeric_limits<double>::infinity();
+  Peak contact_peak;  // of x1 - x2 in the contact in progress
+  std::vector<Approach> approaches;
   double x1_max = -std::numeric_limits<double>::infinity();
   double x2_max = -std::numeric_limits<double>::infinity();
   double overlap_max = -std::numeric_limits<double>::infinity();  // max of x1 - x2
@@ -118,20 +147,32 @@ class ExtentObserver final : public Observer {
     return s;
   }
 
-  // z = x1 - x2: its interior maxima are the closest approaches in free flight (graze_gap) and
-  // the deepest penetration in contact (with the step's ends: contact_peak).
+  // z = x1 - x2: its interior maxima are the closest approaches in free flight (graze_gap and
+  // approaches) and the deepest penetration in contact (with the step's ends: contact_peak).
   void track_gaps(const StepView& step, const Samples& s) {
     const bool in_contact = step.mode == ContactMode::contact;
-    interior_maxima(step, s, kOverlap, [&](double peak) {
-      if (in_contact)
-        contact_peak = std::max(contact_peak, peak);
-      else if (peak < 0.0)
+    interior_maxima(step, s, kOverlap, [&](double tau, double peak) {
+      if (in_contact) {
+        contact_peak.take(peak, phase(tau));
+      } else if (peak < 0.0) {
         graze_gap = std::min(graze_gap, -peak);
+        approaches.push_back({phase(tau), -peak});
+      }
     });
-    if (in_contact) contact_peak = std::max({contact_peak, kOverlap.value(s.x.front()), kOverlap.value(s.x.back())});
+    if (in_contact) {
+      contact_peak.take(kOverlap.value(s.x.front()), phase(s.tau.front()));
+      contact_peak.take(kOverlap.value(s.x.back()), phase(s.tau.back()));
+    }
   }
+  // Local time tau of the current period as a fraction of the n-period cycle.
+  double phase(double tau) const { return (index_ + tau / period_) / n_; }
 
-  double fast_;  // rad/s
+  double fast_;     // rad/s
+  double period_;   // T, in the integrator's time
+  int n_;           // periods in the cycle
+  int index_ = 0;   // the current period's index in the cycle
+  bool entered_ = false;  // a contact entry seen since the cycle began
+  int first_open_ = -1;   // the approach of a contact in progress at the cycle's start
 };
 
 }  // namespace
@@ -142,9 +183,10 @@ OrbitExtent orbit_extent(const Model& model, const IntegratorOptions& integratio
   const auto integ = make_integrator(model, integration);
   State u = y;
   integ->reset(u);
-  ExtentObserver obs(model);
+  ExtentObserver obs(model, n);
   for (int i = 0; i < n; ++i) {
     e.strobe.push_back(Model::to_physical(u));
+    obs.begin_period(i);
     if (integ->advance_period(u, obs) != IntegrationStatus::ok) {
       counters += integ->counters();
       e.strobe.clear();
@@ -156,10 +198,28 @@ OrbitExtent orbit_extent(const Model& model, const IntegratorOptions& integratio
   e.x1_max = obs.x1_max;
   e.x2_max = obs.x2_max;
   e.clearance_min = -obs.overlap_max;
-  obs.close_contact();
+  obs.finish();
   e.contacts = obs.contacts;
   e.graze_gap = obs.graze_gap;
+  e.approaches = std::move(obs.approaches);
   return e;
+}
+
+const Approach* nearest_approach(const OrbitExtent& e, double phase) {
+  const Approach* best = nullptr;
+  double best_d = 2.0;
+  for (const Approach& a : e.approaches) {
+    const double d = std::abs(a.phase - phase), circular = std::min(d, 1.0 - d);
+    if (circular < best_d) best_d = circular, best = &a;
+  }
+  return best;
+}
+
+const Approach* touching_approach(const OrbitExtent& e) {
+  const Approach* best = nullptr;
+  for (const Approach& a : e.approaches)
+    if (!best || std::abs(a.clearance) < std::abs(best->clearance)) best = &a;
+  return best;
 }
 
 }  // namespace vibromap

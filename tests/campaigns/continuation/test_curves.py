@@ -147,3 +147,73 @@ def test_the_grazing_curve_is_the_linear_closed_form():
         w, F0 = p["param"], p["param2"]
         U = np.linalg.solve(K - w * w * M + 1j * w * C, np.array([1.0, 0.0]))
         assert abs(F0 * abs(U[1] - U[0]) / D - 1.0) < 1e-7, p
+
+
+def test_the_period_two_grazings_are_followed():
+    """Table 2's period-2 orbit (doubled from the (1,1) branch over omega in [7.23, 12] rad/s)
+    grazes near 7.4636 and 7.5831 rad/s where a further impact appears on an orbit with one
+    (clearance_min < 0): both are followed as curves over F0 in [300, 700] N (none skipped), each
+    said to separate 1 impact per cycle at lower F0 from 2 at higher (checked against shooting
+    either side in tests/core/test_curve_continuation.cpp); the contact-free (1,1) grazing is the
+    other kind."""
+    report = json.loads(vibromap("continue", "jobs/paper/table2.toml", "--param", "forcing.omega", "--from", "7.23",
+                                 "--to", "12", "--curve", "grazing", "--param2", "forcing.F0", "--from2", "300",
+                                 "--to2", "700", "--format", "json"))
+    assert report["skipped"] == []
+    curves = report["curves"]
+    assert [c["n"] for c in curves] == [1, 2, 2]
+    assert curves[0]["grazing"] == "a contact-free orbit touches: 1 at higher forcing.F0, 0 at lower forcing.F0"
+    starts = []
+    for c in curves[1:]:
+        assert c["grazing"] == ("an impact appears on an orbit with 1 contact per cycle: 2 at higher forcing.F0, "
+                                "1 at lower forcing.F0")
+        assert c["stop"] == "left the box at forcing.F0 = 700; left the box at forcing.F0 = 300"
+        assert max(p["residual"] for p in c["points"]) <= 1e-10
+        starts.append(c["points"][c["start"]]["param"])
+    assert abs(starts[0] - 7.4636) < 1e-4 and abs(starts[1] - 7.5831) < 1e-4, starts
+
+
+def folds_at(F0):
+    """The folds of Table 2's branch over omega in [6.6, 6.9] rad/s at force F0, followed from the
+    orbit solved from rest at 6.6 rad/s."""
+    branch = json.loads(vibromap("continue", "jobs/paper/table2.toml", "--set", f"forcing.F0={F0!r}", "--set",
+                                 "forcing.omega=6.6", "--param", "forcing.omega", "--from", "6.6", "--to", "6.9",
+                                 "--pd-depth", "0", "--format", "json"))
+    assert branch["stop"] == "reached the end of the interval"
+    return sorted(b["param"] for b in branch["bifurcations"] if b["type"] == "fold")
+
+
+def arm_at(points, F0):
+    """omega where the run of points (walked from the cusp outwards) first crosses F0, linearly."""
+    for a, b in zip(points, points[1:]):
+        if (a["param2"] - F0) * (b["param2"] - F0) <= 0.0:
+            w = (F0 - a["param2"]) / (b["param2"] - a["param2"])
+            return a["param"] + w * (b["param"] - a["param"])
+    raise AssertionError(f"the arm does not reach F0 = {F0}")
+
+
+def test_the_cusp_of_the_folds_is_where_the_branch_gains_its_fold_pair():
+    """Table 2's (1,1) branch swept down in omega from 8.3 rad/s has the folds 7.5758 and 8.2420
+    rad/s at F0 = 500 N; their fold curve over F0 in [20, 600] N joins them through a cusp (the
+    curve's projection turns back) near omega 6.73407 rad/s, F0 41.7331 N (measured 2026-11-26).
+    Checked against plain one-parameter branches over omega in [6.6, 6.9]: 0.1 N below the cusp
+    the branch has no fold, 0.1 N above it two, 3.7e-4 rad/s apart, each where an arm of the fold
+    curve crosses that force to 1e-4 rad/s (the arms' points interpolated linearly; measured 3.5e-5
+    and 6.3e-5)."""
+    report = json.loads(vibromap("continue", "jobs/paper/table2.toml", "--set", "forcing.omega=8.3", "--param",
+                                 "forcing.omega", "--from", "8.3", "--to", "6", "--pd-depth", "0", "--curve", "fold",
+                                 "--param2", "forcing.F0", "--from2", "20", "--to2", "600", "--format", "json"))
+    (curve,) = report["curves"]  # the two folds' starts lie on one curve
+    cusps = [x for x in curve["codim2"] if x["kind"] == "cusp"]
+    assert len(cusps) == 1, curve["codim2"]
+    omega_c, F0_c = cusps[0]["param"], cusps[0]["param2"]
+    assert abs(omega_c - 6.73407) < 1e-4 and abs(F0_c - 41.7331) < 1e-3, cusps
+    points = curve["points"]
+    low = min(range(len(points)), key=lambda i: points[i]["param2"])
+    assert abs(points[low]["param2"] - F0_c) < 0.01  # the curve's lowest force is the cusp's
+    assert folds_at(F0_c - 0.1) == []
+    above = folds_at(F0_c + 0.1)
+    assert len(above) == 2, above
+    arms = sorted([arm_at(points[low::-1], F0_c + 0.1), arm_at(points[low:], F0_c + 0.1)])
+    assert 0.0 < above[1] - above[0] < 1e-3 and abs(above[0] - omega_c) < 2e-3, above
+    assert abs(above[0] - arms[0]) < 1e-4 and abs(above[1] - arms[1]) < 1e-4, (above, arms)

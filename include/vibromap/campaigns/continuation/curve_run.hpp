@@ -3,8 +3,8 @@
 // process, no farm.
 //   branch    the branch in P over [A, B] at the scene's Q, as `continue` follows it
 //             (continuation_run.hpp)
-//   starts    every point of each KIND on it: its located bifurcations of that type (grazings
-//             where an impact appears: clearance_min = 0), or for level:NAME=VALUE where NAME
+//   starts    every point of each KIND on it: its located bifurcations of that type (every
+//             grazing: an impact appearing or vanishing), or for level:NAME=VALUE where NAME
 //             crosses VALUE between two points, located by Newton on the extended system
 //   curves    each start continued in (P, Q) both ways while Q in [C, D] and P in [A, B]
 //             (core/analysis/curve_continuation.hpp); a start on a curve already found is not

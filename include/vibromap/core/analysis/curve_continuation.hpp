@@ -21,10 +21,20 @@
 //                     multiplier crosses +1 with nonzero speed along the branch)
 //   period-doubling   det(M + I)  (a multiplier at -1)
 //   neimark-sacker    |mu|^2 - 1 of the complex pair nearest the unit circle (none: the curve stops)
-//   grazing           clearance_min / length scale: the least x2 - x1 over the cycle, located as a
-//                     root of the relative velocity on the dense output (orbit_extent.hpp), = 0
-//                     where an impact appears (a contact-free orbit touching); grazings where an
-//                     impact vanishes, or a second appears on an orbit with one, are not followed
+//   grazing           the signed clearance of one tracked approach / length scale: a local
+//                     minimum of x2 - x1 over the cycle (orbit_extent.hpp: OrbitExtent::approaches),
+//                     the gap of a closest approach in free flight (> 0) or minus the peak
+//                     penetration of a contact (< 0), located as a root of the relative velocity
+//                     on the dense output. It crosses zero smoothly where that impact appears or
+//                     vanishes, whatever the orbit's other contacts do, so every grazing is
+//                     followed: a contact-free orbit touching, a further impact appearing on an
+//                     orbit with impacts, one of several vanishing. (The global clearance_min,
+//                     the condition before, is that only for a contact-free orbit; on one with
+//                     another contact it is that contact's penetration, which does not vanish.)
+//                     The tracked approach is the one touching at the start (least |clearance|),
+//                     then at each point the one whose phase in the n-period cycle is nearest the
+//                     previous point's (CurvePoint::phase). For a contact-free orbit that is the
+//                     closest approach, i.e. clearance_min: the same curve as before.
 //   level:NAME=VALUE  (quantity(orbit) - VALUE) / |VALUE|, the quantity (k_con, T_con, F_max,
 //                     z_ratio) measured on the cycle as `run` measures it (measure_orbit)
 // A point is accepted when the orbit's scaled residual is within options.tol and |g| within
@@ -89,6 +99,11 @@ struct CurvePoint {
   double orbit_residual = 0.0;  // scaled |P^n(y) - y|
   int contacts = 0;             // per cycle (orbit_extent.hpp)
   double clearance_min = 0.0;   // m
+  // Grazing curves: the tracked approach (orbit_extent.hpp), its phase in the cycle and signed
+  // clearance (m, ~0 on the curve), and the contacts per cycle besides it.
+  double phase = 0.0;
+  double approach = 0.0;
+  int other_contacts = 0;
 };
 
 struct Codim2Point {
@@ -103,6 +118,9 @@ struct Curve {
   int start = 0;                   // the index of the located point it was started from
   std::vector<Codim2Point> codim2;
   std::string stop;                // one sentence per direction, joined by "; "
+  // Grazing: which kind, at the start: "an impact appears on an orbit with 1 contact per cycle:
+  // 2 at higher KEY2, 1 at lower" (or "a contact-free orbit touches: ..."); empty otherwise.
+  std::string grazing;
   IntegrationCounters counters;
 };
 

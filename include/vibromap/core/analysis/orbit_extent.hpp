@@ -18,12 +18,27 @@
 // the Dormand-Prince interpolant in contact (a contact-free branch equals the closed-form linear
 // response's |Q1|, D + |Q2| and D - |Q2 - Q1| to ~1e-12, tests/core/test_continuation.cpp).
 // The closest approaches and peak penetrations behind graze_gap are located the same way.
+//
+// The approaches (issue #31): every local minimum of x2 - x1 over the cycle, signed, with its
+// phase: a closest approach in free flight (its gap, > 0) and each contact (minus its peak
+// penetration, < 0). One approach's signed clearance crosses zero smoothly where its impact
+// appears or vanishes (at a grazing the contact is shallow and hardly changes the motion, so its
+// peak penetration continues the free flight's closest approach through zero): the grazing
+// curves' defining condition (curve_continuation.hpp). A contact cut by the cycle's start is one
+// approach (the deeper of its two parts' peaks).
 
 #include <vector>
 
 #include "vibromap/core/integrate/integrator.hpp"
 
 namespace vibromap {
+
+// A local minimum of the clearance x2 - x1 over the cycle.
+struct Approach {
+  double phase = 0.0;      // its time as a fraction of the n-period cycle, [0, 1]
+  double clearance = 0.0;  // m: the gap of a closest approach in free flight (> 0), or minus the
+                           // peak penetration of a contact (< 0)
+};
 
 struct OrbitExtent {
   bool ok = false;            // false: the integration failed
@@ -37,7 +52,14 @@ struct OrbitExtent {
   // and the peak penetrations of its contacts (an impact vanishes when one reaches 0).
   // Infinite for an orbit without either.
   double graze_gap = 0.0;
+  std::vector<Approach> approaches;  // in the order of the cycle
 };
+
+// The approach whose phase is nearest `phase` (distance on the circle of the cycle's phases);
+// none when the orbit has none.
+const Approach* nearest_approach(const OrbitExtent& e, double phase);
+// The approach whose |clearance| is least (the one touching at a grazing); none without any.
+const Approach* touching_approach(const OrbitExtent& e);
 
 // Over the n periods from y (internal coordinates, a period start).
 OrbitExtent orbit_extent(const Model& model, const IntegratorOptions& integration, const State& y, int n,
