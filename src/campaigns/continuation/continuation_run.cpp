@@ -11,6 +11,7 @@
 #include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/scene/keys.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -65,6 +66,7 @@ ContinuationOptions continuation_options(const PointSummary& start, const Contin
   co.max_points = config.max_points;
   if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
   co.pd_depth = config.pd_depth;
+  co.stop = &stop_flag();  // a stop signal ends the branch before its next point
   return co;
 }
 
@@ -93,6 +95,13 @@ BranchData branch_data(const Axis& axis, const ContinuationReport& report, const
 }
 
 }  // namespace
+
+std::string name_stop_signal(std::string stop, int signal) {
+  const std::string from = kStoppedOnRequest;
+  if (const std::size_t at = stop.find(from); at != std::string::npos && signal != 0)
+    stop.replace(at, from.size(), "stopped by " + signal_name(signal));
+  return stop;
+}
 
 KeyScale key_scale(double from, double to, double anchor) {
   const double lo = std::min(from, to), hi = std::max(from, to);
@@ -144,6 +153,8 @@ ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const 
   const KeyScale scale = key_scale(config.from, config.to, config.from);
   ContinuationReport report = continue_scaled(scene, axis, config, scale);
   to_physical(report, scale);
+  report.stop_signal = stop_signal();
+  for (Branch& b : report.branches) b.stop = name_stop_signal(b.stop, report.stop_signal);
   if (!config.output.empty()) write_branch(config.output, branch_data(axis, report, scene.text));
   return report;
 }
