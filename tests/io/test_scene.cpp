@@ -302,7 +302,7 @@ const std::vector<BadScene>& bad_scenes() {
       {"string for number", "[system]\nm1 = \"heavy\"\n", {}, {"[system] m1 = \"heavy\"", "must be a finite number > 0 (kg)"}},
       {"infinite", "[system]\nm1 = inf\n", {}, {"[system] m1 = inf", "must be a finite number > 0 (kg)"}},
       {"nan phase", "[forcing]\nphi0 = nan\n", {}, {"[forcing] phi0 = nan", "must be a finite number in [-1000, 1000] (rad)"}},
-      {"huge phase", "[forcing]\nphi0 = -1e308\n", {}, {"[forcing] phi0 = -1e308", "must be in [-1000, 1000] (rad)"}},
+      {"huge phase", "[forcing]\nphi0 = -1e308\n", {}, {"[forcing] phi0 = -1e+308", "must be in [-1000, 1000] (rad)"}},
       {"bad method", "[solver]\nmethod = \"rk5\"\n", {}, {"[solver] method = \"rk5\"",
                                                           "must be one of \"hybrid\", \"dopri5\", \"rk4\"",
                                                           "did you mean \"rk4\"?"}},
