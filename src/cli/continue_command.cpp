@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
 #include "vibromap/campaigns/continuation/curve_run.hpp"
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/report.hpp"
@@ -293,9 +294,7 @@ int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, 
   return continue_exit(args, r.branch, &r);
 }
 
-}  // namespace
-
-int continue_command(const ContinueArgs& args, std::ostream& out) {
+int continue_branch_or_curves(const ContinueArgs& args, std::ostream& out) {
   if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from != args.to))
     throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite, different values"));
   if (!std::isfinite(args.to - args.from))
@@ -323,6 +322,19 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   }
   out.flush();
   return continue_exit(args, report);
+}
+
+}  // namespace
+
+// A stop signal while the start orbit was solved (continuation_run.hpp): one line, exit 3.
+int continue_command(const ContinueArgs& args, std::ostream& out) {
+  try {
+    return continue_branch_or_curves(args, out);
+  } catch (const Cancelled&) {
+    std::cerr << "vibromap: stopped by " << signal_name(stop_signal()) << " while solving the start orbit at "
+              << args.param << " = " << short_number(args.from) << ": no point found, nothing written\n";
+    return code(ExitCode::stopped);
+  }
 }
 
 namespace {
@@ -360,7 +372,7 @@ std::string continue_footer() {
       "SIGINT, SIGTERM or SIGUSR1 end the run before its next point: the points found so far are\n"
       "printed and written (-o, a whole file), the branch or curve cut short with stop 'stopped by\n"
       "SIGTERM' (the signal's name), and the exit code is 3 with one line on stderr; continue has\n"
-      "no --resume (run it again).";
+      "no --resume (run it again). A stop while the start orbit is solved writes nothing.";
 }
 
 }  // namespace

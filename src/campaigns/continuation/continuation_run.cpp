@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/output_file.hpp"
@@ -138,7 +139,12 @@ ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const C
   };
   const PointAt at = scale.log ? PointAt([&](double u) { return at_value(scale.physical(u)); }) : at_value;
   const double tol = corrector_tolerance(scene, at_value, config.from);
-  const PointSummary start = start_orbit(scene, at_value, axis.key, config.from);
+  const PointSummary start = [&] {
+    // The start may integrate for long (a transient of analysis.max_periods): a stop signal
+    // cancels it, and Cancelled reaches the command (no point found, nothing written).
+    const CancelScope scope(&stop_flag());
+    return start_orbit(scene, at_value, axis.key, config.from);
+  }();
   const ContinuationOptions co = continuation_options(start, config, tol);
   ContinuationReport report;
   report.n = co.n;

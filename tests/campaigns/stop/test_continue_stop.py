@@ -71,3 +71,35 @@ def test_a_curve_run_stops_in_its_branch_without_a_curve(tmp_path, sig):
     assert err == (f"vibromap: stopped by {name} after {points} points: the output above holds the continuation so "
                    f"far (stop: 'stopped by {name}'); continue has no --resume: run it again to go on\n")
     assert list(tmp_path.iterdir()) == []
+
+
+# The start orbit alone would take hours: an undamped chatter from v2 = 5 m/s integrated for up to
+# 10^8 periods (as test_stop_in_flight.py's items).
+FOREVER = """
+[system]
+xi1 = 0.0
+xi2 = 0.0
+
+[initial]
+v2 = 5.0
+
+[solver]
+max_steps = 10000000000
+
+[analysis]
+steady = "integrate"
+max_periods = 100000000
+"""
+
+
+def test_a_stop_while_the_start_orbit_is_solved_writes_nothing(tmp_path):
+    scene = tmp_path / "forever.toml"
+    scene.write_text(FOREVER)
+    path = tmp_path / "branch.h5"
+    rc, out, err = stopped(["continue", scene, "-p", "forcing.omega", "--from", "7.23", "--to", "8", "-o", path],
+                           signal.SIGTERM, tmp_path)
+    assert rc == 3, err
+    assert out == ""
+    assert err == ("vibromap: stopped by SIGTERM while solving the start orbit at forcing.omega = 7.23: no point found, "
+                   "nothing written\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["forever.toml"]

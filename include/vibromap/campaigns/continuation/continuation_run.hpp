@@ -45,7 +45,9 @@ struct ContinuationReport {
 // A stop signal (parallel/signals.hpp) ends a continuation before its next point: the branch (or
 // curve) being followed ends there with stop "stopped by SIGTERM" (the signal's name), no
 // further branch or curve is started, the points found are measured and written (-o) and
-// report.stop_signal is set; the command then exits with ExitCode::stopped.
+// report.stop_signal is set; the command then exits with ExitCode::stopped. A stop while the
+// start orbit is solved (from rest, which may take long) throws the core's Cancelled instead:
+// nothing was found, nothing is written.
 // Names the signal in a stop reason: kStoppedOnRequest becomes "stopped by SIGTERM".
 std::string name_stop_signal(std::string stop, int signal);
 
