@@ -18,8 +18,9 @@ struct Command {
   std::string footer;       // its help's own footer (may be empty); the registry adds the lines every
                             // command's help shares
   std::string topic;        // what 'vibromap NAME --help' explains, for the main help ("a run")
-  // Whether the command line (argv[1] is the command's name) makes it a campaign on MPI ranks:
-  // its stop handlers then go in before anything else runs. Empty: never.
+  // Whether the command line (argv[1] is the command's name) makes it a campaign on MPI ranks,
+  // or a one-process study that a stop signal ends cleanly (continue): its stop handlers then go
+  // in before anything else runs. Empty: never.
   std::function<bool(int argc, char** argv)> campaign;
   std::function<int(std::ostream& out)> run;  // the parsed command; returns the exit code
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -13,10 +14,12 @@
 #include "commands.hpp"
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
 #include "vibromap/campaigns/continuation/curve_run.hpp"
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
 
@@ -258,6 +261,22 @@ std::vector<CurveSpec> curve_specs(const ContinueArgs& args) {
   return specs;
 }
 
+// The exit of a run: ExitCode::ok, or when a stop signal ended it early (continuation_run.hpp)
+// one line on stderr saying what was kept, and ExitCode::stopped.
+int continue_exit(const ContinueArgs& args, const ContinuationReport& r, const CurvesReport* curves = nullptr) {
+  if (r.stop_signal == 0) return code(ExitCode::ok);
+  std::size_t points = 0;
+  for (const Branch& b : r.branches) points += b.points.size();
+  if (curves)
+    for (const MeasuredCurve& c : curves->curves) points += c.curve.points.size();
+  const std::string name = signal_name(r.stop_signal);
+  std::cerr << "vibromap: stopped by " << name << " after " << points << " points: "
+            << (args.output.empty() ? "the output above holds" : "the output above and " + args.output + " hold")
+            << " the continuation so far (stop: 'stopped by " << name
+            << "'); continue has no --resume: run it again to go on\n";
+  return code(ExitCode::stopped);
+}
+
 int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, std::vector<CurveSpec> specs,
                     std::ostream& out) {
   const auto range = [](double a, double b) {
@@ -269,16 +288,15 @@ int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, 
   const CurvesReport r = run_curves(ps.scene, ps.axis, ps.axis2, config, {std::move(specs), args.from2, args.to2});
   if (args.format == "json") {
     print_json(out, ps.axis.key, r.branch, &r);
-    return code(ExitCode::ok);
+  } else {
+    print_table(out, args, ps.axis.key, r.branch.n, r.branch.start_regime, r.branch.branches, r.branch.measured);
+    curves_table(out, ps.axis.key, ps.axis2.key, r);
   }
-  print_table(out, args, ps.axis.key, r.branch.n, r.branch.start_regime, r.branch.branches, r.branch.measured);
-  curves_table(out, ps.axis.key, ps.axis2.key, r);
-  return code(ExitCode::ok);
+  out.flush();
+  return continue_exit(args, r.branch, &r);
 }
 
-}  // namespace
-
-int continue_command(const ContinueArgs& args, std::ostream& out) {
+int continue_branch_or_curves(const ContinueArgs& args, std::ostream& out) {
   if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from != args.to))
     throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite, different values"));
   if (!std::isfinite(args.to - args.from))
@@ -301,10 +319,24 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
   const ContinuationReport report = run_continuation(ps.scene, ps.axis, config);
   if (args.format == "json") {
     print_json(out, ps.axis.key, report);
-    return code(ExitCode::ok);
+  } else {
+    print_table(out, args, ps.axis.key, report.n, report.start_regime, report.branches, report.measured);
   }
-  print_table(out, args, ps.axis.key, report.n, report.start_regime, report.branches, report.measured);
-  return code(ExitCode::ok);
+  out.flush();
+  return continue_exit(args, report);
+}
+
+}  // namespace
+
+// A stop signal while the start orbit was solved (continuation_run.hpp): one line, exit 3.
+int continue_command(const ContinueArgs& args, std::ostream& out) {
+  try {
+    return continue_branch_or_curves(args, out);
+  } catch (const Cancelled&) {
+    std::cerr << "vibromap: stopped by " << signal_name(stop_signal()) << " while solving the start orbit at "
+              << args.param << " = " << short_number(args.from) << ": no point found, nothing written\n";
+    return code(ExitCode::stopped);
+  }
 }
 
 namespace {
@@ -338,7 +370,12 @@ std::string continue_footer() {
       "branch where NAME crosses VALUE). Along each curve the other kinds' test functions are\n"
       "watched and their changes located (codimension-two points). The table gives one summary per\n"
       "curve, --format json adds `curves` (every point), -o writes the curve file instead of the\n"
-      "branch file (docs/file-formats.md).";
+      "branch file (docs/file-formats.md).\n"
+      "\n"
+      "SIGINT, SIGTERM or SIGUSR1 end the run before its next point: the points found so far are\n"
+      "printed and written (-o, a whole file), the branch or curve cut short with stop 'stopped by\n"
+      "SIGTERM' (the signal's name), and the exit code is 3 with one line on stderr; continue has\n"
+      "no --resume (run it again). A stop while the start orbit is solved writes nothing.";
 }
 
 }  // namespace
@@ -381,7 +418,8 @@ Command declare_continue(CLI::App& app) {
       ->check(kNumber)
       ->type_name("D");
   add_format_option(*c, args->format, "Output on stdout: table or json");
-  return {.app = c, .footer = continue_footer(), .topic = "the continuation of a periodic orbit", .campaign = {},
+  return {.app = c, .footer = continue_footer(), .topic = "the continuation of a periodic orbit",
+          .campaign = always_campaign,  // one process, but a stop signal ends it cleanly (continue_exit)
           .run = [args](std::ostream& out) { return continue_command(*args, out); }};
 }
 

@@ -38,7 +38,7 @@ int report(std::string_view message, ExitCode exit) {
 }
 
 // A stop signal that cancelled a computation outside the farm's items (none does: the campaigns
-// open their cancellation scopes around items only).
+// open their cancellation scopes around items only, and continue catches its own).
 int stopped_outside_a_farm() {
   std::cerr << "vibromap: stopped by " << signal_name(stop_signal()) << "\n";
   return code(ExitCode::stopped);

@@ -1,9 +1,6 @@
 // `vibromap run`: one parameter point, or its census of attractors (--census).
 
-#include <cstdint>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -68,43 +65,13 @@ Scene load_run_scene(const RunArgs& args) {
   return load_scene(args.scene, sets);
 }
 
-// The memory the system can give without swapping (MemAvailable), bytes; 0 when unknown.
-std::uint64_t available_memory() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  std::uint64_t kib = 0;
-  std::string unit;
-  while (meminfo >> key >> kib >> unit)
-    if (key == "MemAvailable:") return kib * 1024;
-  return 0;
-}
-
-std::string gigabytes(double bytes) { return printf_number(bytes / 1e9, "%.3g GB"); }
-
 // Checks the trajectory file before the (possibly long) solve: its directory exists, an
 // existing file is a regular one and may be replaced, and the trajectory fits in memory and on
-// the disk.
+// the disk (check_trajectory_fits, the check optimise makes too).
 void check_trajectory(const std::string& path, bool overwrite, const Scene& scene) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
   check_output(path, {.option = "--trajectory", .overwrite = overwrite});
-  const fs::path dir = fs::path(path).parent_path();
   const AnalysisOptions& a = scene.options.analysis;
-  const double samples = static_cast<double>(a.trajectory_periods) * static_cast<double>(a.trajectory_samples);
-  // The samples (7 float64 each) are kept once by the solver and once, column by column, by the
-  // writer; a vector may hold twice its size while it grows.
-  const double memory = 3.0 * samples * static_cast<double>(sizeof(TrajectorySample));
-  const double file = samples * static_cast<double>(sizeof(TrajectorySample));
-  const std::string what = "--trajectory: " + std::to_string(a.trajectory_periods) + " periods x " +
-                           std::to_string(a.trajectory_samples) + " samples ([analysis] trajectory_periods, "
-                           "trajectory_samples)";
-  if (const std::uint64_t avail = available_memory(); avail > 0 && memory > 0.5 * static_cast<double>(avail))
-    throw IoError(path + ": " + what + " need about " + gigabytes(memory) + " of memory, more than half the " +
-                     gigabytes(static_cast<double>(avail)) + " available; keep fewer periods or samples");
-  const fs::space_info space = fs::space(dir.empty() ? fs::path(".") : dir, ec);
-  if (!ec && file > static_cast<double>(space.available))
-    throw IoError(path + ": " + what + " make a " + gigabytes(file) + " file; its file system has " +
-                     gigabytes(static_cast<double>(space.available)) + " free");
+  check_trajectory_fits(path, "--trajectory", a.trajectory_periods, a.trajectory_samples);
 }
 
 void print_summary(std::ostream& out, const PointSummary& summary, const Scene& scene, const std::string& format) {

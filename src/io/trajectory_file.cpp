@@ -1,6 +1,10 @@
 #include "vibromap/io/trajectory_file.hpp"
 
 #include <array>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <utility>
 #include <vector>
 
@@ -10,6 +14,23 @@
 namespace vibromap {
 
 namespace {
+
+// The memory the system can give without swapping (MemAvailable), bytes; 0 when unknown.
+std::uint64_t available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return 0;
+}
+
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
+  return text;
+}
 
 // One column of the trajectory: dataset name, units, meaning, and the member it comes from.
 struct TrajectoryColumn {
@@ -68,6 +89,28 @@ void write_trajectory(const std::string& path, const PointSummary& summary, cons
     write_root_attributes(file, summary, scene_text);
     detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
   });
+}
+
+void check_trajectory_fits(const std::string& path, const std::string& option, long periods, long samples,
+                           int copies) {
+  namespace fs = std::filesystem;
+  const double n = static_cast<double>(periods) * static_cast<double>(samples);
+  // The samples (7 float64 each) are kept once by the solver and once, column by column, by the
+  // writer; a vector may hold twice its size while it grows.
+  const double memory = 3.0 * n * static_cast<double>(sizeof(TrajectorySample)) * static_cast<double>(copies);
+  const double file = n * static_cast<double>(sizeof(TrajectorySample));
+  const std::string what = option + ": " + std::to_string(periods) + " periods x " + std::to_string(samples) +
+                           " samples ([analysis] trajectory_periods, trajectory_samples)" +
+                           (copies > 1 ? ", " + std::to_string(copies) + " trajectories at once," : "");
+  if (const std::uint64_t avail = available_memory(); avail > 0 && memory > 0.5 * static_cast<double>(avail))
+    throw IoError(path + ": " + what + " need about " + gigabytes(memory) + " of memory, more than half the " +
+                  gigabytes(static_cast<double>(avail)) + " available; keep fewer periods or samples");
+  std::error_code ec;
+  const fs::path dir = fs::path(path).parent_path();
+  const fs::space_info space = fs::space(dir.empty() ? fs::path(".") : dir, ec);
+  if (!ec && file > static_cast<double>(space.available))
+    throw IoError(path + ": " + what + " make a " + gigabytes(file) + " file; its file system has " +
+                  gigabytes(static_cast<double>(space.available)) + " free");
 }
 
 }  // namespace vibromap

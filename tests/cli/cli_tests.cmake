@@ -368,6 +368,31 @@ vibromap_cli_test(step_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set
                   ERR "--set solver\\.max_steps=1e11: must be an integer in \\[1, 1e\\+10\\]")
 vibromap_cli_test(period_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set analysis.max_periods=9e18
                   ERR "--set analysis\\.max_periods=9e18: must be an integer in \\[1, 1e\\+08\\]")
+# A forcing phase of 1e308 rad swallowed omega t (a constant force, and impacts without end that
+# grew basins, run and sweep to 500 MB and more: fuzz finding): forcing.phi0 is in [-1000, 1000]
+# rad, one range for every command, a --set, a sweep axis and a continued key alike.
+vibromap_cli_test(basins_phase_huge RC 2 ARGS basins jobs/paper/table1.toml --grid 3x3 -o never.h5 --set forcing.phi0=-1e308
+                  ERR "jobs/paper/table1\\.toml: --set forcing\\.phi0=-1e308: must be in \\[-1000, 1000\\] \\(rad\\)")
+vibromap_cli_test(run_phase_huge RC 2 ARGS run jobs/paper/table1.toml --set forcing.phi0=1e308
+                  ERR "jobs/paper/table1\\.toml: --set forcing\\.phi0=1e308: must be in \\[-1000, 1000\\] \\(rad\\)")
+vibromap_cli_test(sweep_phase_axis_huge RC 2 ARGS sweep jobs/demo/frequency_response.toml -o no_file.h5
+                  --set "sweep.forcing.phi0={values=[0,-1e308]}"
+                  ERR "--set sweep\\.forcing\\.phi0=\\{values=\\[0,-1e308\\]\\}: .*must be in \\[-1000, 1000\\] \\(rad\\)")
+vibromap_cli_test(continue_phase_huge RC 2 ARGS continue jobs/paper/table1.toml -p phi0 --from 0 --to 1e6
+                  ERR "--param phi0: axis phi0 reaches 1e\\+06, outside the range of \\[forcing\\] phi0: must be in \\[-1000, 1000\\] \\(rad\\)")
+# The best point's trajectory of optimise (2 periods x trajectory_samples) is checked as run
+# --trajectory's is, before any work (before: 2147483647 samples grew optimise to 567 MB and on).
+vibromap_cli_test(optimise_trajectory_too_big_is_refused_with_its_size RC 4
+                  ARGS optimise jobs/demo/optimise_law.toml -o ${CMAKE_CURRENT_BINARY_DIR}/cli_optimise_huge.h5
+                       --set analysis.trajectory_samples=2147483647
+                  ERR "cli_optimise_huge_trajectory\\.h5: the best point's trajectory: 2 periods x 2147483647 samples .* need about [0-9.e+]+ GB of memory, more than half the")
+# A map keeps no trajectory: the cells of a sweep whose scene keeps one (for run --trajectory) no
+# longer integrate and store it (before: 10^8 periods of samples per cell, hours and gigabytes).
+vibromap_cli_test(sweep_keeps_no_trajectory RC 0 ARGS sweep jobs/demo/frequency_response.toml
+                  -o ${CMAKE_CURRENT_BINARY_DIR}/cli_sweep_no_trajectory.h5 --overwrite --quiet
+                  --set analysis.trajectory_periods=100000000 --set analysis.trajectory_samples=10
+                  --set "sweep.forcing.omega={values=[7.23]}" --set "sweep.forcing.F0={values=[500]}"
+                  OUT "cells +1 \\(0 from the resumed map, 1 computed now\\).*regimes +\\(1,1\\) 1")
 # A diverging integration whose measure overflows (rk4 at 2^11 steps a period on an impact at
 # 1e9 m/s: F_max = inf) is a failed point naming the measure, never an infinite number (#28).
 vibromap_cli_test(run_measure_overflow_is_a_failed_point RC 0

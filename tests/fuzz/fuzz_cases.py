@@ -94,6 +94,9 @@ OUTPUT_OPTION = {"run": "-t", "sweep": "-o", "optimise": "-o", "basins": "-o",
 DEFAULT_OUTPUT = {"sweep": "scene.h5", "optimise": "scene_optimise.h5", "basins": "scene_basins.h5"}
 # Commands that keep a checkpoint: SIGTERM must end them with exit code 3 (or 0), never by death.
 CHECKPOINTING = ("sweep", "basins", "optimise")
+# Commands a stop signal must end with exit 3, never by the signal's default action: the
+# checkpointing campaigns, and continue (stopped before its next point, what it found written).
+STOPS_WITH_EXIT_3 = CHECKPOINTING + ("continue",)
 SCENE_COMMANDS = ("run", "sweep", "accuracy", "optimise", "orbit-diagram", "continue", "basins")
 ALL_COMMANDS = SCENE_COMMANDS + ("restitution", "keys")
 

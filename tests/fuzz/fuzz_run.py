@@ -47,7 +47,7 @@ import tempfile
 import time
 from dataclasses import dataclass, field
 
-from fuzz_cases import CANARY_DIR, CHECKPOINTING, SCENE
+from fuzz_cases import CANARY_DIR, SCENE, STOPS_WITH_EXIT_3
 
 EXIT_ALLOWED = (0, 2, 3, 4)
 
@@ -390,7 +390,7 @@ def check_signal(outcome, limits):
     if res.killed_after_signal:
         problems.append(("slow-stop", f"{draft.signal[0]} at {res.signal_sent:.2f} s did not end the run "
                          f"within {limits.signal_bound:.0f} s (killed)"))
-    elif res.signum == getattr(signal, draft.signal[0]) and draft.command in CHECKPOINTING:
+    elif res.signum == getattr(signal, draft.signal[0]) and draft.command in STOPS_WITH_EXIT_3:
         problems.append(("no-checkpoint", f"died of {signal.Signals(res.signum).name} instead of exit 3"))
 
 

@@ -15,4 +15,14 @@ namespace vibromap {
 
 void write_trajectory(const std::string& path, const PointSummary& summary, const std::string& scene_text);
 
+// Checks, before the solve that keeps it, that a trajectory of `periods` x `samples` samples
+// ([analysis] trajectory_periods, trajectory_samples) fits: `copies` of it held at once (the
+// solver's samples, the writer's columns and a growing vector's slack counted) must need at
+// most half the memory available (MemAvailable), and its file at most the space free where
+// `path` goes. Throws IoError "PATH: OPTION: P periods x S samples (...) need about ..." (`option`
+// names what asked for it: "--trajectory", "the best point's trajectory"). Every command that
+// keeps a trajectory calls this one check (run --trajectory, optimise).
+void check_trajectory_fits(const std::string& path, const std::string& option, long periods, long samples,
+                           int copies = 1);
+
 }  // namespace vibromap

@@ -7,10 +7,12 @@
 #include <iomanip>
 #include <sstream>
 
+#include "vibromap/core/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/scene/keys.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -65,6 +67,7 @@ ContinuationOptions continuation_options(const PointSummary& start, const Contin
   co.max_points = config.max_points;
   if (const std::string err = validate(co); !err.empty()) throw SceneError("--ds-max/--max-points: " + err);
   co.pd_depth = config.pd_depth;
+  co.stop = &stop_flag();  // a stop signal ends the branch before its next point
   return co;
 }
 
@@ -93,6 +96,13 @@ BranchData branch_data(const Axis& axis, const ContinuationReport& report, const
 }
 
 }  // namespace
+
+std::string name_stop_signal(std::string stop, int signal) {
+  const std::string from = kStoppedOnRequest;
+  if (const std::size_t at = stop.find(from); at != std::string::npos && signal != 0)
+    stop.replace(at, from.size(), "stopped by " + signal_name(signal));
+  return stop;
+}
 
 KeyScale key_scale(double from, double to, double anchor) {
   const double lo = std::min(from, to), hi = std::max(from, to);
@@ -129,7 +139,12 @@ ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const C
   };
   const PointAt at = scale.log ? PointAt([&](double u) { return at_value(scale.physical(u)); }) : at_value;
   const double tol = corrector_tolerance(scene, at_value, config.from);
-  const PointSummary start = start_orbit(scene, at_value, axis.key, config.from);
+  const PointSummary start = [&] {
+    // The start may integrate for long (a transient of analysis.max_periods): a stop signal
+    // cancels it, and Cancelled reaches the command (no point found, nothing written).
+    const CancelScope scope(&stop_flag());
+    return start_orbit(scene, at_value, axis.key, config.from);
+  }();
   const ContinuationOptions co = continuation_options(start, config, tol);
   ContinuationReport report;
   report.n = co.n;
@@ -144,6 +159,8 @@ ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const 
   const KeyScale scale = key_scale(config.from, config.to, config.from);
   ContinuationReport report = continue_scaled(scene, axis, config, scale);
   to_physical(report, scale);
+  report.stop_signal = stop_signal();
+  for (Branch& b : report.branches) b.stop = name_stop_signal(b.stop, report.stop_signal);
   if (!config.output.empty()) write_branch(config.output, branch_data(axis, report, scene.text));
   return report;
 }

@@ -12,6 +12,7 @@
 #include "vibromap/io/curve_file.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/scene/keys.hpp"
+#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap {
 namespace {
@@ -95,6 +96,7 @@ CurveOptions curve_options(const Scene& scene, const ContinuationConfig& config,
   co.base.max_points = config.max_points;
   co.base.tol = newton_tolerance(scene.options);  // the scene's own (10 rtol by default)
   co.condition_tol = spec.kind == CurveKind::grazing ? 1e-10 : 1e-9;
+  co.base.stop = &stop_flag();  // a stop signal ends the curve before its next point
   return co;
 }
 
@@ -122,6 +124,15 @@ void write_curve_file(const std::string& path, const Axis& axis, const Axis& axi
       data.cycles.back().push_back({m.T_con, m.k_con, m.z_ratio, m.F_max, static_cast<int>(m.impacts.size())});
   }
   write_curves(path, data);
+}
+
+// The stop signal that ended the run early, named in every stop reason it cut short.
+void name_stops(CurvesReport& report) {
+  report.branch.stop_signal = stop_signal();
+  const int signal = report.branch.stop_signal;
+  for (Branch& b : report.branch.branches) b.stop = name_stop_signal(b.stop, signal);
+  for (MeasuredCurve& c : report.curves) c.curve.stop = name_stop_signal(c.curve.stop, signal);
+  for (std::string& s : report.skipped) s = name_stop_signal(s, signal);
 }
 
 }  // namespace
@@ -157,10 +168,12 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
   const double q0 = sq.engine(report.q0);
   for (const CurveSpec& spec : curves.specs) {
     const CurveOptions co = curve_options(scene, config, spec);
+    if (stop_requested(co.base)) break;  // stopped: no further curve is started
     const std::vector<Start> starts =
         spec.kind == CurveKind::level ? level_starts(at, box, spec, q0, report.branch, co, sp, report.skipped)
                                       : bifurcation_starts(report.branch, spec);
     for (const Start& s : starts) {
+      if (stop_requested(co.base)) break;
       if (on_known_curve(report.curves, spec, s.n, box, s.param, q0)) continue;
       MeasuredCurve mc{continue_curve(at, box, spec, s.n, s.param, q0, s.y, co), {}};
       if (mc.curve.points.empty()) {
@@ -176,6 +189,7 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
   }
   to_physical(report.branch, sp);
   for (MeasuredCurve& c : report.curves) to_physical(c.curve, sp, sq);
+  name_stops(report);
   if (!config.output.empty()) write_curve_file(config.output, axis, axis2, report, scene.text);
   report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;

@@ -36,6 +36,13 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 constexpr int kVerifyTrajectoryPeriods = 2;  // periods of the best point's trajectory when the scene keeps none
+
+// The periods of the best point's trajectory, and how many such trajectories verify_best holds
+// at once (with the soft check any point may end up first: each keeps its trajectory until then).
+int verify_trajectory_periods(const Scene& scene) {
+  return std::max(scene.options.analysis.trajectory_periods, kVerifyTrajectoryPeriods);
+}
+int verify_trajectory_copies(const OptimiseOptions& o) { return o.min_soft_fraction > 0.0 ? std::max(o.best, 1) : 1; }
 constexpr double kDistinct = 0.01;  // best points closer than this in every scaled variable are one point
 
 // ---- Output, journal ------------------------------------------------------------------------
@@ -58,7 +65,10 @@ void check_outputs(const Scene& scene, const OptimiseRunConfig& config, std::opt
                  OutputPolicy{.overwrite = config.overwrite, .exists = config.resume ? "the optimisation is complete" : ""});
   check_output(config.journal, journal_policy(config));
   target->check_beside(config.map_output, "seeding map");
-  if (!config.trajectory.empty()) target->check_beside(config.trajectory, "trajectory");
+  if (config.trajectory.empty()) return;
+  target->check_beside(config.trajectory, "trajectory");
+  check_trajectory_fits(config.trajectory, "the best point's trajectory", verify_trajectory_periods(scene),
+                        scene.options.analysis.trajectory_samples, verify_trajectory_copies(*scene.optimise));
 }
 
 // What a journal must match to be resumed: the scene's result-defining values (every
@@ -195,9 +205,8 @@ void verify_best(const Scene& scene, const OptimiseRunConfig& config, OptimiseRe
   const auto t0 = Clock::now();
   const Box box(o.variables);
   const auto points = best_points(report.starts, box, o.best, std::max(kDistinct, 10.0 * o.local.xtol_rel));
-  const int periods = std::max(scene.options.analysis.trajectory_periods, kVerifyTrajectoryPeriods);
-  // With the soft check any point may end up first: each keeps its trajectory until then.
-  const bool checked = o.min_soft_fraction > 0.0;
+  const int periods = verify_trajectory_periods(scene);
+  const bool checked = o.min_soft_fraction > 0.0;  // every point keeps its trajectory (verify_trajectory_copies)
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& [start, evaluation] = points[i];
     const int keep = (i == 0 || checked) && !config.trajectory.empty() ? periods : 0;

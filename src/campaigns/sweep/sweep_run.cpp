@@ -106,7 +106,8 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
 // One cell: its point solved from rest, or (with [census]) its census.
 CellResult solve_cell(const CellMaker& cells, const std::optional<CensusOptions>& census, std::uint64_t flat) {
   try {
-    const CellPoint point = cells(static_cast<std::size_t>(flat));
+    CellPoint point = cells(static_cast<std::size_t>(flat));
+    point.options.analysis.trajectory_periods = 0;  // a map keeps no trajectory (run --trajectory does)
     if (census) return solve_census_cell(point.params, point.options, *census);
     return summarize(solve_point(point.params, point.options));
   } catch (const std::exception&) {  // a cell's trouble is its status, never the run's

@@ -376,8 +376,13 @@ bool Tracer::accept(const Next& next, BranchPoint p1) {
 void trace(Problem& pb, const Vector5d& z, const Eval& e, const Vector5d& t, const ContinuationOptions& o, int half,
            Branch& b) {
   Tracer tracer(pb, z, e, t, o, half, b);
-  while (static_cast<int>(b.points.size()) < o.max_points)
+  while (static_cast<int>(b.points.size()) < o.max_points) {
+    if (stop_requested(o)) {
+      b.stop = kStoppedOnRequest;
+      return;
+    }
     if (!tracer.step()) return;
+  }
   b.stop = "max_points reached";
 }
 
@@ -490,7 +495,7 @@ std::vector<Branch> continue_branches(const PointAt& point_at, double from, doub
   for (std::size_t i = 0; i < out.size(); ++i) {
     if (depth[i] >= o.pd_depth) continue;
     for (std::size_t j = 0; j < out[i].bifurcations.size(); ++j) {
-      if (static_cast<int>(out.size()) >= o.max_branches) return out;
+      if (static_cast<int>(out.size()) >= o.max_branches || stop_requested(o)) return out;
       const Bifurcation pd = out[i].bifurcations[j];
       if (pd.type != BifurcationType::period_doubling) continue;
       // Already found: a doubled branch of the same parent that ends at this period doubling.

@@ -158,6 +158,7 @@ std::optional<End> CurveTracer::predict_correct(int& iterations) {
 std::string CurveTracer::run(bool& closed) {
   closed = false;
   while (static_cast<int>(out_.size()) < o_.max_points) {
+    if (stop_requested(o_)) return kStoppedOnRequest;
     int iterations = 0;
     const std::optional<End> next = predict_correct(iterations);
     if (!next) {
@@ -290,7 +291,7 @@ Curve continue_curve(const PointAt2& at, const CurveBox& box, const CurveSpec& s
   std::vector<CurvePoint> up, down;
   bool closed = false;
   c.stop = CurveTracer(pb, start, c, up).run(closed);
-  if (!closed) {
+  if (!closed && !stop_requested(options.base)) {
     End back = start;
     back.t = -t0;
     c.stop += "; " + CurveTracer(pb, back, c, down).run(closed);

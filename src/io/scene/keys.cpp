@@ -243,7 +243,11 @@ void add_forcing_keys(std::vector<Binding>& rows) {
                       field<&P::omega>()));
   rows.push_back(real(s, "lambda", ge(0), "-", "amplitude factor: F(t) = lambda F0 cos(omega t + phi0)",
                       field<&P::lambda>()));
-  rows.push_back(real(s, "phi0", any_finite(), "rad", "forcing phase at t = 0",
+  // A phase is meaningful modulo 2 pi; the phase omega t + phi0 is summed in doubles, so a huge
+  // phi0 swallows omega t (at 1e308 the force is constant and the free flight's closed form,
+  // which assumes it turns at omega, disagrees with the vector field: impacts without end).
+  // 1000 rad (159 turns) keeps the sum within 1.2e-13 rad.
+  rows.push_back(real(s, "phi0", interval(-1e3, 1e3, false, false), "rad", "forcing phase at t = 0",
                       field<&P::phi0>()));
 }
 

@@ -39,7 +39,17 @@ struct ContinuationReport {
   std::string start_regime;        // its regime's label at the start
   std::vector<Branch> branches;    // continue_branches: the first, then the switched ones
   std::vector<std::vector<MeasuredPoint>> measured;  // per branch, one per point
+  int stop_signal = 0;  // the stop signal (SIGINT, SIGTERM, SIGUSR1) that ended the run early, 0: none
 };
+
+// A stop signal (parallel/signals.hpp) ends a continuation before its next point: the branch (or
+// curve) being followed ends there with stop "stopped by SIGTERM" (the signal's name), no
+// further branch or curve is started, the points found are measured and written (-o) and
+// report.stop_signal is set; the command then exits with ExitCode::stopped. A stop while the
+// start orbit is solved (from rest, which may take long) throws the core's Cancelled instead:
+// nothing was found, nothing is written.
+// Names the signal in a stop reason: kStoppedOnRequest becomes "stopped by SIGTERM".
+std::string name_stop_signal(std::string stop, int signal);
 
 // How a key's values are continued: in ln(value) when both ends of its interval are positive
 // and span a factor of 100 or more (moduli over decades: a step is then a fraction of the

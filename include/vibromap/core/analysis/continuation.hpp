@@ -31,6 +31,7 @@
 // difference P^n(y) - y changes sign: the branch went through another period doubling of it and
 // came back as the same orbit shifted by n periods).
 
+#include <atomic>
 #include <complex>
 #include <functional>
 #include <string>
@@ -54,8 +55,18 @@ struct ContinuationOptions {
   double locate_tol = 1e-9;  // bifurcations located to this fraction of the parameter interval
   int pd_depth = 0;          // continue_branches: period-doubling generations switched onto (0: none)
   int max_branches = 32;     // continue_branches: branches at most, the first included
+  // A flag the caller sets (non-zero) to stop: the walk ends before its next point (the point
+  // being corrected is finished first), the branch or curve with stop = kStoppedOnRequest, and
+  // no further branch or curve is started (a campaign's stop signal). nullptr: never.
+  const std::atomic<int>* stop = nullptr;
 };
 std::string validate(const ContinuationOptions& o);
+
+inline constexpr const char* kStoppedOnRequest = "stopped on request";
+// Whether o.stop is set.
+inline bool stop_requested(const ContinuationOptions& o) {
+  return o.stop != nullptr && o.stop->load(std::memory_order_relaxed) != 0;
+}
 
 enum class BifurcationType { fold, period_doubling, neimark_sacker, grazing };
 std::string to_string(BifurcationType t);  // "fold", "period-doubling", "neimark-sacker", "grazing"
