@@ -133,9 +133,19 @@ void Dataset::transfer_flat(std::uint64_t first, std::size_t count, ElementType 
   std::vector<hsize_t> start(dims.size(), 0);
   bool any = false;
   select_flat(space.get(), dims, 0, start, first, first + count, any, file_path_);
-  const hsize_t n = count;
-  const Handle memspace = detail::make_handle(H5Screate_simple(1, &n, nullptr), HandleKind::dataspace, file_path_,
-                                              "create a memory dataspace for " + what);
+  // One box (a chunk of a map, a run within a row): the memory takes the box's shape, the same
+  // elements in the same order, which HDF5 maps onto the chunks box by box; a flat memory space
+  // it would map element by element (whole chunks of a map written or read: twice as slow).
+  std::vector<hsize_t> mem_dims{static_cast<hsize_t>(count)};
+  if (rank > 1) {
+    std::vector<hsize_t> lo(dims.size()), hi(dims.size());
+    check(H5Sget_select_bounds(space.get(), lo.data(), hi.data()), file_path_, "get the bounds of a selection of " + what);
+    hsize_t box = 1;
+    for (std::size_t d = 0; d < dims.size(); ++d) box *= (lo[d] = hi[d] - lo[d] + 1);
+    if (box == count) mem_dims = lo;  // the selection is its bounding box
+  }
+  const Handle memspace = detail::make_handle(H5Screate_simple(static_cast<int>(mem_dims.size()), mem_dims.data(), nullptr),
+                                              HandleKind::dataspace, file_path_, "create a memory dataspace for " + what);
   const hid_t mem_type = detail::element_types(memory).second;
   if (write) {
     check(H5Dwrite(id(), mem_type, memspace.get(), space.get(), H5P_DEFAULT, buffer), file_path_, operation);

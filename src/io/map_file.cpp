@@ -19,6 +19,10 @@
 namespace vibromap {
 using detail::fail;
 
+namespace {
+constexpr std::size_t kStagedCells = kMapChunkCells / 4;  // cells staged at most (MapWriter::Impl::staged)
+}  // namespace
+
 // ---- MapWriter -------------------------------------------------------------------------------
 
 struct MapWriter::Impl {
@@ -31,6 +35,11 @@ struct MapWriter::Impl {
   std::uint64_t done_count = 0;
   MapRepair repair;
   std::vector<CellSpan> unflushed;       // written since the last checkpoint, in arrival order
+  // Cells written in pieces smaller than their chunk, by flat index in arrival order: set in
+  // the file a chunk at a time (flush_staged), at most kStagedCells of them held. HDF5 writing
+  // such pieces one by one, scattered over the map (an adaptive map's audit), grew rank 0's
+  // memory about 7 kB a piece (#30).
+  std::vector<std::pair<std::uint64_t, CellResult>> staged;
   std::uint64_t window_begin = 0;        // pending(): the cached window of /done
   std::vector<std::uint8_t> window;
   std::vector<double> reals;             // write(): one field's values
@@ -197,9 +206,54 @@ std::uint64_t MapWriter::pending(std::uint64_t from, std::uint64_t max, std::vec
   return i;
 }
 
+namespace {
+
+// The chunk (a run of cells in flat order) that holds cell `flat`.
+CellSpan chunk_holding(const std::vector<CellSpan>& chunks, std::uint64_t flat, const std::string& path) {
+  const auto it = std::upper_bound(chunks.begin(), chunks.end(), flat,
+                                   [](std::uint64_t x, const CellSpan& s) { return x < s.begin; });
+  if (it == chunks.begin() || flat >= (it - 1)->end) fail(path, "no chunk holds cell " + std::to_string(flat));
+  return *(it - 1);
+}
+
+}  // namespace
+
+// A piece that fills its chunk, or too long to stage, is written as it comes (after the cells
+// staged in its chunk, so that the later values win); shorter pieces are staged.
 void MapWriter::write(std::uint64_t first, std::span<const CellResult> cells) {
   Impl& m = *impl_;
   if (cells.empty()) return;
+  const std::uint64_t last = first + cells.size();
+  for (std::uint64_t at = first; at < last;) {
+    const CellSpan chunk = chunk_holding(m.chunks, at, m.path);
+    const std::uint64_t end = std::min(last, chunk.end);
+    const auto piece = cells.subspan(static_cast<std::size_t>(at - first), static_cast<std::size_t>(end - at));
+    if ((at == chunk.begin && end == chunk.end) || piece.size() >= kStagedCells) {
+      if (std::any_of(m.staged.begin(), m.staged.end(), [&](const auto& s) { return s.first >= chunk.begin && s.first < chunk.end; }))
+        flush_staged();
+      write_run(at, piece);
+    } else {
+      for (std::size_t k = 0; k < piece.size(); ++k) m.staged.emplace_back(at + k, piece[k]);
+      if (m.staged.size() > kStagedCells) flush_staged();
+    }
+    at = end;
+  }
+  // Every second or so, push what HDF5 has evicted towards the disk: checkpoints then wait
+  // for the last second's data only, not for everything since the previous checkpoint.
+  if (const auto now = std::chrono::steady_clock::now(); now - m.last_writeback > std::chrono::seconds(1)) {
+    m.file.start_writeback();
+    m.last_writeback = now;
+  }
+  if (!m.unflushed.empty() && m.unflushed.back().end == first) {
+    m.unflushed.back().end = last;
+  } else {
+    m.unflushed.push_back({first, last});
+  }
+}
+
+// Cells [first, first + cells.size()) into every dataset, one selection each.
+void MapWriter::write_run(std::uint64_t first, std::span<const CellResult> cells) {
+  Impl& m = *impl_;
   for (std::size_t i = 0; i < m.ds.fields.size(); ++i) {
     const detail::MapField& f = m.ds.fields[i];
     const std::size_t w = f.width();
@@ -215,26 +269,57 @@ void MapWriter::write(std::uint64_t first, std::span<const CellResult> cells) {
       m.ds.data[i].write_flat(first * w, std::span<const double>(m.reals));
     }
   }
-  // Every second or so, push what HDF5 has evicted towards the disk: checkpoints then wait
-  // for the last second's data only, not for everything since the previous checkpoint.
-  if (const auto now = std::chrono::steady_clock::now(); now - m.last_writeback > std::chrono::seconds(1)) {
-    m.file.start_writeback();
-    m.last_writeback = now;
+}
+
+// The staged cells, a chunk at a time (a cell staged twice: its last values).
+void MapWriter::flush_staged() {
+  Impl& m = *impl_;
+  std::stable_sort(m.staged.begin(), m.staged.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < m.staged.size();) {
+    const CellSpan chunk = chunk_holding(m.chunks, m.staged[i].first, m.path);
+    std::size_t j = i;
+    while (j < m.staged.size() && m.staged[j].first < chunk.end) ++j;
+    write_staged(chunk, i, j);
+    i = j;
   }
-  const std::uint64_t last = first + cells.size();
-  if (!m.unflushed.empty() && m.unflushed.back().end == first) {
-    m.unflushed.back().end = last;
-  } else {
-    m.unflushed.push_back({first, last});
+  m.staged.clear();
+}
+
+// Staged cells [from, to) (ascending, all in `chunk`) into every dataset: the chunk read
+// (unless they cover it), the cells set in it, and the chunk written whole, one selection.
+void MapWriter::write_staged(const CellSpan& chunk, std::size_t from, std::size_t to) {
+  Impl& m = *impl_;
+  const auto n = static_cast<std::size_t>(chunk.end - chunk.begin);
+  std::size_t distinct = 0;
+  for (std::size_t k = from; k < to; ++k) distinct += k == from || m.staged[k].first != m.staged[k - 1].first ? 1 : 0;
+  const bool whole = distinct == n;
+  std::string why;
+  for (std::size_t i = 0; i < m.ds.fields.size(); ++i) {
+    const detail::MapField& f = m.ds.fields[i];
+    const std::size_t w = f.width();
+    if (!whole && !m.ds.read(static_cast<int>(i), chunk, &why))
+      fail(m.path, cat("dataset '/", f.name, "' fails to read (", why, ")"));
+    if (f.integer) {
+      std::vector<std::int64_t>& v = m.ds.ints[i];
+      v.resize(n * w);
+      for (std::size_t k = from; k < to; ++k)
+        for (std::size_t a = 0; a < w; ++a) v[(m.staged[k].first - chunk.begin) * w + a] = f.get_int(m.staged[k].second, a);
+      m.ds.data[i].write_flat(chunk.begin * w, std::span<const std::int64_t>(v));
+    } else {
+      std::vector<double>& v = m.ds.reals[i];
+      v.resize(n * w);
+      for (std::size_t k = from; k < to; ++k)
+        for (std::size_t a = 0; a < w; ++a) v[(m.staged[k].first - chunk.begin) * w + a] = f.get_real(m.staged[k].second, a);
+      m.ds.data[i].write_flat(chunk.begin * w, std::span<const double>(v));
+    }
   }
 }
 
 CellSpan MapWriter::read_chunk(std::uint64_t flat, std::vector<CellResult>& out) {
   Impl& m = *impl_;
-  const auto it = std::upper_bound(m.chunks.begin(), m.chunks.end(), flat,
-                                   [](std::uint64_t x, const CellSpan& s) { return x < s.begin; });
-  if (it == m.chunks.begin()) fail(m.path, "read_chunk: no chunk holds the cell");
-  const CellSpan span = *(it - 1);
+  const CellSpan span = chunk_holding(m.chunks, flat, m.path);
+  if (std::any_of(m.staged.begin(), m.staged.end(), [&](const auto& s) { return s.first >= span.begin && s.first < span.end; }))
+    flush_staged();  // the chunk as written so far
   std::string why;
   for (int i = 0; i < static_cast<int>(m.ds.fields.size()); ++i)
     if (!m.ds.read(i, span, &why)) fail(m.path, cat("dataset '/", m.ds.name(i), "' fails to read (", why, ")"));
@@ -246,22 +331,43 @@ CellSpan MapWriter::read_chunk(std::uint64_t flat, std::vector<CellResult>& out)
 void MapWriter::checkpoint() {
   Impl& m = *impl_;
   if (m.unflushed.empty()) return;
+  flush_staged();
   m.file.sync();  // the data first: /done never runs ahead of it
   std::sort(m.unflushed.begin(), m.unflushed.end(),
             [](const CellSpan& a, const CellSpan& b) { return a.begin < b.begin; });
-  std::vector<std::uint8_t> ones;
-  for (const CellSpan& span : m.unflushed) {
-    for (std::uint64_t at = span.begin; at < span.end;) {
-      const std::uint64_t n = std::min<std::uint64_t>(span.end - at, detail::kDoneWindow);
-      ones.assign(static_cast<std::size_t>(n), 1);
-      m.ds.done.write_flat(at, std::span<const std::uint8_t>(ones));
-      at += n;
-    }
-    m.done_count += span.end - span.begin;
-  }
+  mark_done(m.unflushed);
+  for (const CellSpan& span : m.unflushed) m.done_count += span.end - span.begin;
   m.unflushed.clear();
   m.window.clear();  // pending() reads /done afresh
   m.file.sync();
+}
+
+// Sets /done to 1 over `spans` (ascending), a chunk at a time: a chunk they do not cover is read
+// first; each chunk is written whole, one selection.
+void MapWriter::mark_done(const std::vector<CellSpan>& spans) {
+  Impl& m = *impl_;
+  std::vector<std::uint8_t>& done = m.ds.done_buffer;
+  std::uint64_t at = 0;
+  for (std::size_t s = 0; s < spans.size();) {
+    at = std::max(at, spans[s].begin);
+    if (at >= spans[s].end) {
+      ++s;
+      continue;
+    }
+    const CellSpan chunk = chunk_holding(m.chunks, at, m.path);
+    const auto n = static_cast<std::size_t>(chunk.end - chunk.begin);
+    std::string why;
+    if (at == chunk.begin && spans[s].end >= chunk.end) {
+      done.assign(n, 1);
+    } else if (!m.ds.read(-1, chunk, &why)) {
+      fail(m.path, cat("dataset '/done' fails to read (", why, ")"));
+    }
+    for (std::size_t t = s; t < spans.size() && spans[t].begin < chunk.end; ++t)
+      for (std::uint64_t p = std::max(spans[t].begin, chunk.begin); p < std::min(spans[t].end, chunk.end); ++p)
+        done[static_cast<std::size_t>(p - chunk.begin)] = 1;
+    m.ds.done.write_flat(chunk.begin, std::span<const std::uint8_t>(done));
+    at = chunk.end;
+  }
 }
 
 std::vector<std::string> refine_figure_attributes() {

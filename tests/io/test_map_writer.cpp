@@ -157,6 +157,59 @@ TEST_F(MapWriterTest, CellsWrittenInAnyOrderAreDoneOnlyAfterACheckpoint) {
   }
 }
 
+TEST_F(MapWriterTest, ScatteredSingleCellsLandExactlyAndTheLastValuesWin) {
+  // Every 7th cell of a map of several chunks, one at a time in a shuffled order (more than the
+  // writer stages at once: it writes them a chunk at a time), one of them twice, those of the
+  // second chunk with wrong values then that chunk whole, and a run across the third's edge.
+  const MapLayout l = layout({axis("E1", points(300)), axis("E2", points(301))});
+  const std::uint64_t total = 300 * 301;
+  const auto spans = detail::chunk_spans(l.grid.shape(), detail::map_chunk_shape(l.grid.shape()));
+  ASSERT_GE(spans.size(), 3u);
+  const CellSpan second = spans[1], third = spans[2];
+  MapWriter w = MapWriter::create(file("scattered.h5"), l, 1);
+  std::vector<std::uint64_t> order;
+  for (std::uint64_t i = 0; i < total; i += 7) order.push_back(i);
+  std::shuffle(order.begin(), order.end(), std::mt19937(30));
+  std::vector<char> written(total, 0);
+  w.write(order[0], cells(order[0] + 1, order[0] + 2));  // wrong values, written again below
+  for (const std::uint64_t i : order) {
+    const bool in_second = i >= second.begin && i < second.end;
+    w.write(i, cells(in_second ? i + 1 : i, (in_second ? i + 1 : i) + 1));
+    written[i] = 1;
+  }
+  w.write(second.begin, cells(second.begin, second.end));
+  w.write(third.begin - 50, cells(third.begin - 50, third.begin + 50));
+  std::fill(written.begin() + static_cast<std::ptrdiff_t>(second.begin), written.begin() + static_cast<std::ptrdiff_t>(second.end), 1);
+  std::fill(written.begin() + static_cast<std::ptrdiff_t>(third.begin - 50), written.begin() + static_cast<std::ptrdiff_t>(third.begin + 50), 1);
+  const std::uint64_t n_written = static_cast<std::uint64_t>(std::count(written.begin(), written.end(), 1));
+  // Before the checkpoint: the first chunk as written so far, fill values where nothing was.
+  std::vector<CellResult> first;
+  const CellSpan span = w.read_chunk(3, first);
+  ASSERT_EQ(span.begin, 0u);
+  ASSERT_EQ(span.end, spans[0].end);
+  for (std::uint64_t k = 0; k < span.end; ++k) {
+    if (written[k]) {
+      expect_cell(first[k], k);
+    } else {
+      ASSERT_EQ(first[k].status, CellResult{}.status) << k;
+      ASSERT_TRUE(std::isnan(first[k].T_con)) << k;
+    }
+  }
+  w.checkpoint();
+  std::vector<CellSpan> pending;
+  w.pending(0, total, pending);
+  std::uint64_t n_pending = 0;
+  for (const CellSpan& s : pending)
+    for (std::uint64_t i = s.begin; i < s.end; ++i, ++n_pending) ASSERT_FALSE(written[i]) << "cell " << i << " pending";
+  EXPECT_EQ(n_pending, total - n_written);
+  w.finish(1);
+  const SweepMap back = read_map(file("scattered.h5"));
+  for (std::uint64_t i = 0; i < total; ++i) {
+    ASSERT_EQ(back.done[i], written[i]) << i;
+    if (written[i]) expect_cell(back.cells[i], i);
+  }
+}
+
 TEST_F(MapWriterTest, TheFileSizeIsKnownWhenTheMapIsMade) {
   const MapLayout l = layout({axis("E1", points(300)), axis("E2", points(250))});
   MapWriter::create(file("size.h5"), l, 1).finish(1);

@@ -69,12 +69,15 @@
 //     two chunks, and every chunk is a contiguous range of flat indices.
 //   - Every chunk is allocated, and its fill values written, when the file is made: the file's
 //     size is known up front (file_bytes), and writing cells never changes the file's structure.
-//   - Cells are written into the data datasets as they arrive. checkpoint() flushes them and
+//   - Cells are written into the data datasets as they arrive: a piece that fills its chunk at
+//     once, the others (an adaptive map's scattered points, the short runs between them) staged
+//     and written a chunk at a time (the chunk read, the cells set, the chunk written whole; at
+//     under half a chunk of cells staged). checkpoint() flushes them and
 //     syncs the file, and only then sets /done for them (flushed and synced again): /done is
 //     never ahead of the data. A chunk torn by a kill in the middle of its write fails its
 //     checksum; resume() wipes such chunks and computes their cells again.
-// Memory: a writer holds HDF5's chunk cache, one chunk-sized buffer per dataset and the ranges of
-// the cells written since the last checkpoint, never a whole dataset.
+// Memory: a writer holds HDF5's chunk cache, one chunk-sized buffer per dataset, the cells staged
+// and the ranges of the cells written since the last checkpoint, never a whole dataset.
 
 #include <cstdint>
 #include <functional>
@@ -175,7 +178,8 @@ class MapWriter {
   // The cells not done at or after `from`, ascending, at most `max` of them, appended to `out`;
   // returns where the scan stopped (cells when none are left). Reads /done a window at a time.
   std::uint64_t pending(std::uint64_t from, std::uint64_t max, std::vector<CellSpan>& out);
-  // Writes the results of cells [first, first + cells.size()) (not done until the checkpoint).
+  // Writes the results of cells [first, first + cells.size()) (not done until the checkpoint;
+  // staged when they fill no chunk: in the file by the checkpoint, or by read_chunk of their chunk).
   void write(std::uint64_t first, std::span<const CellResult> cells);
   // The cells of the chunk that holds cell `flat`, as written so far (a cell not written holds the
   // fill values); returns the chunk's span. Throws IoError when the chunk fails to read.
@@ -192,6 +196,10 @@ class MapWriter {
   static std::unique_ptr<Impl> open_for_writing(const std::string& path);
   static MapWriter open_new(const std::string& path, const MapLayout& layout);
   void verify_and_repair(const std::function<void(std::uint64_t, const CellResult&)>& visit_done);
+  void write_run(std::uint64_t first, std::span<const CellResult> cells);
+  void flush_staged();
+  void write_staged(const CellSpan& chunk, std::size_t from, std::size_t to);
+  void mark_done(const std::vector<CellSpan>& spans);
   std::unique_ptr<Impl> impl_;
 };
 
