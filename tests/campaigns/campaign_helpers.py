@@ -12,6 +12,24 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 # The paper's Table 2 (docs/model.md) solved by brute-force integration (not the default shooting):
 # cells cost ~0.02-0.05 s each, so a sweep runs long enough to be stopped or killed mid-way.
+# A scene whose one orbit would take hours: an undamped chatter from v2 = 5 m/s, integrated for
+# up to 10^8 periods; what a stop signal must interrupt in flight.
+FOREVER = """
+[system]
+xi1 = 0.0
+xi2 = 0.0
+
+[initial]
+v2 = 5.0
+
+[solver]
+max_steps = 10000000000
+
+[analysis]
+steady = "integrate"
+max_periods = 100000000
+"""
+
 SLOW_SYSTEM = """
 [system]
 m2 = 310.0

@@ -61,6 +61,17 @@ Eigen::Vector3d worst_extremes(const Branch& b, const Parameters& base, const Li
   return worst;
 }
 
+// A point's state against the linear response at its omega, relative to the amplitudes of
+// displacement and velocity.
+double state_error(const BranchPoint& q, const Parameters& p, const Linear& linear) {
+  const Eigen::Vector4d ref = linear.orbit(p);
+  const double scale_x = std::max(std::abs(ref[0]), std::abs(ref[1] - p.D));
+  const double scale_v = std::max(std::abs(ref[2]), std::abs(ref[3]));
+  const Eigen::Vector4d err = q.y - ref;
+  return std::max({std::abs(err[0]) / scale_x, std::abs(err[1]) / scale_x, std::abs(err[2]) / scale_v,
+                   std::abs(err[3]) / scale_v});
+}
+
 TEST(Continuation, WithoutContactTheBranchIsTheLinearFrequencyResponse) {
   Parameters base;
   base.D = 10.0;  // m: far beyond the motion (at most ~0.6 m at resonance)
@@ -82,12 +93,7 @@ TEST(Continuation, WithoutContactTheBranchIsTheLinearFrequencyResponse) {
   for (const BranchPoint& q : b.points) {
     Parameters p = base;
     p.omega = q.param;
-    const Eigen::Vector4d ref = linear.orbit(p);
-    const double scale_x = std::max(std::abs(ref[0]), std::abs(ref[1] - p.D));
-    const double scale_v = std::max(std::abs(ref[2]), std::abs(ref[3]));
-    Eigen::Vector4d err = q.y - ref;
-    worst = std::max({worst, std::abs(err[0]) / scale_x, std::abs(err[1]) / scale_x, std::abs(err[2]) / scale_v,
-                      std::abs(err[3]) / scale_v});
+    worst = std::max(worst, state_error(q, p, linear));
     std::vector<cd> mu = linear.multipliers(p.period());
     for (const cd& m : q.multipliers) {
       double nearest = 1e300;
@@ -123,12 +129,7 @@ TEST(Continuation, AtTheDefaultTolerancesEveryPointIsTheLinearOrbitTo1e8) {
   for (const BranchPoint& q : b.points) {
     Parameters p = base;
     p.omega = q.param;
-    const Eigen::Vector4d ref = linear.orbit(p);
-    const double scale_x = std::max(std::abs(ref[0]), std::abs(ref[1] - p.D));
-    const double scale_v = std::max(std::abs(ref[2]), std::abs(ref[3]));
-    const Eigen::Vector4d err = q.y - ref;
-    worst = std::max({worst, std::abs(err[0]) / scale_x, std::abs(err[1]) / scale_x, std::abs(err[2]) / scale_v,
-                      std::abs(err[3]) / scale_v});
+    worst = std::max(worst, state_error(q, p, linear));
   }
   const Eigen::Vector3d extremes = worst_extremes(b, base, linear);
   EXPECT_LT(worst, 1e-8) << "state, relative to the amplitude";

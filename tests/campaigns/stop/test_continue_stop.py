@@ -18,7 +18,7 @@ import time
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE  # noqa: E402
+from campaign_helpers import ENV, EXE, FOREVER  # noqa: E402
 
 h5py = pytest.importorskip("h5py")
 
@@ -73,23 +73,8 @@ def test_a_curve_run_stops_in_its_branch_without_a_curve(tmp_path, sig):
     assert list(tmp_path.iterdir()) == []
 
 
-# The start orbit alone would take hours: an undamped chatter from v2 = 5 m/s integrated for up to
-# 10^8 periods (as test_stop_in_flight.py's items).
-FOREVER = """
-[system]
-xi1 = 0.0
-xi2 = 0.0
-
-[initial]
-v2 = 5.0
-
-[solver]
-max_steps = 10000000000
-
-[analysis]
-steady = "integrate"
-max_periods = 100000000
-"""
+# The start orbit alone would take hours (FOREVER: an undamped chatter integrated for up to 10^8
+# periods, as test_stop_in_flight.py's items).
 
 
 def test_a_stop_while_the_start_orbit_is_solved_writes_nothing(tmp_path):

@@ -18,23 +18,8 @@ import h5py
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC, journal_records  # noqa: E402
+from campaign_helpers import ENV, EXE, FOREVER, MPIEXEC, journal_records  # noqa: E402
 
-FOREVER = """
-[system]
-xi1 = 0.0
-xi2 = 0.0
-
-[initial]
-v2 = 5.0
-
-[solver]
-max_steps = 10000000000
-
-[analysis]
-steady = "integrate"
-max_periods = 100000000
-"""
 
 SWEEP = FOREVER + """
 [sweep]
