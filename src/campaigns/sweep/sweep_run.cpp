@@ -80,7 +80,10 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   if (sweep.refine > 0) {
     plan.emplace(sweep.axes, sweep.refine, sweep.refine_on, sweep.refine_audit, sweep.refine_speckle);
     layout.refine_levels = sweep.refine;
-    for (const RefineOn& on : sweep.refine_on) layout.refine_on += (layout.refine_on.empty() ? "" : " ") + refine_on_text(on);
+    for (const RefineOn& on : sweep.refine_on) {
+      if (!layout.refine_on.empty()) layout.refine_on += ' ';
+      layout.refine_on += refine_on_text(on);
+    }
     layout.refine_audit = sweep.refine_audit;
     layout.refine_speckle = sweep.refine_speckle;
   }
