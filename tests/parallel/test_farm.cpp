@@ -126,7 +126,9 @@ TEST(Farm, StoresEveryItemOnceWithItsOwnResult) {
     ranks.insert(sink.values_[i].rank);
   }
   EXPECT_EQ(static_cast<int>(ranks.size()), g_mpi->size()) << "every rank computes, rank 0 included";
-  if (g_mpi->size() > 1) EXPECT_GT(report.requests, 0);
+  if (g_mpi->size() > 1) {
+    EXPECT_GT(report.requests, 0);
+  }
 }
 
 TEST(Farm, ResumeComputesOnlyWhatIsNotDone) {
@@ -226,7 +228,9 @@ TEST(Farm, FailingSinkEndsEveryRankWithTheClassifiedCode) {
     EXPECT_EQ(g_mpi->rank(), 0);
     EXPECT_STREQ(e.what(), "disk full (made up)");
   }
-  if (g_mpi->rank() == 0) EXPECT_FALSE(sink.finished_) << "a failing sink is not asked to finish";
+  if (g_mpi->rank() == 0) {
+    EXPECT_FALSE(sink.finished_) << "a failing sink is not asked to finish";
+  }
 }
 
 // A solver that throws on the last rank: rank 0 reports it, writes a final checkpoint of what
@@ -256,7 +260,9 @@ TEST(Farm, ThrowingSolverOnAWorkerStopsEveryRank) {
       EXPECT_EQ(what, "rank " + std::to_string(bad_rank) + ": solver bug (made up)");
     }
   }
-  if (g_mpi->rank() == 0) EXPECT_TRUE(sink.finished_) << "what was stored gets its final checkpoint";
+  if (g_mpi->rank() == 0) {
+    EXPECT_TRUE(sink.finished_) << "what was stored gets its final checkpoint";
+  }
 }
 
 }  // namespace

@@ -27,9 +27,10 @@ class ByteWriter {
  public:
   template <class T>
     requires std::is_arithmetic_v<T>
-  void put(T v) {
-    const auto* p = reinterpret_cast<const char*>(&v);
-    bytes_.insert(bytes_.end(), p, p + sizeof(T));
+  void put(T v) {  // resize and copy: GCC 12 warns -Wstringop-overflow (falsely) on an insert here
+    const std::size_t at = bytes_.size();
+    bytes_.resize(at + sizeof(T));
+    std::memcpy(bytes_.data() + at, &v, sizeof(T));
   }
   void put(std::string_view s) {
     put(static_cast<std::uint64_t>(s.size()));
