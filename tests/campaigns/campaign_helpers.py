@@ -12,6 +12,13 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 # The paper's Table 2 (docs/model.md) solved by brute-force integration (not the default shooting):
 # cells cost ~0.02-0.05 s each, so a sweep runs long enough to be stopped or killed mid-way.
+def vibromap_stdout(*args, timeout=900):
+    """`vibromap ARGS...` (any value str()-ed), which must succeed: its standard output."""
+    done = subprocess.run([EXE, *map(str, args)], env=ENV, capture_output=True, text=True, timeout=timeout)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
 # A scene whose one orbit would take hours: an undamped chatter from v2 = 5 m/s, integrated for
 # up to 10^8 periods; what a stop signal must interrupt in flight.
 FOREVER = """

@@ -8,25 +8,18 @@ The JSON's points and the curve file's datasets are the same numbers.
 """
 import json
 import os
-import subprocess
 import sys
 
 import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE  # noqa: E402
+from campaign_helpers import vibromap_stdout as vibromap  # noqa: E402
 
 h5py = pytest.importorskip("h5py")
 
 LEVEL = ["continue", "jobs/paper/table2.toml", "--param", "contact.E2", "--from", "1e6", "--to", "2e6",
          "--curve", "level:k_con=10", "--param2", "contact.E1", "--from2", "1e9", "--to2", "1e11"]
-
-
-def vibromap(*args):
-    done = subprocess.run([EXE, *map(str, args)], env=ENV, capture_output=True, text=True, timeout=600)
-    assert done.returncode == 0, done.stderr
-    return done.stdout
 
 
 @pytest.fixture(scope="module")

@@ -12,23 +12,16 @@ at every point, which also checks that the points are reported in Pa and not in 
 import json
 import math
 import os
-import subprocess
 import sys
 
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE  # noqa: E402
+from campaign_helpers import vibromap_stdout as vibromap  # noqa: E402
 
 SCENE = "jobs/demo/e1_e2.toml"
 LEVEL = ["continue", SCENE, "--param", "contact.E2", "--from", "2e5", "--to", "2e7", "--curve", "level:k_con=10",
          "--param2", "contact.E1", "--from2", "2e4", "--to2", "2.1e11", "--format", "json"]
-
-
-def vibromap(*args):
-    done = subprocess.run([EXE, *map(str, args)], env=ENV, capture_output=True, text=True, timeout=900)
-    assert done.returncode == 0, done.stderr
-    return done.stdout
 
 
 @pytest.fixture(scope="module")
