@@ -2,7 +2,7 @@
 
 #include <new>
 
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
@@ -14,7 +14,7 @@ ExitCode exit_code_of(std::exception_ptr error) {
     std::rethrow_exception(error);
   } catch (const QuietExit& e) {
     return static_cast<ExitCode>(e.code);
-  } catch (const Cancelled&) {  // a stop signal ended a computation (core/cancel.hpp)
+  } catch (const Cancelled&) {  // a stop signal ended a computation (core/integrate/cancel.hpp)
     return ExitCode::stopped;
   } catch (const ItemStopped&) {
     return ExitCode::stopped;

@@ -46,8 +46,6 @@ struct ParamScene2 {
 };
 ParamScene2 scene_with_params(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
                               const std::string& axis, const std::string& param2, const std::string& axis2);
-std::string short_number(double x);  // 12 digits: 7.23, for messages
-std::string exact_number(double x);  // 17 digits: the double itself, for overrides
 
 // "  (stopped by SIGUSR1: go on with --resume)" after the output's name in a campaign's table
 // when a signal stopped it; empty otherwise.

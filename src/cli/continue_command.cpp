@@ -14,7 +14,7 @@
 #include "commands.hpp"
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
 #include "vibromap/campaigns/continuation/curve_run.hpp"
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/report.hpp"
@@ -25,7 +25,7 @@ namespace vibromap::cli {
 
 // `vibromap continue SCENE --param KEY --from A --to B [--format table|json] [--set ...]`: the
 // periodic orbit the scene's point settles into from rest at KEY = A, followed to B by
-// pseudo-arclength continuation (core/analysis/continuation.hpp). One process.
+// pseudo-arclength continuation (core/analysis/continuation/continuation.hpp). One process.
 struct ContinueArgs {
   std::string scene;
   std::vector<std::string> sets;
@@ -128,7 +128,7 @@ void print_table(std::ostream& out, const ContinueArgs& args, const std::string&
                  const std::string& start_regime, const std::vector<Branch>& branches,
                  const std::vector<std::vector<Measured>>& measured) {
   const Branch& branch = branches.front();
-  out << "branch         " << key << " from " << short_number(args.from) << " to " << short_number(args.to) << ", period "
+  out << "branch         " << key << " from " << number(args.from, 12) << " to " << number(args.to, 12) << ", period "
       << n << " T (" << start_regime << " at the start)\n"
       << "points         " << branch.points.size() << "; " << branch.stop << "\n"
       << "bifurcations   " << branch.bifurcations.size() << "\n";
@@ -219,7 +219,7 @@ std::string range_of(const Curve& c, bool second) {
 // stopped, and its codimension-two points.
 void curves_table(std::ostream& out, const std::string& key, const std::string& key2, const CurvesReport& r) {
   out << "\ncurves         " << r.curves.size() << " in (" << key << ", " << key2 << "), started at " << key2 << " = "
-      << short_number(r.q0) << " (" << std::setprecision(3) << std::fixed << r.wall_s << " s in all)\n"
+      << number(r.q0, 12) << " (" << std::setprecision(3) << std::fixed << r.wall_s << " s in all)\n"
       << std::defaultfloat;
   for (std::size_t i = 0; i < r.curves.size(); ++i) {
     const Curve& c = r.curves[i].curve;
@@ -248,7 +248,7 @@ std::vector<CurveSpec> curve_specs(const ContinueArgs& args) {
   if (args.param2.empty() || !has_from2 || !has_to2)
     throw SceneError("--curve: needs --param2 KEY --from2 C --to2 D (the second key and its range)");
   if (!(std::isfinite(args.from2) && std::isfinite(args.to2) && args.from2 < args.to2))
-    throw SceneError(cat("--from2 ", short_number(args.from2), " --to2 ", short_number(args.to2),
+    throw SceneError(cat("--from2 ", number(args.from2, 12), " --to2 ", number(args.to2, 12),
                          ": need finite values with --from2 < --to2"));
   if (args.param2 == args.param) throw SceneError(cat("--param2 ", args.param2, ": the same key as --param"));
   std::vector<CurveSpec> specs;
@@ -280,7 +280,7 @@ int continue_exit(const ContinueArgs& args, const ContinuationReport& r, const C
 int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, std::vector<CurveSpec> specs,
                     std::ostream& out) {
   const auto range = [](double a, double b) {
-    return cat("{values=[", exact_number(std::min(a, b)), ",", exact_number(std::max(a, b)), "]}");
+    return cat("{values=[", number(std::min(a, b), 17), ",", number(std::max(a, b), 17), "]}");
   };
   const ParamScene2 ps = scene_with_params([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
                                            args.param, range(args.from, args.to), args.param2,
@@ -298,9 +298,9 @@ int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, 
 
 int continue_branch_or_curves(const ContinueArgs& args, std::ostream& out) {
   if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from != args.to))
-    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to), ": need finite, different values"));
+    throw SceneError(cat("--from ", number(args.from, 12), " --to ", number(args.to, 12), ": need finite, different values"));
   if (!std::isfinite(args.to - args.from))
-    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to),
+    throw SceneError(cat("--from ", number(args.from, 12), " --to ", number(args.to, 12),
                          ": the span B - A must be finite (it scales the key)"));
   std::vector<CurveSpec> specs = curve_specs(args);
   ContinuationConfig config;
@@ -314,8 +314,8 @@ int continue_branch_or_curves(const ContinueArgs& args, std::ostream& out) {
   if (!specs.empty()) return continue_curves(args, config, std::move(specs), out);
   const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
                                          args.param,
-                                         cat("{values=[", exact_number(std::min(args.from, args.to)), ",",
-                                             exact_number(std::max(args.from, args.to)), "]}"));
+                                         cat("{values=[", number(std::min(args.from, args.to), 17), ",",
+                                             number(std::max(args.from, args.to), 17), "]}"));
   const ContinuationReport report = run_continuation(ps.scene, ps.axis, config);
   if (args.format == "json") {
     print_json(out, ps.axis.key, report);
@@ -334,7 +334,7 @@ int continue_command(const ContinueArgs& args, std::ostream& out) {
     return continue_branch_or_curves(args, out);
   } catch (const Cancelled&) {
     std::cerr << "vibromap: stopped by " << signal_name(stop_signal()) << " while solving the start orbit at "
-              << args.param << " = " << short_number(args.from) << ": no point found, nothing written\n";
+              << args.param << " = " << number(args.from, 12) << ": no point found, nothing written\n";
     return code(ExitCode::stopped);
   }
 }

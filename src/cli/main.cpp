@@ -14,7 +14,7 @@
 
 #include "command.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/exit_code.hpp"
 #include "vibromap/parallel/farm.hpp"

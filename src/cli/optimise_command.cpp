@@ -204,8 +204,6 @@ void print_json(std::ostream& out, const OptimiseRun& run, const OptimiseOptions
 // A cell of the starts' tables: padded to `width`, then one space.
 std::string cell(const std::string& s, std::size_t width) { return pad_right(s, width) + " "; }
 
-std::string number(double v, int digits = 6) { return precision_number(v, digits); }
-
 void print_starts_table(std::ostream& out, const OptimiseReport& r, const OptimiseOptions& o) {
   const std::string q = objective_quantity(o.objective);
   const int label = o.laws.empty() ? 20 : 40;

@@ -73,7 +73,7 @@ int branches(const DiagramStep& s) {
 
 void print_table(std::ostream& out, const OrbitDiagramReport& r, const OrbitDiagramArgs& args) {
   const Axis& a = r.data.axis;
-  out << "orbit diagram  " << a.key << " from " << short_number(a.values.front()) << " to " << short_number(a.values.back())
+  out << "orbit diagram  " << a.key << " from " << number(a.values.front(), 12) << " to " << number(a.values.back(), 12)
       << " " << a.units << ", " << a.values.size() << " points, up and down\n"
       << "kept           " << r.data.options.keep << " stroboscopic states after " << r.data.options.transient
       << " periods at each point\n"
@@ -103,7 +103,7 @@ void print_table(std::ostream& out, const OrbitDiagramReport& r, const OrbitDiag
 int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out) {
   const MpiSession mpi;
   if (!(std::isfinite(args.from) && std::isfinite(args.to) && args.from != args.to && std::isfinite(args.to - args.from)))
-    throw SceneError(cat("--from ", short_number(args.from), " --to ", short_number(args.to),
+    throw SceneError(cat("--from ", number(args.from, 12), " --to ", number(args.to, 12),
                          ": need finite, different values and a finite to - from"));
   // The same points whichever end comes first: the axis increases, and "up" is the key increasing.
   const double lo = std::min(args.from, args.to), hi = std::max(args.from, args.to);
@@ -114,7 +114,7 @@ int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out) {
   if (const std::string err = validate(config.options); !err.empty()) throw SceneError("--" + err);
   const ParamScene ps = scene_with_param(
       [&](const auto& sets) { return load_scene_everywhere(mpi, args.scene, sets); }, args.sets, args.param,
-      cat("{from=", exact_number(lo), ",to=", exact_number(hi), ",n=", std::to_string(args.steps),
+      cat("{from=", number(lo, 17), ",to=", number(hi, 17), ",n=", std::to_string(args.steps),
           ",scale=\"", args.scale, "\"}"));
   const Scene& scene = ps.scene;
   config.axis = ps.axis;

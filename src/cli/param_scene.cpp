@@ -7,10 +7,6 @@
 
 namespace vibromap::cli {
 
-std::string short_number(double x) { return precision_number(x, 12); }
-
-std::string exact_number(double x) { return precision_number(x, 17); }
-
 ParamScene scene_with_param(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
                             const std::string& axis) {
   sets.push_back(cat("sweep.", param, "=", axis));

@@ -1,5 +1,5 @@
 // `vibromap restitution`: the effective restitution each contact law gives for a target e, from
-// one tightly integrated free two-body impact per (law, e) (core/analysis/restitution.hpp).
+// one tightly integrated free two-body impact per (law, e) (core/analysis/point/restitution.hpp).
 // The impact is scale-free, so the answer needs no scene.
 
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "command.hpp"
 #include "commands.hpp"
-#include "vibromap/core/analysis/restitution.hpp"
+#include "vibromap/core/analysis/point/restitution.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/json_writer.hpp"
 #include "vibromap/io/report.hpp"
@@ -52,7 +52,7 @@ std::vector<double> targets_of(const RestitutionArgs& args) {
   if (e.empty())
     for (int i = 1; i <= 10; ++i) e.push_back(0.1 * i);
   for (const double x : e)
-    if (!(x > 0.0 && x <= 1.0)) throw SceneError(cat("--e ", short_number(x), ": a restitution must be in (0, 1]"));
+    if (!(x > 0.0 && x <= 1.0)) throw SceneError(cat("--e ", number(x, 12), ": a restitution must be in (0, 1]"));
   return e;
 }
 
@@ -61,8 +61,8 @@ void check_limits(const std::vector<ContactLawKind>& laws, const std::vector<dou
   for (const ContactLawKind law : laws)
     for (const double e : targets)
       if (const double least = min_restitution(law); e < least)
-        throw SceneError(cat("--e ", short_number(e), ": below the lower limit of ", to_string(law), ", e >= ",
-                             short_number(least), " (its damping chi(e) = ", printf_number(contact_law(law).chi(e), "%.3g"),
+        throw SceneError(cat("--e ", number(e, 12), ": below the lower limit of ", to_string(law), ", e >= ",
+                             number(least, 12), " (its damping chi(e) = ", printf_number(contact_law(law).chi(e), "%.3g"),
                              " must be <= ", printf_number(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
 }
 
@@ -103,7 +103,7 @@ int restitution_command(const RestitutionArgs& args, std::ostream& out) {
     for (const double e : targets) {
       rows.push_back(free_impact_restitution(law, e));
       if (rows.back().status != IntegrationStatus::ok)
-        throw std::runtime_error(cat("the free impact of ", to_string(law), " at e = ", short_number(e),
+        throw std::runtime_error(cat("the free impact of ", to_string(law), " at e = ", number(e, 12),
                                      " failed: ", to_string(rows.back().status)));
     }
   if (args.format == "json")

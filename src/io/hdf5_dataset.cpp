@@ -60,15 +60,6 @@ std::vector<std::int64_t> Dataset::read_int() const {
   return data;
 }
 
-ElementType Dataset::element_type() const {
-  const std::string what = detail::describe("dataset", name_);
-  const Handle type = detail::make_handle(H5Dget_type(id()), HandleKind::datatype, file_path_, "get the type of " + what);
-  if (detail::type_class(type.get(), file_path_, what) == H5T_FLOAT) return ElementType::float64;
-  const std::size_t size = H5Tget_size(type.get());
-  if (size == 1) return H5Tget_sign(type.get()) == H5T_SGN_NONE ? ElementType::uint8 : ElementType::int8;
-  return size <= 4 ? ElementType::int32 : ElementType::int64;
-}
-
 Shape Dataset::chunk_shape() const {
   const std::string what = detail::describe("dataset", name_);
   const Handle dcpl = detail::make_handle(H5Dget_create_plist(id()), HandleKind::property_list, file_path_,

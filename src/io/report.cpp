@@ -11,18 +11,6 @@
 
 namespace vibromap {
 
-std::string printf_number(double x, const char* spec) {
-  std::array<char, 64> buf{};
-  std::snprintf(buf.data(), buf.size(), spec, x);
-  return buf.data();
-}
-
-std::string precision_number(double x, int digits) {
-  std::ostringstream os;
-  os << std::setprecision(digits) << x;
-  return os.str();
-}
-
 std::string pad_right(std::string s, std::size_t width) {
   if (s.size() < width) s.append(width - s.size(), ' ');
   return s;

@@ -30,15 +30,6 @@ const Row& row(ExitCode e) {
 std::string_view to_string(ExitCode e) { return row(e).name; }
 std::string_view describe(ExitCode e) { return row(e).meaning; }
 
-const std::vector<ExitCode>& all_exit_codes() {
-  static const std::vector<ExitCode> codes = [] {
-    std::vector<ExitCode> v;
-    for (const Row& r : kRows) v.push_back(r.code);
-    return v;
-  }();
-  return codes;
-}
-
 std::string exit_code_summary() {
   std::string s = "Exit codes:";
   for (const Row& r : kRows) s.append("\n  ").append(std::to_string(code(r.code))).append("  ").append(r.meaning);

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "vibromap/core/analysis/steady_state.hpp"
+#include "vibromap/core/analysis/point/steady_state.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/core/model/system.hpp"
 

@@ -33,7 +33,7 @@
 #include "bench_common.hpp"
 #include "cvode_solver.hpp"
 #include "odeint_solver.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::bench {

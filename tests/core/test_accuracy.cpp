@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "vibromap/core/analysis/accuracy.hpp"
+#include "vibromap/core/analysis/point/accuracy.hpp"
 #include "support/paper_points.hpp"
 
 namespace vibromap {

@@ -1,11 +1,11 @@
-// Cancelling an integration from outside (core/cancel.hpp): inside a CancelScope whose flag is
+// Cancelling an integration from outside (core/integrate/cancel.hpp): inside a CancelScope whose flag is
 // set, every method's step loop throws Cancelled within kCancelPollSteps steps; outside a
 // scope, or with the flag clear, the run is the same as without the hook.
 #include <gtest/gtest.h>
 
 #include <atomic>
 
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 
 namespace vibromap {

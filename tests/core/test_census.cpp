@@ -16,8 +16,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "vibromap/core/analysis/census.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "support/paper_points.hpp"
 
 namespace vibromap {

@@ -10,10 +10,10 @@
 
 #include "problems/free_spheres.hpp"
 #include "support/monodromy_testing.hpp"
-#include "vibromap/core/analysis/impact.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
-#include "vibromap/core/analysis/restitution.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/point/impact.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
+#include "vibromap/core/analysis/point/restitution.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 
 using namespace vibromap;

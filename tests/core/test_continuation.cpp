@@ -1,4 +1,4 @@
-// Tests of periodic-orbit continuation (core/analysis/continuation.hpp) against closed forms.
+// Tests of periodic-orbit continuation (core/analysis/continuation/continuation.hpp) against closed forms.
 //
 // Without contact (a clearance larger than any motion) the system is linear: in (x1, w = x2 - D)
 //   M q'' + C q' + K q = (lambda F0 cos(omega t + phi0), 0),
@@ -14,10 +14,10 @@
 
 #include <Eigen/Dense>
 
-#include "vibromap/core/analysis/continuation.hpp"
-#include "vibromap/core/analysis/orbit_diagram.hpp"
-#include "vibromap/core/analysis/orbit_extent.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/continuation/continuation.hpp"
+#include "vibromap/core/analysis/continuation/orbit_diagram.hpp"
+#include "vibromap/core/analysis/continuation/orbit_extent.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "support/linear_response.hpp"
 
 namespace vibromap {

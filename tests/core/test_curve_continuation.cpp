@@ -1,4 +1,4 @@
-// Tests of curves in two parameters (core/analysis/curve_continuation.hpp) against closed forms
+// Tests of curves in two parameters (core/analysis/continuation/curve_continuation.hpp) against closed forms
 // and the one-parameter continuation: the grazing curve of a contact-free orbit against the
 // linear response, the fold curve against the fold the branch locates at another force, and a
 // level curve of k_con against plain solves.
@@ -11,10 +11,10 @@
 #include <cstdio>
 
 #include "support/linear_response.hpp"
-#include "vibromap/core/analysis/continuation.hpp"
-#include "vibromap/core/analysis/curve_continuation.hpp"
-#include "vibromap/core/analysis/orbit_extent.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/continuation/continuation.hpp"
+#include "vibromap/core/analysis/continuation/curve_continuation.hpp"
+#include "vibromap/core/analysis/continuation/orbit_extent.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "support/paper_points.hpp"
 
 namespace vibromap {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "vibromap/core/analysis/impact.hpp"
+#include "vibromap/core/analysis/point/impact.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 
 using namespace vibromap;

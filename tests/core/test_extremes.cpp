@@ -6,7 +6,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 
 using namespace vibromap;
 

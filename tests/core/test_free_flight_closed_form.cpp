@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "problems/linear_oscillator.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/integrate/free_flight.hpp"
 
 using namespace vibromap;

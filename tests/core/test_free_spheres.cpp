@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "problems/free_spheres.hpp"
-#include "vibromap/core/analysis/restitution.hpp"
+#include "vibromap/core/analysis/point/restitution.hpp"
 
 using namespace vibromap;
 

@@ -6,9 +6,9 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-#include "vibromap/core/analysis/lyapunov.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/point/lyapunov.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/integrate/free_flight.hpp"
 
 using namespace vibromap;

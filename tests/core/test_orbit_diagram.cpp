@@ -1,4 +1,4 @@
-// Tests of the brute-force orbit diagram (core/analysis/orbit_diagram.hpp): after its transient
+// Tests of the brute-force orbit diagram (core/analysis/continuation/orbit_diagram.hpp): after its transient
 // each point keeps the states of the steady motion the point solver finds (a conservation-free,
 // independent reference: shooting with Newton), and the state is carried from point to point.
 
@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "vibromap/core/analysis/orbit_diagram.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/continuation/orbit_diagram.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/model/system.hpp"
 
 namespace vibromap {

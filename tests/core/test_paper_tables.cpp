@@ -3,7 +3,7 @@
 // tolerance within 1e-6 of a tight run; the paper's RK4 agrees on the soft contact.
 #include <gtest/gtest.h>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 using namespace vibromap;

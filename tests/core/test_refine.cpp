@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "vibromap/core/grid.hpp"
-#include "vibromap/core/refine.hpp"
-#include "vibromap/core/refine_stats.hpp"
+#include "vibromap/core/refine/refine.hpp"
+#include "vibromap/core/refine/refine_stats.hpp"
 
 using namespace vibromap;
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "vibromap/core/refine_compare.hpp"
+#include "vibromap/core/refine/refine_compare.hpp"
 
 using namespace vibromap;
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "vibromap/core/refine_stats.hpp"
+#include "vibromap/core/refine/refine_stats.hpp"
 
 using namespace vibromap;
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "vibromap/core/analysis/regime.hpp"
-#include "vibromap/core/analysis/steady_state.hpp"
+#include "vibromap/core/analysis/point/regime.hpp"
+#include "vibromap/core/analysis/point/steady_state.hpp"
 
 using namespace vibromap;
 

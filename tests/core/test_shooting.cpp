@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "support/monodromy_testing.hpp"
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 
 using namespace vibromap;
 

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "vibromap/core/analysis/steady_state.hpp"
+#include "vibromap/core/analysis/point/steady_state.hpp"
 
 using namespace vibromap;
 

@@ -35,7 +35,7 @@ if(STEP STREQUAL "tree")
             share/vibromap/${table1} share/vibromap/jobs/demo/e1_e2.toml share/vibromap/jobs/reference.toml
             share/doc/vibromap/README.md share/doc/vibromap/CHANGELOG.md share/doc/vibromap/docs/model.md
             share/doc/vibromap/docs/img/demo_e1_e2_soft.png
-            include/vibromap/core/analysis/point_solver.hpp include/vibromap/campaigns/exit_status.hpp)
+            include/vibromap/core/analysis/point/point_solver.hpp include/vibromap/campaigns/exit_status.hpp)
     if(NOT EXISTS ${PREFIX}/${f})
       message(FATAL_ERROR "not installed: ${PREFIX}/${f}")
     endif()

@@ -9,7 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 
 namespace vibromap::test {

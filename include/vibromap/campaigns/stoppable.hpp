@@ -1,6 +1,6 @@
 #pragma once
 // A campaign's solve(item), made stoppable: while it runs, the core's integrators poll the
-// farm's stop flag (core/cancel.hpp over parallel/signals.hpp's stop_flag()), and a stop signal
+// farm's stop flag (core/integrate/cancel.hpp over parallel/signals.hpp's stop_flag()), and a stop signal
 // ends the item in flight within a few hundred steps instead of after it (an item can be one
 // integration of hours). The core's Cancelled becomes the farm's ItemStopped: the item is not
 // recorded, and the run checkpoints and exits with ExitCode::stopped. The core and the farm
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/parallel/farm.hpp"
 #include "vibromap/parallel/signals.hpp"
 

@@ -14,8 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "vibromap/core/analysis/census.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 
 namespace vibromap {
 

@@ -1,6 +1,9 @@
 #pragma once
 // Small text helpers shared by every layer's messages.
 
+#include <array>
+#include <charconv>
+#include <cstdio>
 #include <string>
 #include <string_view>
 
@@ -22,6 +25,29 @@ std::string cat(const Parts&... parts) {
 inline std::string clip(std::string_view text, std::size_t max = 80) {
   if (text.size() <= max) return std::string(text);
   return cat(text.substr(0, max), "... (", std::to_string(text.size()), " characters)");
+}
+
+// The one number formatter of messages, tables and provenance text.
+// `x` to `digits` significant digits, as printf's %.*g and an ostream's setprecision(digits)
+// print it: number(7.23) is "7.23", number(1.0 / 3, 3) "0.333", number(x, 17) the double itself.
+inline std::string number(double x, int digits = 6) {
+  std::array<char, 64> buf{};
+  const int n = std::snprintf(buf.data(), buf.size(), "%.*g", digits, x);
+  return std::string(buf.data(), static_cast<std::size_t>(n > 0 ? n : 0));
+}
+
+// `x` as printf writes it with `spec`, for fixed layouts ("%.4f", "%-10.5g", "%+-16.6f").
+inline std::string printf_number(double x, const char* spec = "%.6g") {
+  std::array<char, 64> buf{};
+  const int n = std::snprintf(buf.data(), buf.size(), spec, x);
+  return std::string(buf.data(), static_cast<std::size_t>(n > 0 ? n : 0));
+}
+
+// The shortest text that reads back to the same double: "0.1", "1e-10", "1000".
+inline std::string shortest(double x) {
+  std::array<char, 64> buf{};
+  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), x);
+  return std::string(buf.data(), res.ptr);
 }
 
 }  // namespace vibromap

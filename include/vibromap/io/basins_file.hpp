@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/basins_plane.hpp"
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/basins_plane.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 
 namespace vibromap {
 

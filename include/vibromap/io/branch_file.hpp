@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/continuation.hpp"
+#include "vibromap/core/analysis/continuation/continuation.hpp"
 #include "vibromap/core/grid.hpp"
 
 namespace vibromap {

@@ -16,7 +16,7 @@
 
 #include <iosfwd>
 
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap {

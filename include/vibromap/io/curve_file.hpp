@@ -1,6 +1,6 @@
 #pragma once
 // The curve file of `vibromap continue --curve KIND ... -o` (issue #31): curves of codimension-one
-// points in two parameters (core/analysis/curve_continuation.hpp), HDF5, CF/netCDF-4 compatible,
+// points in two parameters (core/analysis/continuation/curve_continuation.hpp), HDF5, CF/netCDF-4 compatible,
 // written whole (tmp + rename). One group per curve, in the order found:
 //   /curve_i                attributes kind ("fold", ..., "level:k_con=10"), stop, n (int)
 //   /curve_i/point          1-D int32 dimension scale 0..N-1, ordered along the curve
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/curve_continuation.hpp"
+#include "vibromap/core/analysis/continuation/curve_continuation.hpp"
 #include "vibromap/core/grid.hpp"
 
 namespace vibromap {

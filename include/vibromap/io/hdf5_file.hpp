@@ -195,7 +195,6 @@ class Dataset : public Hdf5Object {
   std::size_t size() const;  // number of elements
   std::vector<double> read_double() const;
   std::vector<std::int64_t> read_int() const;
-  ElementType element_type() const;  // the nearest of ElementType (floats as float64, ints by size)
   Shape chunk_shape() const;         // empty when the dataset is not chunked
 
   // The elements [first, first + values.size()) in flat (row-major) order, as one selection

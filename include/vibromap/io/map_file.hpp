@@ -34,7 +34,7 @@
 //                    fraction_stderr, and x1, x2, v1, v2 (the first stroboscopic state; the
 //                    other n - 1 follow by the period map; NaN when none), float64 NaN where
 //                    not listed. These are what a map keeps of a CellResult's census
-//                    attractors (core/analysis/census.hpp's Attractor): read back, an attractor
+//                    attractors (core/analysis/census/census.hpp's Attractor): read back, an attractor
 //                    has one stroboscopic state (or none, all NaN) and its other fields at their
 //                    defaults; a listed attractor whose regime or flag holds -1 is malformed.
 //   The ordinary datasets then describe the attractor the rest state reaches.

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/orbit_diagram.hpp"
+#include "vibromap/core/analysis/continuation/orbit_diagram.hpp"
 #include "vibromap/core/grid.hpp"
 
 namespace vibromap {

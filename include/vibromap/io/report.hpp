@@ -1,8 +1,8 @@
 #pragma once
 // The reporter: the small pieces every command's stdout is made of, tables for people and JSON
-// for scripts (io/json_writer.hpp writes the JSON itself). One place for how a number is
-// printed, how a column is padded and how the values every report shares (stability, a state)
-// are written, so that the commands print them alike.
+// for scripts (io/json_writer.hpp writes the JSON itself). One place for how a column is padded
+// and how the values every report shares (stability, a state) are written, so that the commands
+// print them alike; numbers are core/text.hpp's.
 
 #include <cstddef>
 #include <span>
@@ -12,18 +12,11 @@
 
 #include <Eigen/Core>
 
+#include "vibromap/core/text.hpp"
+
 namespace vibromap {
 
 class JsonWriter;
-
-// ---- numbers ----------------------------------------------------------------------------
-
-// One number as printf writes it with `spec` ("%.6g" unless told; "%.3g GB" works too).
-std::string printf_number(double x, const char* spec = "%.6g");
-
-// One number as an ostream writes it with std::setprecision(digits): 12 digits give 7.23, 17
-// the double itself.
-std::string precision_number(double x, int digits = 6);
 
 // ---- columns ----------------------------------------------------------------------------
 

@@ -19,7 +19,7 @@
 
 #include <iosfwd>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap {

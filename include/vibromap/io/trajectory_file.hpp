@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 
 namespace vibromap {
 

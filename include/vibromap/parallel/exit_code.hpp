@@ -21,7 +21,6 @@ enum class ExitCode : int {
 constexpr int code(ExitCode e) { return static_cast<int>(e); }
 std::string_view to_string(ExitCode e);     // "ok", "internal", "bad_input", "stopped", "io"
 std::string_view describe(ExitCode e);      // one line: what the code means
-const std::vector<ExitCode>& all_exit_codes();  // in code order
 // "Exit codes: 0 done (...), 1 ..., ..." as a paragraph for --help footers.
 std::string exit_code_summary();
 

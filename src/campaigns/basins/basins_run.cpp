@@ -23,12 +23,6 @@
 namespace vibromap {
 namespace {
 
-std::string number(double x) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
-
 CensusOptions follower_census(const Scene& scene) {
   return detail::follower_census(scene.census.value_or(CensusOptions{}));
 }
@@ -47,11 +41,11 @@ std::string run_identity(const Scene& scene, const BasinsPlane& plane) {
   lines.push_back("basins.plane = " + plane.name());
   for (std::size_t d = 0; d < 2; ++d) {
     const auto& a = plane.axes[d];
-    lines.push_back(cat("basins.axis.", std::to_string(d), " = [", number(a.front()), ", ", number(a.back()), "] n ",
+    lines.push_back(cat("basins.axis.", std::to_string(d), " = [", number(a.front(), 17), ", ", number(a.back(), 17), "] n ",
                         std::to_string(a.size())));
   }
-  lines.push_back(cat("basins.fixed = ", number(plane.fixed[0]), " ", number(plane.fixed[1]), " ", number(plane.fixed[2]),
-                      " ", number(plane.fixed[3])));
+  lines.push_back(cat("basins.fixed = ", number(plane.fixed[0], 17), " ", number(plane.fixed[1], 17), " ", number(plane.fixed[2], 17),
+                      " ", number(plane.fixed[3], 17)));
   std::sort(lines.begin(), lines.end());
   std::string out;
   for (const std::string& l : lines) out += l + "\n";

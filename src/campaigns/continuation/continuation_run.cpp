@@ -7,7 +7,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/branch_file.hpp"
 #include "vibromap/io/output_file.hpp"
@@ -16,12 +16,6 @@
 
 namespace vibromap {
 namespace {
-
-std::string short_number(double x) {  // 12 digits: 7.23, for messages (as the command's)
-  std::ostringstream os;
-  os << std::setprecision(12) << x;
-  return os.str();
-}
 
 constexpr double kMaxContinuationTol = 1e-2;  // validate(ContinuationOptions): tol in (0, 0.01)
 
@@ -40,7 +34,7 @@ PointSummary start_orbit(const Scene& scene, const PointAt& at, const std::strin
     start = solve_point(p0, o0);
   }
   if (!is_periodic(start))
-    throw SceneError(cat(scene.path, ": at ", key, " = ", short_number(from), " neither the motion from rest nor ",
+    throw SceneError(cat(scene.path, ": at ", key, " = ", number(from, 12), " neither the motion from rest nor ",
                          "shooting gives a periodic orbit (", start.regime.label(), ", ", to_string(start.status),
                          "); start elsewhere (--from)"));
   return start;
@@ -53,8 +47,8 @@ PointSummary start_orbit(const Scene& scene, const PointAt& at, const std::strin
 double corrector_tolerance(const Scene& scene, const PointAt& at, double from) {
   const double tol = newton_tolerance(at(from).second);
   if (!(tol < kMaxContinuationTol))
-    throw SceneError(cat(scene.path, ": continue needs a Newton tolerance below ", short_number(kMaxContinuationTol),
-                         "; analysis.newton_tol gives ", short_number(tol), " (when 0: 10 solver.rtol)"));
+    throw SceneError(cat(scene.path, ": continue needs a Newton tolerance below ", number(kMaxContinuationTol, 12),
+                         "; analysis.newton_tol gives ", number(tol, 12), " (when 0: 10 solver.rtol)"));
   return tol;
 }
 

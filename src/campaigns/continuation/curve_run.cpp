@@ -17,12 +17,6 @@
 namespace vibromap {
 namespace {
 
-std::string short_number(double x) {  // 12 digits, for messages
-  std::ostringstream os;
-  os << std::setprecision(12) << x;
-  return os.str();
-}
-
 // A point of a branch a curve starts from.
 struct Start {
   int n = 1;
@@ -59,8 +53,8 @@ std::vector<Start> level_starts(const PointAt2& at, const CurveBox& box, const C
       if (!((va - spec.value) * (vb - spec.value) < 0.0)) continue;
       const auto p = locate_level(at, box, spec, r.branches[k].n, q0, m[i - 1].point, va, m[i].point, vb, co);
       if (p) out.push_back({r.branches[k].n, p->param, p->y});
-      else skipped.push_back(cat(spec.label, " between ", short_number(sp.physical(m[i - 1].point.param)), " and ",
-                                 short_number(sp.physical(m[i].point.param)), ": not located (Newton does not converge)"));
+      else skipped.push_back(cat(spec.label, " between ", number(sp.physical(m[i - 1].point.param), 12), " and ",
+                                 number(sp.physical(m[i].point.param), 12), ": not located (Newton does not converge)"));
     }
   }
   return out;
@@ -143,11 +137,11 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
   CurvesReport report;
   report.q0 = scene_value(scene, axis2);
   if (!(curves.from2 < curves.to2))
-    throw SceneError(cat("--from2 ", short_number(curves.from2), " --to2 ", short_number(curves.to2),
+    throw SceneError(cat("--from2 ", number(curves.from2, 12), " --to2 ", number(curves.to2, 12),
                          ": need --from2 < --to2"));
   if (!(report.q0 >= curves.from2 && report.q0 <= curves.to2))
-    throw SceneError(cat("--param2 ", axis2.key, ": the scene's value ", short_number(report.q0), " is outside [",
-                         short_number(curves.from2), ", ", short_number(curves.to2), "]"));
+    throw SceneError(cat("--param2 ", axis2.key, ": the scene's value ", number(report.q0, 12), " is outside [",
+                         number(curves.from2, 12), ", ", number(curves.to2, 12), "]"));
   if (!config.output.empty()) check_output(config.output, {.overwrite = config.overwrite});
   // P and Q each in the units key_scale gives (ln for decades); mapped back at the end.
   const KeyScale sp = key_scale(config.from, config.to, config.from);
@@ -177,7 +171,7 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
       if (on_known_curve(report.curves, spec, s.n, box, s.param, q0)) continue;
       MeasuredCurve mc{continue_curve(at, box, spec, s.n, s.param, q0, s.y, co), {}};
       if (mc.curve.points.empty()) {
-        report.skipped.push_back(cat(spec.label, " at ", short_number(sp.physical(s.param)), ": ", mc.curve.stop));
+        report.skipped.push_back(cat(spec.label, " at ", number(sp.physical(s.param), 12), ": ", mc.curve.stop));
         continue;
       }
       for (const CurvePoint& q : mc.curve.points) {

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 
 namespace vibromap {
 namespace {
@@ -48,7 +48,7 @@ struct Context {
   Algorithm algorithm;
   nlopt_opt opt = nullptr;
   std::string forced;  // why this layer stopped NLopt ("" while it runs)
-  bool cancelled = false;  // an evaluation was cancelled (core/cancel.hpp): rethrown after NLopt returns
+  bool cancelled = false;  // an evaluation was cancelled (core/integrate/cancel.hpp): rethrown after NLopt returns
 };
 
 // The number NLopt minimises at an evaluated point (see nlopt_adaptor.hpp).

@@ -17,7 +17,7 @@
 #include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/campaigns/sweep/sweep_run.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/hdf5_file.hpp"

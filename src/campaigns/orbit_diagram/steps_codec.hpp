@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "vibromap/core/analysis/orbit_diagram.hpp"
+#include "vibromap/core/analysis/continuation/orbit_diagram.hpp"
 #include "vibromap/parallel/campaign.hpp"
 #include "vibromap/parallel/wire.hpp"
 

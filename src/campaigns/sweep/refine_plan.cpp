@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "vibromap/core/refine_stats.hpp"
+#include "vibromap/core/refine/refine_stats.hpp"
 
 namespace vibromap::detail {
 

@@ -19,9 +19,9 @@
 
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/quantities.hpp"
-#include "vibromap/core/refine.hpp"
-#include "vibromap/core/refine_compare.hpp"
-#include "vibromap/core/refine_stats.hpp"
+#include "vibromap/core/refine/refine.hpp"
+#include "vibromap/core/refine/refine_compare.hpp"
+#include "vibromap/core/refine/refine_stats.hpp"
 #include "vibromap/io/map_file.hpp"
 
 namespace vibromap::detail {

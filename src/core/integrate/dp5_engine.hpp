@@ -25,7 +25,7 @@
 #include <array>
 #include <cmath>
 
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/integrate/event_locator.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
 

@@ -2,7 +2,7 @@
 // and free_flight.hpp.
 
 #include "steppers.hpp"
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 
 namespace vibromap::detail {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "steppers.hpp"
-#include "vibromap/core/cancel.hpp"
+#include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/integrate/event_locator.hpp"
 
 namespace vibromap::detail {

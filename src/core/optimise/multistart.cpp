@@ -5,7 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "vibromap/core/analysis/shooting.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 

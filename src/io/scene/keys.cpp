@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "scene_internal.hpp"
-#include "vibromap/core/analysis/steady_state.hpp"
+#include "vibromap/core/analysis/point/steady_state.hpp"
 #include "vibromap/core/text.hpp"
 
 // The key catalogue: one row per scene key, each with the accessors that read and write its
@@ -408,7 +408,6 @@ KeyValue numeric_value(const SceneKey& k, double v) {
 
 using detail::Binding;
 using detail::join;
-using detail::shortest;
 
 std::string parameter_override(std::string_view name, double value) {
   const auto home = detail::section_of(name);

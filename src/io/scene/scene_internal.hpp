@@ -105,7 +105,6 @@ const SceneKey& free_parameter_key(std::string_view name);
 // ---------------------------------------------------------------------------------------
 // Text (toml_text.cpp).
 
-std::string shortest(double v);    // shortest text that reads back to the same double ("0.1", "1e-10", "1000")
 std::string toml_float(double v);  // as shortest(), but always a TOML float ("1000.0")
 std::string join(const std::vector<std::string_view>& items, std::string_view sep, std::string_view quote = {});
 std::vector<std::string_view> views(const std::vector<std::string>& strings);

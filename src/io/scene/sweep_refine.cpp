@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "scene_internal.hpp"
-#include "vibromap/core/refine.hpp"
+#include "vibromap/core/refine/refine.hpp"
 #include "vibromap/core/text.hpp"
 
 namespace vibromap {

@@ -16,13 +16,6 @@
 
 namespace vibromap::detail {
 
-// Shortest text that reads back to the same double ("0.1", "1e-10", "1000").
-std::string shortest(double v) {
-  std::array<char, 64> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), res.ptr);
-}
-
 // As shortest(), but always a TOML float ("1000.0").
 std::string toml_float(double v) {
   std::string s = shortest(v);

@@ -11,7 +11,7 @@
 #include <iostream>
 #include <string>
 
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/io/basins_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 

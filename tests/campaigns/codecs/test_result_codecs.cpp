@@ -23,7 +23,7 @@
 #include "sweep/cell_codec.hpp"
 #include "vibromap/campaigns/census/attractor_codec.hpp"
 #include "vibromap/campaigns/census/state_codec.hpp"
-#include "vibromap/core/analysis/basins_plane.hpp"  // kOverlapLabel
+#include "vibromap/core/analysis/census/basins_plane.hpp"  // kOverlapLabel
 
 using namespace vibromap;
 using namespace vibromap::detail;

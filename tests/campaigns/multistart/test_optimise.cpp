@@ -19,7 +19,7 @@
 #include "vibromap/campaigns/multistart/local_search.hpp"
 #include "vibromap/core/optimise/multistart.hpp"
 #include "vibromap/core/optimise/objective.hpp"
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/core/optimise/point_objective.hpp"
 #include "support/paper_points.hpp"
 

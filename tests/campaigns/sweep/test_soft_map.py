@@ -1,4 +1,4 @@
-"""Every map's `soft` dataset is the one definition of soft (core/analysis/regime.hpp is_soft)
+"""Every map's `soft` dataset is the one definition of soft (core/analysis/point/regime.hpp is_soft)
 applied to the map's own regime, stability, Hertz validity and k_con; the map says what its
 answers mean (root attributes steady, hertz_limit, soft_kcon)."""
 import pathlib

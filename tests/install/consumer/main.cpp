@@ -2,7 +2,7 @@
 // prints its regime and k_con as `vibromap run` does: "regime (1,1) k_con 1111.22".
 #include <cstdio>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 
 int main() {
   using vibromap::Damper;

@@ -1,6 +1,6 @@
 #pragma once
 // The accuracy study (`vibromap accuracy`): the scene's base point solved by every case of the
-// default study (core/analysis/accuracy.hpp) against its reference, one process, and the CSV of
+// default study (core/analysis/point/accuracy.hpp) against its reference, one process, and the CSV of
 // its rows for postprocess/plot_work_precision.py. The command (src/cli/accuracy_command.cpp)
 // reads the arguments and prints the report (table or JSON) and the progress lines.
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/accuracy.hpp"
+#include "vibromap/core/analysis/point/accuracy.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 

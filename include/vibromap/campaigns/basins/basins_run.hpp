@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/basins_plane.hpp"
+#include "vibromap/core/analysis/census/basins_plane.hpp"
 #include "vibromap/io/basins_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// One attractor of a census (core/analysis/census.hpp's Attractor) as bytes, every field (layout
+// One attractor of a census (core/analysis/census/census.hpp's Attractor) as bytes, every field (layout
 // 1): periodic, the regime (kind, n, k), T_con, k_con, F_max, z_ratio, z_max, v_in, impulse,
 // max_floquet, fraction, fraction_stderr, escape_rate, hertz_valid, stable, count, from_rest,
 // soft, transient, escape_exposure, escapes and the stroboscopic states. The one attractor
@@ -8,7 +8,7 @@
 
 #include <cstdint>
 
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
 namespace vibromap::detail {

@@ -1,9 +1,9 @@
 #pragma once
 // A census map's cell (a sweep whose scene has [census]): every attractor of the cell's point
-// with its basin fraction (core/analysis/census.hpp), as the map keeps it (CellResult). Serial:
+// with its basin fraction (core/analysis/census/census.hpp), as the map keeps it (CellResult). Serial:
 // the sweep shares the cells out over the ranks, not a cell's initial states.
 
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/core/quantities.hpp"
 
 namespace vibromap {

@@ -4,7 +4,7 @@
 // a PixelResult (state_codec.hpp), and the census options those followers use.
 
 #include "vibromap/campaigns/census/state_codec.hpp"
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 
 namespace vibromap::detail {
 

@@ -14,7 +14,7 @@
 // census does (list_attractors): attractors, fractions and labels do not depend on the number of
 // ranks; the work figures (periods, states decided early) depend on which rank followed what.
 
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
 

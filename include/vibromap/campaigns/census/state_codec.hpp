@@ -10,7 +10,7 @@
 #include <cstdint>
 
 #include "vibromap/campaigns/census/attractor_codec.hpp"
-#include "vibromap/core/analysis/census.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
 namespace vibromap::detail {

@@ -4,7 +4,7 @@
 //             the stable orbit shooting finds there (continuation follows orbits that exist,
 //             reached from rest or not)
 //   branches  pseudo-arclength continuation of that orbit to KEY = to, and of the doubled
-//             branches born at its period doublings (core/analysis/continuation.hpp)
+//             branches born at its period doublings (core/analysis/continuation/continuation.hpp)
 //   measure   every point's cycle measured as `run` measures an orbit (measure_orbit)
 //   output    the branch file (io/branch_file.hpp), when asked
 // The command (src/cli/continue_command.cpp) reads the arguments and prints the report.
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/continuation.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/continuation/continuation.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/io/scene/scene.hpp"
 

@@ -7,7 +7,7 @@
 //             grazing: an impact appearing or vanishing), or for level:NAME=VALUE where NAME
 //             crosses VALUE between two points, located by Newton on the extended system
 //   curves    each start continued in (P, Q) both ways while Q in [C, D] and P in [A, B]
-//             (core/analysis/curve_continuation.hpp); a start on a curve already found is not
+//             (core/analysis/continuation/curve_continuation.hpp); a start on a curve already found is not
 //             followed again
 //   measure   every curve point's cycle measured as `run` measures an orbit (measure_orbit)
 //   output    the curve file (io/curve_file.hpp), when asked (instead of the branch file)
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "vibromap/campaigns/continuation/continuation_run.hpp"
-#include "vibromap/core/analysis/curve_continuation.hpp"
+#include "vibromap/core/analysis/continuation/curve_continuation.hpp"
 
 namespace vibromap {
 

@@ -2,7 +2,7 @@
 // The orbit-diagram campaign (issue #12): the scene's motion followed along one key's values,
 // up and down, each direction an item of the farm (so the two run on two ranks at once).
 //   plan   two items: 0 sweeps the axis upwards, 1 downwards
-//   solve  core/analysis/orbit_diagram.hpp along the path, from the scene's initial state at
+//   solve  core/analysis/continuation/orbit_diagram.hpp along the path, from the scene's initial state at
 //          the path's first point, each point built as `--set KEY=value` would (CellMaker)
 //   codec  the steps of one direction
 //   sink   rank 0 keeps both and writes the file (io/orbit_diagram_file.hpp) when both are done

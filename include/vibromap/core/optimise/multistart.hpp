@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/census.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/box.hpp"
 #include "vibromap/core/optimise/local_optimiser.hpp"

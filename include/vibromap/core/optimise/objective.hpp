@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/regime.hpp"
+#include "vibromap/core/analysis/point/regime.hpp"
 #include "vibromap/core/optimise/box.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
 

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "vibromap/core/analysis/regime.hpp"
+#include "vibromap/core/analysis/point/regime.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/model/contact_law.hpp"
 

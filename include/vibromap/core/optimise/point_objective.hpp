@@ -54,8 +54,8 @@
 #include <string>
 #include <vector>
 
-#include "vibromap/core/analysis/census.hpp"
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/census/census.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/objective.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"

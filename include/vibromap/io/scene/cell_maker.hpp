@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/io/scene/keys.hpp"

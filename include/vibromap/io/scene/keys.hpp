@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "vibromap/core/analysis/point_solver.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/model/parameters.hpp"
 #include "vibromap/core/optimise/optimise_options.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "vibromap/core/quantities.hpp"
 #include "vibromap/core/grid.hpp"
-#include "vibromap/core/refine_compare.hpp"
+#include "vibromap/core/refine/refine_compare.hpp"
 
 namespace vibromap {
 
@@ -28,7 +28,7 @@ struct SweepOptions {
   int refine = 0;
   std::vector<RefineOn> refine_on = default_refine_on();
   double refine_audit = 0.01;
-  bool refine_speckle = true;  // speckled coarse cells solved whole (core/refine.hpp)
+  bool refine_speckle = true;  // speckled coarse cells solved whole (core/refine/refine.hpp)
 };
 
 // "regime", "k_con:0.1": a refine_on entry as the scene writes it.

@@ -1,0 +1,131 @@
+#pragma once
+// Solves one parameter point end to end: integrate from the initial state until the
+// stroboscopic samples repeat (or the budget runs out), measure the impacts of the steady
+// motion and classify its regime.
+//
+// Steady state: y_j = y(jT) are compared with y_{j-n} for n = 1..n_max in a scaled max-norm
+// (positions over D + |x|, velocities over omega (D + |x|)); the regime's period is the least
+// n for which ||y_i - y_{i-n}|| <= steady_tol holds for n consecutive samples. steady_tol
+// defaults to 100 * rtol: an adaptive integrator's step-size jitter shows in the samples, so
+// the test must not be tighter than the integration (docs/numerics.md).
+
+#include <complex>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vibromap/core/analysis/point/impact.hpp"
+#include "vibromap/core/analysis/point/regime.hpp"
+#include "vibromap/core/integrate/integrator.hpp"
+#include "vibromap/core/model/parameters.hpp"
+
+namespace vibromap {
+
+// How the steady motion is found.
+enum class SteadyMethod {
+  follow,     // the default: the motion the initial state settles into, as brute-force
+              // integration from it finds it. The state is integrated at the scene's
+              // tolerance (the same path as integrate); Newton's method on the stroboscopic map
+              // proposes a stable orbit, and the answer is that orbit only once the state is
+              // seen closing in on it as the orbit's linearisation predicts; otherwise
+              // integration goes on until the samples repeat, as integrate does
+  shooting,   // faster, and a different question: some stable periodic orbit near the end of a
+              // short, loosely integrated transient (Newton with the monodromy matrix from the
+              // variational equations; falls back to integrate when Newton fails or the orbit
+              // is unstable). Where attractors coexist it may not be the motion from the
+              // initial state; maps made this way say so
+  integrate,  // brute force: integrate until the stroboscopic samples repeat
+};
+std::string to_string(SteadyMethod m);
+
+struct AnalysisOptions {
+  SteadyMethod steady = SteadyMethod::follow;  // steady-state method, follow | shooting | integrate
+  int transient_periods = 10;  // shooting: periods integrated before Newton starts (tripled, twice, while it fails), -
+  double newton_tol = 0.0;     // shooting: scaled residual ||P^n(y) - y|| to stop at; 0 = auto: 10 * rtol, -
+  int newton_max_iterations = 20;  // shooting: Newton iterations before giving up, -
+  bool lyapunov = false;       // estimate the largest Lyapunov exponent when no period is found
+  int lyapunov_periods = 400;  // periods over which the Lyapunov exponent is averaged (after a quarter as many to align), -
+  int n_max = 8;               // largest period looked for, in forcing periods, -
+  long max_periods = 2000;     // budget of forcing periods to reach steady state, -
+  double steady_tol = 0.0;     // steady-state tolerance (scaled max-norm); 0 = auto: 100 * rtol (rk4: 1e-9), -
+  int chatter_impacts = 5;     // impacts per forcing period from which the motion is called chatter, -
+  double hertz_limit = 0.05;   // z_max / R* above which Hertz theory is flagged as invalid, -
+  double soft_kcon = 10.0;     // a motion is soft when periodic with impacts, stable, Hertz-valid and
+                               // k_con <= this (is_soft, regime.hpp), -
+  int trajectory_periods = 0;  // after steady state, integrate and keep this many periods (0: none), -
+  int trajectory_samples = 2000;  // uniform samples per forcing period in a kept trajectory, -
+};
+
+// The largest budgets AnalysisOptions takes (each of these periods costs tens of steps at least).
+inline constexpr long kMaxPeriodBudget = 100'000'000;   // max_periods
+inline constexpr int kMaxTransientPeriods = 1'000'000;  // transient_periods (tripled twice at most)
+inline constexpr int kMaxLyapunovPeriods = 10'000'000;  // lyapunov_periods
+
+std::string validate(const AnalysisOptions& o);
+
+enum class SolveStatus {
+  ok,              // steady motion found and classified
+  budget,          // the period or step budget ran out (regime unresolved, non-periodic or chatter)
+  failed,          // numerical failure; see message
+  invalid_input,   // the parameters or options are invalid; see message
+};
+std::string to_string(SolveStatus s);
+
+// One sample of a kept trajectory (physical coordinates).
+struct TrajectorySample {
+  double t;        // time since the start of the kept window, s
+  double x1, x2;   // displacements, m
+  double v1, v2;   // velocities, m/s
+  double Fc;       // contact force, N
+  double F;        // external force, N
+};
+
+struct PointSummary {
+  SolveStatus status = SolveStatus::invalid_input;
+  std::string message;          // why, when status != ok
+  Regime regime;
+  double T = 0.0;               // forcing period, s
+  double T_con = 0.0;           // duration of the longest impact of the steady motion, s
+  double k_con = 0.0;           // T / T_con (0 without impacts), -
+  double F_max = 0.0;           // largest peak contact force, N
+  double z_max = 0.0;           // largest peak penetration, m
+  double z_ratio = 0.0;         // largest z_max / R*, -
+  bool hertz_valid = true;      // z_ratio <= hertz_limit
+  bool soft = false;            // is_soft (regime.hpp): periodic with impacts, stable, Hertz-valid, k_con <= soft_kcon
+  std::vector<Impact> impacts;  // impacts of one steady cycle (nT), in time order
+  double steady_residual = 0.0; // scaled ||y_j - y_{j-n}|| at the end (shooting: Newton residual), -
+  SteadyMethod steady_method = SteadyMethod::integrate;  // what produced the answer: follow (Newton's orbit, seen
+                                                        // reached from the initial state), shooting or integrate
+  int newton_iterations = 0;    // shooting: Newton iterations spent (0 when not used)
+  // Floquet multipliers of the periodic orbit (eigenvalues of the monodromy matrix over nT);
+  // empty when not computed. stable: 1 all |mu| < 1, 0 some |mu| > 1, -1 unknown.
+  std::vector<std::complex<double>> floquet;
+  int stable = -1;
+  double lyapunov = std::numeric_limits<double>::quiet_NaN();  // largest Lyapunov exponent, 1/s (when asked)
+  long periods = 0;             // forcing periods integrated
+  IntegrationCounters counters;
+  double wall_s = 0.0;          // solve time, s
+  Eigen::Vector4d final_state = Eigen::Vector4d::Zero();  // (x1, x2, v1, v2) at the last period end
+  std::vector<TrajectorySample> trajectory;  // only when trajectory_periods > 0
+};
+
+struct PointOptions {
+  IntegratorOptions integrator;
+  AnalysisOptions analysis;
+};
+
+PointSummary solve_point(const Parameters& p, const PointOptions& options);
+
+// The tolerances solve_point works to when the scene leaves them automatic (0): the
+// steady-state test's (100 rtol; rk4 1e-9) and Newton's (10 rtol).
+double steady_tolerance(const PointOptions& o);
+double newton_tolerance(const PointOptions& o);
+
+// The cycle of n periods through the orbit point y (physical (x1, x2, v1, v2) at a period
+// start) measured as solve_point measures the orbit it finds: impacts at a tenth of the
+// tolerance, regime, T_con, k_con, F_max, z_ratio. Floquet multipliers are not computed.
+// status is failed when the integration fails, else ok.
+PointSummary measure_orbit(const Parameters& p, const PointOptions& options, const Eigen::Vector4d& y, int n);
+
+}  // namespace vibromap
