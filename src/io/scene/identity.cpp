@@ -12,7 +12,6 @@ namespace {
 
 using detail::Binding;
 using detail::KeyValue;
-using detail::shortest;
 
 constexpr std::size_t kShownValue = 40;  // characters of a value (or key) shown in a difference
 

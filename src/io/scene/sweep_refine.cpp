@@ -14,7 +14,7 @@ namespace vibromap {
 
 std::string refine_on_text(const RefineOn& on) {
   if (refine_field_is_class(on.field) || on.rel == 0.0) return to_string(on.field);
-  return cat(to_string(on.field), ":", detail::shortest(on.rel));
+  return cat(to_string(on.field), ":", shortest(on.rel));
 }
 
 namespace detail {
