@@ -4,6 +4,7 @@
 // and how the values every report shares (stability, a state) are written, so that the commands
 // print them alike; numbers are core/text.hpp's.
 
+#include <complex>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -45,5 +46,11 @@ JsonWriter& write_stable_json(JsonWriter& w, int stable);
 
 // A state (x1, x2, v1, v2) in JSON: an array of four numbers.
 JsonWriter& write_state_json(JsonWriter& w, const Eigen::Vector4d& x);
+
+// The key "multipliers" and Floquet multipliers as an array of [re, im] pairs.
+JsonWriter& write_multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu);
+
+// The key "strobe_x1" and the x1 of each stroboscopic state, an array of numbers.
+JsonWriter& write_strobe_x1_json(JsonWriter& w, const std::vector<Eigen::Vector4d>& strobe);
 
 }  // namespace vibromap
