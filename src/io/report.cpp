@@ -62,4 +62,8 @@ JsonWriter& write_strobe_x1_json(JsonWriter& w, const std::vector<Eigen::Vector4
   return w.end_array();
 }
 
+std::string stopped_note(const FarmFigures& farm) {
+  return farm.stopped_by.empty() ? std::string() : cat("  (stopped by ", farm.stopped_by, ": go on with --resume)");
+}
+
 }  // namespace vibromap
