@@ -1,13 +1,10 @@
 // `vibromap basins`: the attractor of every initial state of a plane, on all MPI ranks, into one
-// HDF5 file (the basins campaign).
+// HDF5 file (the basins campaign); its summary is io/basins_output.hpp.
 
-#include <algorithm>
 #include <array>
 #include <charconv>
-#include <cstdio>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 
@@ -16,11 +13,9 @@
 #include "vibromap/campaigns/basins/basins_run.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/core/text.hpp"
-#include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/report.hpp"
+#include "vibromap/io/basins_output.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/mpi_session.hpp"
-#include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
 
@@ -112,88 +107,6 @@ BasinsSpec parse_spec(const BasinsArgs& args) {
   return spec;
 }
 
-long count_label(const BasinsContent& c, int label) {
-  return static_cast<long>(std::count(c.labels.begin(), c.labels.end(), label));
-}
-
-// The share of the plane the fractions are over (pixels followed / to follow), 1 for none to follow.
-double fractions_cover(const BasinsReport& r) {
-  return r.pixels_to_follow == 0 ? 1.0 : static_cast<double>(r.pixels_followed) / static_cast<double>(r.pixels_to_follow);
-}
-
-// "over 412 of 1024 pixels (40 %)": a stopped run's fractions are the pixels done so far's.
-std::string fractions_line(const BasinsReport& r) {
-  const std::uint64_t shown =
-      r.pixels_followed < r.pixels_to_follow ? std::min<std::uint64_t>(100 * r.pixels_followed / r.pixels_to_follow, 99) : 100;
-  return cat("over ", std::to_string(r.pixels_followed), " of ", std::to_string(r.pixels_to_follow), " pixels (",
-             std::to_string(shown), " %)",
-             r.pixels_to_follow < r.content.plane.pixels() ? ", overlap excluded" : "",
-             r.pixels_followed < r.pixels_to_follow ? "; the rest are not computed yet" : "");
-}
-
-
-void print_json(std::ostream& out, const BasinsReport& r, const std::string& output) {
-  const BasinsContent& c = r.content;
-  const FarmReport& f = r.farm;
-  JsonWriter w(out);
-  w.begin_object()
-      .field("output", output)
-      .field("plane", c.plane.name())
-      .field("pixels", f.items)
-      .field("pixels_resumed", f.items_resumed)
-      .field("pixels_computed", f.items_computed)
-      .field("complete", f.complete())
-      .field("ranks", f.ranks)
-      .field("wall_s", f.wall_s)
-      .field("pixels_per_s", f.items_per_s())
-      .field("pixels_followed", r.pixels_followed)
-      .field("pixels_to_follow", r.pixels_to_follow)
-      .field("fractions_cover", fractions_cover(r))
-      .field("stopped_by", f.stop_signal ? signal_name(f.stop_signal) : std::string())
-      .field("unresolved", count_label(c, kUnresolvedLabel))
-      .field("unlisted", count_label(c, kUnlistedLabel))
-      .field("overlap", count_label(c, kOverlapLabel));
-  w.key("attractors").begin_array();
-  for (const Attractor& a : c.attractors) {
-    w.begin_object()
-        .field("regime", a.regime.label())
-        .field("n", a.regime.n)
-        .field("k", a.regime.k)
-        .field("k_con", a.k_con)
-        .field("T_con", a.T_con)
-        .field("F_max", a.F_max)
-        .field("max_floquet", a.max_floquet)
-        .field("soft", a.soft)
-        .field("pixels", a.count)
-        .field("fraction", a.fraction);
-    write_stable_json(w.key("stable"), a.stable).end_object();
-  }
-  w.end_array().end_object();
-  out << "\n";
-}
-
-void print_table(std::ostream& out, const BasinsReport& r, const std::string& output) {
-  const BasinsContent& c = r.content;
-  const FarmReport& f = r.farm;
-  out << "basins         " << output << stopped_note(f) << "\n"
-      << "plane          " << c.plane.name() << ", " << c.plane.axes[0].size() << " x " << c.plane.axes[1].size()
-      << " pixels (" << f.items_resumed << " from the resumed file, " << f.items_computed << " computed now)\n"
-      << "ranks          " << f.ranks << "\n"
-      << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s() << " pixels/s\n"
-      << "unresolved     " << count_label(c, kUnresolvedLabel) << ", unlisted " << count_label(c, kUnlistedLabel)
-      << ", overlap " << count_label(c, kOverlapLabel) << " pixels\n"
-      << "fractions      " << fractions_line(r) << "\n\n"
-      << "  #  regime          fraction    pixels   k_con       T_con (s)   F_max (N)   max|mu|   stable  soft\n";
-  for (std::size_t i = 0; i < c.attractors.size(); ++i) {
-    const Attractor& a = c.attractors[i];
-    char line[256];
-    std::snprintf(line, sizeof line, "%3zu  %-14s  %8.4f  %8d  %10.4g  %10.4g  %10.4g  %7.4f   %-6s  %s\n", i,
-                  a.regime.label().c_str(), a.fraction, a.count, a.k_con, a.T_con, a.F_max, a.max_floquet,
-                  a.stable == 1 ? "yes" : a.stable == 0 ? "no" : "?", a.soft ? "yes" : "");
-    out << line;
-  }
-}
-
 }  // namespace
 
 int basins_command(const BasinsArgs& args, std::ostream& out) {
@@ -215,8 +128,11 @@ int basins_command(const BasinsArgs& args, std::ostream& out) {
   config.checkpoint_interval = args.checkpoint;
   const BasinsReport report = run_basins(mpi, scene, plane, config);
   if (mpi.rank() != 0) return report.farm.stop_signal ? code(ExitCode::stopped) : code(ExitCode::ok);
-  if (args.format == "json") print_json(out, report, config.output);
-  else print_table(out, report, config.output);
+  if (args.format == "json") {
+    write_basins_json(out, farm_figures(report.farm), report.content, report.coverage, config.output);
+  } else {
+    write_basins_table(out, farm_figures(report.farm), report.content, report.coverage, config.output);
+  }
   out.flush();
   return campaign_exit(report.farm, config.output, "pixels");
 }

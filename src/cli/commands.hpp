@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vibromap/core/grid.hpp"
+#include "vibromap/io/report.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/exit_code.hpp"
 
@@ -47,9 +48,8 @@ struct ParamScene2 {
 ParamScene2 scene_with_params(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
                               const std::string& axis, const std::string& param2, const std::string& axis2);
 
-// "  (stopped by SIGUSR1: go on with --resume)" after the output's name in a campaign's table
-// when a signal stopped it; empty otherwise.
-std::string stopped_note(const FarmReport& farm);
+// The farm's report as a campaign's summary prints it (io/report.hpp: io does not see the farm).
+FarmFigures farm_figures(const FarmReport& farm);
 
 // Rank 0, after a campaign's summary: ExitCode::ok, or (stopped by a signal) a line on stderr
 // saying what `output` holds and that --resume goes on, and ExitCode::stopped.

@@ -1,14 +1,12 @@
-// `vibromap continue`: the arguments and the printing; the campaign is
-// campaigns/continuation/continuation_run.hpp (see commands.hpp).
+// `vibromap continue`: the arguments and the exit; the campaign is
+// campaigns/continuation/continuation_run.hpp, the output io/branch_output.hpp.
 
+#include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <ostream>
-#include <sstream>
 
 #include "command.hpp"
 #include "commands.hpp"
@@ -16,8 +14,7 @@
 #include "vibromap/campaigns/continuation/curve_run.hpp"
 #include "vibromap/core/integrate/cancel.hpp"
 #include "vibromap/core/text.hpp"
-#include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/report.hpp"
+#include "vibromap/io/branch_output.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/signals.hpp"
 
@@ -46,195 +43,9 @@ int continue_command(const ContinueArgs& args, std::ostream& out);
 
 namespace {
 
-using Measured = MeasuredPoint;  // a branch point and its orbit, measured as `run` measures it
-
-void multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu) {
-  w.key("multipliers").begin_array();
-  for (const auto& m : mu) w.begin_array().value(m.real()).value(m.imag()).end_array();
-  w.end_array();
-}
-
-double largest(const std::vector<std::complex<double>>& mu) { return mu.empty() ? NAN : std::abs(mu.front()); }
-
-void points_json(JsonWriter& w, const std::vector<Measured>& points) {
-  w.key("points").begin_array();
-  for (const Measured& m : points) {
-    w.begin_object().field("param", m.point.param).field("stable", m.point.stable);
-    multipliers_json(w, m.point.multipliers);
-    w.field("T_con", m.orbit.T_con).field("k_con", m.orbit.k_con).field("F_max", m.orbit.F_max);
-    w.field("impacts", static_cast<long>(m.orbit.impacts.size()));
-    w.field("x1_max", m.point.x1_max).field("x2_max", m.point.x2_max).field("clearance_min", m.point.clearance_min);
-    w.field("regime", m.orbit.regime.label());
-    write_state_json(w.key("y"), m.point.y);
-    w.key("strobe_x1").begin_array();
-    for (const Eigen::Vector4d& x : m.point.strobe) w.value(x[0]);
-    w.end_array().end_object();
-  }
-  w.end_array();
-}
-
-void bifurcations_json(JsonWriter& w, const std::vector<Bifurcation>& bifurcations) {
-  w.key("bifurcations").begin_array();
-  for (const Bifurcation& b : bifurcations) {
-    w.begin_object().field("type", to_string(b.type)).field("param", b.at.param);
-    multipliers_json(w, b.at.multipliers);
-    write_state_json(w.key("y"), b.at.y);
-    w.end_object();
-  }
-  w.end_array();
-}
-
-void bifurcations_table(std::ostream& out, const std::string& key, const std::vector<Bifurcation>& bifurcations) {
-  for (const Bifurcation& b : bifurcations)
-    out << "  " << std::setw(16) << to_string(b.type) << "  " << key << " = " << std::setprecision(10) << b.at.param
-        << "  max|mu| " << std::setprecision(6) << largest(b.at.multipliers) << "\n";
-}
-
-double born_at_param(const std::vector<Branch>& branches, const Branch& s) {
-  return branches[static_cast<std::size_t>(s.parent)].bifurcations[static_cast<std::size_t>(s.born_at)].at.param;
-}
-
-// One line per branch: its period, first and last key value, points and why it stopped.
-void branches_table(std::ostream& out, const std::vector<Branch>& branches, bool points_shown) {
-  out << "\n  " << std::setw(6) << "branch" << "  " << std::setw(6) << "period" << "  " << std::setw(16) << "from"
-      << "  " << std::setw(16) << "to" << "  " << std::setw(6) << "points" << "  stopped"
-      << (points_shown ? "" : "   (every point: --points, or --format json)") << "\n";
-  for (std::size_t i = 0; i < branches.size(); ++i) {
-    const Branch& b = branches[i];
-    const double first = b.points.empty() ? NAN : b.points.front().param;
-    const double last = b.points.empty() ? NAN : b.points.back().param;
-    out << "  " << std::setw(6) << i << "  " << std::setw(4) << b.n << " T  " << std::setprecision(10) << std::setw(16)
-        << first << "  " << std::setw(16) << last << "  " << std::setw(6) << b.points.size() << "  " << b.stop << "\n";
-  }
-}
-
-void points_table(std::ostream& out, const std::vector<Branch>& branches,
-                  const std::vector<std::vector<Measured>>& measured) {
-  for (std::size_t i = 0; i < branches.size(); ++i) {
-    out << "\n  branch " << i << " (period " << branches[i].n << " T)\n  " << std::setw(14) << "param" << "  stable  "
-        << std::setw(9) << "max|mu|" << "  " << std::setw(8) << "regime" << "  " << std::setw(10) << "k_con" << "  "
-        << std::setw(11) << "F_max (N)" << "\n";
-    for (const Measured& m : measured[i])
-      out << "  " << std::setw(14) << std::setprecision(8) << m.point.param << "  " << std::setw(6)
-          << (m.point.stable ? "yes" : "no") << "  " << std::setw(9) << std::setprecision(5)
-          << largest(m.point.multipliers) << "  " << std::setw(8) << m.orbit.regime.label() << "  " << std::setw(10)
-          << m.orbit.k_con << "  " << std::setw(11) << m.orbit.F_max << "\n";
-  }
-}
-
-// The table output: the first branch and its bifurcations, the switched branches and theirs, a
-// summary line per branch, and every point only with --points.
-void print_table(std::ostream& out, const ContinueArgs& args, const std::string& key, int n,
-                 const std::string& start_regime, const std::vector<Branch>& branches,
-                 const std::vector<std::vector<Measured>>& measured) {
-  const Branch& branch = branches.front();
-  out << "branch         " << key << " from " << number(args.from, 12) << " to " << number(args.to, 12) << ", period "
-      << n << " T (" << start_regime << " at the start)\n"
-      << "points         " << branch.points.size() << "; " << branch.stop << "\n"
-      << "bifurcations   " << branch.bifurcations.size() << "\n";
-  if (!args.output.empty()) out << "file           " << args.output << "\n";
-  bifurcations_table(out, key, branch.bifurcations);
-  for (std::size_t i = 1; i < branches.size(); ++i) {
-    const Branch& s = branches[i];
-    out << "switched       branch " << i << ": period " << s.n << " T, born at the period doubling " << key << " = "
-        << std::setprecision(10) << born_at_param(branches, s) << " of branch " << s.parent << "; " << s.points.size()
-        << " points; " << s.stop << "\n";
-    bifurcations_table(out, key, s.bifurcations);
-  }
-  branches_table(out, branches, args.points);
-  if (args.points) points_table(out, branches, measured);
-}
-
-void curves_json(JsonWriter& w, const CurvesReport& r);
-
-void print_json(std::ostream& out, const std::string& key, const ContinuationReport& report,
-                const CurvesReport* curves = nullptr) {
-  const std::vector<Branch>& branches = report.branches;
-  const Branch& branch = branches.front();
-  JsonWriter w(out);
-  w.begin_object().field("key", key).field("n", report.n).field("stop", branch.stop);
-  points_json(w, report.measured.front());
-  bifurcations_json(w, branch.bifurcations);
-  w.key("branches").begin_array();
-  for (std::size_t i = 1; i < branches.size(); ++i) {
-    const Branch& s = branches[i];
-    w.begin_object().field("n", s.n).field("parent", s.parent).field("born_at", s.born_at);
-    w.field("born_at_param", born_at_param(branches, s));
-    w.field("stop", s.stop);
-    points_json(w, report.measured[i]);
-    bifurcations_json(w, s.bifurcations);
-    w.end_object();
-  }
-  w.end_array();
-  if (curves) curves_json(w, *curves);
-  w.end_object();
-  out << "\n";
-}
-
-void curves_json(JsonWriter& w, const CurvesReport& r) {
-  w.key("curves").begin_array();
-  for (const MeasuredCurve& mc : r.curves) {
-    const Curve& c = mc.curve;
-    w.begin_object().field("kind", c.spec.label).field("n", c.n).field("stop", c.stop).field("start", c.start);
-    if (!c.grazing.empty()) w.field("grazing", c.grazing);
-    w.key("codim2").begin_array();
-    for (const Codim2Point& x : c.codim2)
-      w.begin_object().field("param", x.param).field("param2", x.param2).field("kind", x.kind).end_object();
-    w.end_array();
-    w.key("points").begin_array();
-    for (std::size_t i = 0; i < c.points.size(); ++i) {
-      const CurvePoint& q = c.points[i];
-      const PointSummary& m = mc.orbits[i];
-      w.begin_object().field("param", q.param).field("param2", q.param2);
-      w.field("T_con", m.T_con).field("k_con", m.k_con).field("z_ratio", m.z_ratio).field("F_max", m.F_max);
-      w.field("impacts", static_cast<long>(m.impacts.size())).field("stable", q.stable);
-      multipliers_json(w, q.multipliers);
-      w.field("residual", q.residual).field("orbit_residual", q.orbit_residual);
-      write_state_json(w.key("y"), q.y);
-      w.end_object();
-    }
-    w.end_array().end_object();
-  }
-  w.end_array();
-  w.key("skipped").begin_array();
-  for (const std::string& s : r.skipped) w.value(s);
-  w.end_array();
-}
-
-// The range of one coordinate of a curve's points.
-std::string range_of(const Curve& c, bool second) {
-  if (c.points.empty()) return "-";
-  double lo = INFINITY, hi = -INFINITY;
-  for (const CurvePoint& q : c.points) {
-    const double x = second ? q.param2 : q.param;
-    lo = std::min(lo, x);
-    hi = std::max(hi, x);
-  }
-  std::ostringstream os;
-  os << std::setprecision(7) << lo << " .. " << hi;
-  return os.str();
-}
-
-// One paragraph per curve: kind, points, the ranges of both keys, the worst residual, why it
-// stopped, and its codimension-two points.
-void curves_table(std::ostream& out, const std::string& key, const std::string& key2, const CurvesReport& r) {
-  out << "\ncurves         " << r.curves.size() << " in (" << key << ", " << key2 << "), started at " << key2 << " = "
-      << number(r.q0, 12) << " (" << std::setprecision(3) << std::fixed << r.wall_s << " s in all)\n"
-      << std::defaultfloat;
-  for (std::size_t i = 0; i < r.curves.size(); ++i) {
-    const Curve& c = r.curves[i].curve;
-    double worst = 0.0;
-    for (const CurvePoint& q : c.points) worst = std::max(worst, q.residual);
-    out << "  curve " << i << "  " << c.spec.label << " (period " << c.n << " T): " << c.points.size() << " points, "
-        << key << " " << range_of(c, false) << ", " << key2 << " " << range_of(c, true) << ", worst residual "
-        << std::setprecision(2) << worst << ", from the point located at " << key << " = " << std::setprecision(10)
-        << c.points[static_cast<std::size_t>(c.start)].param << std::setprecision(6) << "\n    stop: " << c.stop << "\n";
-    if (!c.grazing.empty()) out << "    grazing: " << c.grazing << "\n";
-    for (const Codim2Point& x : c.codim2)
-      out << "    codim-2: " << x.kind << " at " << key << " = " << std::setprecision(10) << x.param << ", " << key2
-          << " = " << x.param2 << std::setprecision(6) << "\n";
-  }
-  for (const std::string& s : r.skipped) out << "  not followed: " << s << "\n";
+// What the table says besides the report: the key, its range as asked, the file, --points.
+BranchTable branch_table(const ContinueArgs& args, const std::string& key) {
+  return {.key = key, .from = args.from, .to = args.to, .file = args.output, .points = args.points};
 }
 
 // The --curve options: KIND parsed, --param2/--from2/--to2 given with it (and only with it).
@@ -277,20 +88,22 @@ int continue_exit(const ContinueArgs& args, const ContinuationReport& r, const C
   return code(ExitCode::stopped);
 }
 
+// A key's range as the one-axis [sweep] override that names and checks it: its two ends.
+std::string values_axis(double a, double b) {
+  return cat("{values=[", number(std::min(a, b), 17), ",", number(std::max(a, b), 17), "]}");
+}
+
 int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, std::vector<CurveSpec> specs,
                     std::ostream& out) {
-  const auto range = [](double a, double b) {
-    return cat("{values=[", number(std::min(a, b), 17), ",", number(std::max(a, b), 17), "]}");
-  };
   const ParamScene2 ps = scene_with_params([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
-                                           args.param, range(args.from, args.to), args.param2,
-                                           range(args.from2, args.to2));
+                                           args.param, values_axis(args.from, args.to), args.param2,
+                                           values_axis(args.from2, args.to2));
   const CurvesReport r = run_curves(ps.scene, ps.axis, ps.axis2, config, {std::move(specs), args.from2, args.to2});
   if (args.format == "json") {
-    print_json(out, ps.axis.key, r.branch, &r);
+    write_branch_json(out, ps.axis.key, r.branch, &r);
   } else {
-    print_table(out, args, ps.axis.key, r.branch.n, r.branch.start_regime, r.branch.branches, r.branch.measured);
-    curves_table(out, ps.axis.key, ps.axis2.key, r);
+    write_branch_table(out, r.branch, branch_table(args, ps.axis.key));
+    write_curves_table(out, ps.axis.key, ps.axis2.key, r);
   }
   out.flush();
   return continue_exit(args, r.branch, &r);
@@ -313,14 +126,12 @@ int continue_branch_or_curves(const ContinueArgs& args, std::ostream& out) {
   config.overwrite = args.overwrite;
   if (!specs.empty()) return continue_curves(args, config, std::move(specs), out);
   const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
-                                         args.param,
-                                         cat("{values=[", number(std::min(args.from, args.to), 17), ",",
-                                             number(std::max(args.from, args.to), 17), "]}"));
+                                         args.param, values_axis(args.from, args.to));
   const ContinuationReport report = run_continuation(ps.scene, ps.axis, config);
   if (args.format == "json") {
-    print_json(out, ps.axis.key, report);
+    write_branch_json(out, ps.axis.key, report);
   } else {
-    print_table(out, args, ps.axis.key, report.n, report.start_regime, report.branches, report.measured);
+    write_branch_table(out, report, branch_table(args, ps.axis.key));
   }
   out.flush();
   return continue_exit(args, report);

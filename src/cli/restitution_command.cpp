@@ -1,9 +1,7 @@
 // `vibromap restitution`: the effective restitution each contact law gives for a target e, from
 // one tightly integrated free two-body impact per (law, e) (core/analysis/point/restitution.hpp).
-// The impact is scale-free, so the answer needs no scene.
+// The impact is scale-free, so the answer needs no scene. The output is io/restitution_output.hpp.
 
-#include <cmath>
-#include <cstdio>
 #include <memory>
 #include <ostream>
 #include <sstream>
@@ -13,8 +11,7 @@
 #include "commands.hpp"
 #include "vibromap/core/analysis/point/restitution.hpp"
 #include "vibromap/core/text.hpp"
-#include "vibromap/io/json_writer.hpp"
-#include "vibromap/io/report.hpp"
+#include "vibromap/io/restitution_output.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
 namespace vibromap::cli {
@@ -66,32 +63,6 @@ void check_limits(const std::vector<ContactLawKind>& laws, const std::vector<dou
                              " must be <= ", printf_number(kMaxImpactDamping, "%.3g"), ", the most a free impact is integrated for)"));
 }
 
-void write_table(const std::vector<RestitutionResult>& rows, std::ostream& out) {
-  out << "law                  e      chi        e_effective  e_effective - e  clipped\n";
-  for (const RestitutionResult& r : rows) {
-    const double miss = std::abs(r.e_effective - r.e) < 5e-7 ? 0.0 : r.e_effective - r.e;  // no "-0.000000"
-    std::string law = to_string(r.law);
-    law.resize(20, ' ');
-    out << law << " " << printf_number(r.e, "%-6.3g") << " " << printf_number(r.chi, "%-10.5g") << " " << printf_number(r.e_effective, "%-12.6f")
-        << " " << printf_number(miss, "%+-16.6f") << " " << (r.clipped ? "yes" : "no") << "\n";
-  }
-  out << "(two free bodies, one impact integrated at rtol 1e-12; the result depends on the law and e only)\n";
-}
-
-void write_json(const std::vector<RestitutionResult>& rows, std::ostream& out) {
-  JsonWriter w(out);
-  w.begin_array();
-  for (const RestitutionResult& r : rows)
-    w.begin_object()
-        .field("law", to_string(r.law))
-        .field("e", r.e)
-        .field("chi", r.chi)
-        .field("e_effective", r.e_effective)
-        .end_object();
-  w.end_array();
-  out << "\n";
-}
-
 }  // namespace
 
 int restitution_command(const RestitutionArgs& args, std::ostream& out) {
@@ -107,9 +78,9 @@ int restitution_command(const RestitutionArgs& args, std::ostream& out) {
                                      " failed: ", to_string(rows.back().status)));
     }
   if (args.format == "json")
-    write_json(rows, out);
+    write_restitution_json(out, rows);
   else
-    write_table(rows, out);
+    write_restitution_table(out, rows);
   return code(ExitCode::ok);
 }
 

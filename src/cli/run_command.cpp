@@ -1,6 +1,5 @@
 // `vibromap run`: one parameter point, or its census of attractors (--census).
 
-#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -92,17 +91,6 @@ void save_trajectory(const std::string& path, const PointSummary& summary, const
   write_trajectory(path, summary, scene.text);
 }
 
-void print_labels(std::ostream& out, const CensusSummary& summary) {
-  out << "\n  #  x1 (m)        x2 (m)        v1 (m/s)      v2 (m/s)      attractor\n";
-  for (std::size_t i = 0; i < summary.labels.size(); ++i) {
-    const Eigen::Vector4d& x = summary.initial_conditions[i];
-    char line[160];
-    std::snprintf(line, sizeof line, "%3zu  %12.5e  %12.5e  %12.5e  %12.5e  %d\n", i, x[0], x[1], x[2], x[3],
-                  summary.labels[i]);
-    out << line;
-  }
-}
-
 // `run --census`: every attractor of the point ([census], or its defaults). Under an MPI
 // launcher with several ranks the initial states are shared out over them (the point census
 // campaign) and rank 0 prints; else one process follows them all (census_point).
@@ -137,7 +125,7 @@ int census_command(const RunArgs& args, std::ostream& out) {
     write_census_json(out, summary);
   } else {
     write_census_table(out, summary, scene);
-    if (args.labels) print_labels(out, summary);
+    if (args.labels) write_census_labels_table(out, summary);
   }
   out.flush();
   return code(ExitCode::ok);

@@ -122,4 +122,15 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   }
 }
 
+void write_census_labels_table(std::ostream& os, const CensusSummary& summary) {
+  os << "\n  #  x1 (m)        x2 (m)        v1 (m/s)      v2 (m/s)      attractor\n";
+  for (std::size_t i = 0; i < summary.labels.size(); ++i) {
+    const Eigen::Vector4d& x = summary.initial_conditions[i];
+    char line[160];
+    std::snprintf(line, sizeof line, "%3zu  %12.5e  %12.5e  %12.5e  %12.5e  %d\n", i, x[0], x[1], x[2], x[3],
+                  summary.labels[i]);
+    os << line;
+  }
+}
+
 }  // namespace vibromap

@@ -192,7 +192,7 @@ void write_soft_check(Group g, const SoftCheck& c, const OptimiseOptions& o) {
   g.set_attribute("seed", static_cast<std::int64_t>(c.seed));
   g.set_attribute("soft_fraction", c.fraction);
   g.set_attribute("soft_fraction_stderr", c.fraction_stderr);
-  g.set_attribute("threshold", o.min_soft_fraction - kSoftCheckSigmas * c.fraction_stderr);
+  g.set_attribute("threshold", soft_check_threshold(c, o));
   g.set_attribute("passed", c.passed ? 1 : 0);
   g.set_attribute("orbit_attractor", c.orbit_attractor);
   g.set_attribute("orbit_fraction", c.orbit_fraction);

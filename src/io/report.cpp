@@ -50,4 +50,20 @@ JsonWriter& write_state_json(JsonWriter& w, const Eigen::Vector4d& x) {
   return w.end_array();
 }
 
+JsonWriter& write_multipliers_json(JsonWriter& w, const std::vector<std::complex<double>>& mu) {
+  w.key("multipliers").begin_array();
+  for (const auto& m : mu) w.begin_array().value(m.real()).value(m.imag()).end_array();
+  return w.end_array();
+}
+
+JsonWriter& write_strobe_x1_json(JsonWriter& w, const std::vector<Eigen::Vector4d>& strobe) {
+  w.key("strobe_x1").begin_array();
+  for (const Eigen::Vector4d& x : strobe) w.value(x[0]);
+  return w.end_array();
+}
+
+std::string stopped_note(const FarmFigures& farm) {
+  return farm.stopped_by.empty() ? std::string() : cat("  (stopped by ", farm.stopped_by, ": go on with --resume)");
+}
+
 }  // namespace vibromap

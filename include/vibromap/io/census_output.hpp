@@ -23,5 +23,8 @@ namespace vibromap {
 
 void write_census_json(std::ostream& os, const CensusSummary& census);
 void write_census_table(std::ostream& os, const CensusSummary& census, const Scene& scene);
+// After the table, with the labels kept (run --census --labels): a row per initial state, its
+// state and the index of its attractor.
+void write_census_labels_table(std::ostream& os, const CensusSummary& census);
 
 }  // namespace vibromap

@@ -143,8 +143,8 @@ BasinsReport run_basins(const MpiSession& mpi, const Scene& scene, const BasinsP
   report.content = sink->written();
   for (std::uint64_t i = 0; i < plane.pixels() && report.content.done.size() == plane.pixels(); ++i) {
     if (plane.overlapping(i)) continue;
-    ++report.pixels_to_follow;
-    if (report.content.done[static_cast<std::size_t>(i)]) ++report.pixels_followed;
+    ++report.coverage.pixels_to_follow;
+    if (report.content.done[static_cast<std::size_t>(i)]) ++report.coverage.pixels_followed;
   }
   return report;
 }

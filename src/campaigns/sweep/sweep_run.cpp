@@ -202,19 +202,20 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   } else {
     report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
   }
-  report.refine_levels = levels;
+  SweepTotals& totals = report.totals;
+  totals.refine_levels = levels;
   if (auto* refine = dynamic_cast<detail::RefineSink*>(sink.get())) {
-    report.refine = refine->figures();
-    report.refine_solved_now = report.farm.items_computed - refine->filled();
+    totals.refine = refine->figures();
+    totals.refine_solved_now = report.farm.items_computed - refine->filled();
   }
   if (sink) {
-    report.regimes = sink->tally().regimes;
-    report.census_budget_states = sink->tally().census_budget_states;
-    report.soft = sink->tally().soft;
-    report.impacting = sink->tally().impacting;
-    report.hertz_invalid = sink->tally().hertz_invalid;
+    totals.regimes = sink->tally().regimes;
+    totals.census_budget_states = sink->tally().census_budget_states;
+    totals.soft = sink->tally().soft;
+    totals.impacting = sink->tally().impacting;
+    totals.hertz_invalid = sink->tally().hertz_invalid;
   }
-  if (scene.census) report.census_initial_conditions = scene.census->initial_conditions;
+  if (scene.census) totals.census_initial_conditions = scene.census->initial_conditions;
   return report;
 }
 

@@ -217,7 +217,7 @@ SoftCheck check_soft_fraction(const Parameters& p, const PointOptions& options, 
   c.fraction = c.census.soft_fraction;
   c.fraction_stderr = std::sqrt(c.fraction * (1.0 - c.fraction) / K);
   c.passed = c.census.status == SolveStatus::ok &&
-             c.fraction >= o.min_soft_fraction - kSoftCheckSigmas * c.fraction_stderr - kSoftFractionRounding;
+             c.fraction >= soft_check_threshold(c, o) - kSoftFractionRounding;
   if (orbit.status != SolveStatus::ok) return c;
   const StateScale scale{Model(p)};
   for (std::size_t i = 0; i < c.census.attractors.size() && c.orbit_attractor < 0; ++i) {

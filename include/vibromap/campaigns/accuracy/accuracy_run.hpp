@@ -1,8 +1,8 @@
 #pragma once
 // The accuracy study (`vibromap accuracy`): the scene's base point solved by every case of the
 // default study (core/analysis/point/accuracy.hpp) against its reference, one process, and the CSV of
-// its rows for postprocess/plot_work_precision.py. The command (src/cli/accuracy_command.cpp)
-// reads the arguments and prints the report (table or JSON) and the progress lines.
+// its rows for postprocess/plot_work_precision.py. The report (table or JSON) and the progress
+// lines are printed by io/accuracy_output.hpp.
 
 #include <optional>
 #include <string>

@@ -25,6 +25,7 @@
 
 #include "vibromap/core/analysis/census/basins_plane.hpp"
 #include "vibromap/io/basins_file.hpp"
+#include "vibromap/io/basins_output.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
 
@@ -52,12 +53,8 @@ struct BasinsRunConfig {
 
 struct BasinsReport {
   FarmReport farm;
-  BasinsContent content;  // rank 0: the file's content as written last
-  // Rank 0: what the attractors' fractions are over. The pixels followed so far (done, overlap
-  // excluded: the fractions' denominator), and those of the whole plane (overlap excluded);
-  // they differ when the run was stopped, and then the fractions are not yet the plane's.
-  std::uint64_t pixels_followed = 0;
-  std::uint64_t pixels_to_follow = 0;
+  BasinsContent content;    // rank 0: the file's content as written last
+  BasinsCoverage coverage;  // rank 0: the pixels the attractors' fractions are over (io/basins_output.hpp)
 };
 
 // Collective. Throws SceneError (an existing file without --resume or --overwrite; a file of

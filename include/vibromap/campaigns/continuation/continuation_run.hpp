@@ -7,13 +7,13 @@
 //             branches born at its period doublings (core/analysis/continuation/continuation.hpp)
 //   measure   every point's cycle measured as `run` measures an orbit (measure_orbit)
 //   output    the branch file (io/branch_file.hpp), when asked
-// The command (src/cli/continue_command.cpp) reads the arguments and prints the report.
+// The report (core/analysis/continuation/continuation_report.hpp) is printed by io/branch_output.hpp.
 
 #include <string>
 #include <vector>
 
 #include "vibromap/core/analysis/continuation/continuation.hpp"
-#include "vibromap/core/analysis/point/point_solver.hpp"
+#include "vibromap/core/analysis/continuation/continuation_report.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/io/scene/scene.hpp"
 
@@ -26,20 +26,6 @@ struct ContinuationConfig {
   int pd_depth = 1;             // period-doubling generations switched onto (0: none)
   std::string output;           // branch file (HDF5); empty: none
   bool overwrite = false;       // replace an existing branch file
-};
-
-// A branch point with its cycle measured as `run` measures the orbit.
-struct MeasuredPoint {
-  BranchPoint point;
-  PointSummary orbit;
-};
-
-struct ContinuationReport {
-  int n = 1;                       // the start orbit's period, in forcing periods
-  std::string start_regime;        // its regime's label at the start
-  std::vector<Branch> branches;    // continue_branches: the first, then the switched ones
-  std::vector<std::vector<MeasuredPoint>> measured;  // per branch, one per point
-  int stop_signal = 0;  // the stop signal (SIGINT, SIGTERM, SIGUSR1) that ended the run early, 0: none
 };
 
 // A stop signal (parallel/signals.hpp) ends a continuation before its next point: the branch (or

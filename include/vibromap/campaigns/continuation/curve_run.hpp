@@ -25,19 +25,6 @@ struct CurveConfig {
   double from2 = 0.0, to2 = 0.0; // Q's range, from2 < to2
 };
 
-struct MeasuredCurve {
-  Curve curve;
-  std::vector<PointSummary> orbits;  // one per point
-};
-
-struct CurvesReport {
-  ContinuationReport branch;          // the branch in P at the scene's Q
-  double q0 = 0.0;                    // the scene's Q
-  std::vector<MeasuredCurve> curves;  // in the order found (by spec, then along the branches)
-  std::vector<std::string> skipped;   // starts not followed, and why
-  double wall_s = 0.0;                // the whole run, s
-};
-
 // Throws SceneError (Q not a model parameter, C >= D, the scene's Q outside [C, D], no
 // periodic orbit at the start) before any solve, and IoError (the file).
 CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2, const ContinuationConfig& config,

@@ -11,12 +11,10 @@
 // points, each level's new points, the audit; then rank 0 fills the inherited points), one farm
 // run per phase on the same MPI session (docs/design-refine.md).
 
-#include <cstdint>
-#include <map>
 #include <string>
 
-#include "vibromap/io/map_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
+#include "vibromap/io/sweep_output.hpp"
 #include "vibromap/parallel/farm.hpp"
 
 namespace vibromap {
@@ -29,18 +27,8 @@ struct SweepRunConfig {
 };
 
 struct SweepReport {
-  FarmReport farm;                       // cells, ranks, time, checkpoints, stop signal
-  std::map<std::string, long> regimes;   // regime label -> cells, over the whole map (rank 0)
-  int census_initial_conditions = 0;     // K of each cell's census (0: no census)
-  long census_budget_states = 0;         // census: initial states followed to analysis.max_periods, whole map
-  long soft = 0;                         // cells whose motion is soft (is_soft), whole map
-  long impacting = 0;                    // cells whose motion has impacts, whole map
-  long hertz_invalid = 0;                // of those, cells beyond the Hertz limit
-  // An adaptive map (sweep.refine > 0; rank 0): levels, and what the run did over the whole map
-  // (solved per level, inherited, audited, mismatches and their 95 % bound).
-  int refine_levels = 0;
-  RefineFigures refine;
-  std::uint64_t refine_solved_now = 0;   // points solved (audited too) by this run: farm.items_computed less the fill
+  FarmReport farm;      // cells, ranks, time, checkpoints, stop signal
+  SweepTotals totals;   // the whole map's counts and refinement figures (rank 0; io/sweep_output.hpp)
 };
 
 // Collective: every rank calls it with the same scene and config. Throws SceneError (no

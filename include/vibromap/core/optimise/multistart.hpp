@@ -111,6 +111,11 @@ struct SoftCheck {
 // Standard errors a re-checked fraction may fall below min_soft_fraction and still pass.
 inline constexpr double kSoftCheckSigmas = 3.0;
 
+// The lowest re-checked fraction that passes: min_soft_fraction - kSoftCheckSigmas * stderr.
+inline double soft_check_threshold(const SoftCheck& c, const OptimiseOptions& o) {
+  return o.min_soft_fraction - kSoftCheckSigmas * c.fraction_stderr;
+}
+
 // The re-check census's options: the scene's [census] (`census`) with K = max(
 // o.soft_check_initial_conditions, 4 census.initial_conditions) initial states and seed
 // census.seed + 1 (the optimiser's census states are the first K draws of census.seed).

@@ -1,0 +1,48 @@
+#pragma once
+// Output of a sweep (`vibromap sweep`) as JSON, for scripts, or as a table, for people: the
+// farm's figures (FarmFigures, report.hpp) and the whole map's totals (SweepTotals).
+//
+// JSON: one object with the keys
+//   output, cells_total, cells_resumed, cells_computed, complete, ranks, wall_s, cells_per_s,
+//   checkpoints, checkpoint_s, checkpoint_max_s, final_checkpoint_s, stopped_by, requests,
+//   request_us, with a census census_initial_conditions, initial_conditions_per_s,
+//   census_budget_states; soft_cells, impacting_cells, hertz_invalid_cells; for an adaptive map
+//   refine_levels, refine_solved_per_level, points_solved_now, points_solved_per_s,
+//   refine_solved, refine_inherited, refine_audited, refine_mismatches, refine_mismatch_bound,
+//   refine_whole_cells; regimes: {label: cells, ...}.
+//
+// Table: the map, its cells (or an adaptive map's points by how each got its values), ranks,
+// time, checkpoints, the census's budget, the soft and Hertz-invalid cells, the refinement and
+// the regimes.
+
+#include <cstdint>
+#include <iosfwd>
+#include <map>
+#include <string>
+
+#include "vibromap/io/map_file.hpp"
+#include "vibromap/io/report.hpp"
+
+namespace vibromap {
+
+// What a sweep's summary says of the whole map (the cells it already held on resume included),
+// as rank 0 counted it.
+struct SweepTotals {
+  std::map<std::string, long> regimes;   // regime label -> cells
+  int census_initial_conditions = 0;     // K of each cell's census (0: no census)
+  long census_budget_states = 0;         // census: initial states followed to analysis.max_periods
+  long soft = 0;                         // cells whose motion is soft (is_soft)
+  long impacting = 0;                    // cells whose motion has impacts
+  long hertz_invalid = 0;                // of those, cells beyond the Hertz limit
+  // An adaptive map (sweep.refine > 0): levels, and what the run did over the whole map
+  // (solved per level, inherited, audited, mismatches and their 95 % bound).
+  int refine_levels = 0;
+  RefineFigures refine;
+  std::uint64_t refine_solved_now = 0;   // points solved (audited too) by this run: the farm's items less the fill
+};
+
+// `output`: the map file.
+void write_sweep_json(std::ostream& out, const FarmFigures& farm, const SweepTotals& totals, const std::string& output);
+void write_sweep_table(std::ostream& out, const FarmFigures& farm, const SweepTotals& totals, const std::string& output);
+
+}  // namespace vibromap
