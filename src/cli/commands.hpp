@@ -29,24 +29,23 @@ std::string optimise_map_path(const std::string& output);
 std::string optimise_trajectory_path(const std::string& output);
 std::string optimise_journal_path(const std::string& output);
 
-// A command that steps one scene key (`orbit-diagram`, `continue`): the scene loaded (by `load`,
-// with `sets`) with the key's values as a one-axis [sweep] override `axis` (TOML, e.g.
-// "{from=1,to=2,n=5}"), so that the key and its values are checked, and named with unit and
-// meaning, exactly as a sweep axis; errors name --param instead of the override.
+// A command that steps scene keys (`orbit-diagram`, `continue`): the scene loaded (by `load`,
+// with `sets`) with each stepped key's axis (command_axis: checked, and named with unit and
+// meaning, exactly as a sweep axis) as a command axis of its [sweep].
 struct ParamScene {
   Scene scene;
   Axis axis;  // the stepped key's axis
 };
-using SceneLoader = std::function<Scene(const std::vector<std::string>& sets)>;
-ParamScene scene_with_param(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
-                            const std::string& axis);
-// The same with a second key `param2` stepped over `axis2` (`continue --curve ... --param2`).
+using SceneLoader = std::function<Scene(const std::vector<std::string>& sets, const std::vector<CommandAxis>& axes)>;
+ParamScene scene_with_param(const SceneLoader& load, const std::vector<std::string>& sets, CommandAxis axis);
+// The same with a second key (`continue --curve ... --param2`), which must be another key than
+// the first (and not its pair partner).
 struct ParamScene2 {
   Scene scene;
   Axis axis, axis2;
 };
-ParamScene2 scene_with_params(const SceneLoader& load, std::vector<std::string> sets, const std::string& param,
-                              const std::string& axis, const std::string& param2, const std::string& axis2);
+ParamScene2 scene_with_params(const SceneLoader& load, const std::vector<std::string>& sets, CommandAxis axis,
+                              CommandAxis axis2);
 
 // The farm's report as a campaign's summary prints it (io/report.hpp: io does not see the farm).
 FarmFigures farm_figures(const FarmReport& farm);
@@ -57,6 +56,7 @@ int campaign_exit(const FarmReport& farm, const std::string& output, const char*
 
 // Rank 0 reads and checks the scene (its error ends every rank with one line from rank 0); the
 // other ranks parse the text it read, so only rank 0 needs to see the file.
-Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets);
+Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets,
+                            const std::vector<CommandAxis>& axes = {});
 
 }  // namespace vibromap::cli

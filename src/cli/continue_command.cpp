@@ -61,7 +61,6 @@ std::vector<CurveSpec> curve_specs(const ContinueArgs& args) {
   if (!(std::isfinite(args.from2) && std::isfinite(args.to2) && args.from2 < args.to2))
     throw SceneError(cat("--from2 ", number(args.from2, 12), " --to2 ", number(args.to2, 12),
                          ": need finite values with --from2 < --to2"));
-  if (args.param2 == args.param) throw SceneError(cat("--param2 ", args.param2, ": the same key as --param"));
   std::vector<CurveSpec> specs;
   for (const std::string& text : args.curves) {
     std::string error;
@@ -88,16 +87,21 @@ int continue_exit(const ContinueArgs& args, const ContinuationReport& r, const C
   return code(ExitCode::stopped);
 }
 
-// A key's range as the one-axis [sweep] override that names and checks it: its two ends.
-std::string values_axis(double a, double b) {
-  return cat("{values=[", number(std::min(a, b), 17), ",", number(std::max(a, b), 17), "]}");
+// The axis of --param (or --param2) over [lo, hi]: a parameter key, both ends checked against it.
+CommandAxis param_axis(const std::string& option, const std::string& name, double a, double b) {
+  return command_axis(cat(option, " ", clip(name)), name, {std::min(a, b), std::max(a, b)}, AxisScale::lin, true);
+}
+
+Scene load_continue_scene(const ContinueArgs& args, const std::vector<std::string>& sets,
+                          const std::vector<CommandAxis>& axes) {
+  return load_scene(args.scene, sets, axes);
 }
 
 int continue_curves(const ContinueArgs& args, const ContinuationConfig& config, std::vector<CurveSpec> specs,
                     std::ostream& out) {
-  const ParamScene2 ps = scene_with_params([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
-                                           args.param, values_axis(args.from, args.to), args.param2,
-                                           values_axis(args.from2, args.to2));
+  const SceneLoader load = [&](const auto& sets, const auto& axes) { return load_continue_scene(args, sets, axes); };
+  const ParamScene2 ps = scene_with_params(load, args.sets, param_axis("--param", args.param, args.from, args.to),
+                                           param_axis("--param2", args.param2, args.from2, args.to2));
   const CurvesReport r = run_curves(ps.scene, ps.axis, ps.axis2, config, {std::move(specs), args.from2, args.to2});
   if (args.format == "json") {
     write_branch_json(out, ps.axis.key, r.branch, &r);
@@ -125,8 +129,8 @@ int continue_branch_or_curves(const ContinueArgs& args, std::ostream& out) {
   config.output = args.output;
   config.overwrite = args.overwrite;
   if (!specs.empty()) return continue_curves(args, config, std::move(specs), out);
-  const ParamScene ps = scene_with_param([&](const auto& sets) { return load_scene(args.scene, sets); }, args.sets,
-                                         args.param, values_axis(args.from, args.to));
+  const SceneLoader load = [&](const auto& sets, const auto& axes) { return load_continue_scene(args, sets, axes); };
+  const ParamScene ps = scene_with_param(load, args.sets, param_axis("--param", args.param, args.from, args.to));
   const ContinuationReport report = run_continuation(ps.scene, ps.axis, config);
   if (args.format == "json") {
     write_branch_json(out, ps.axis.key, report);

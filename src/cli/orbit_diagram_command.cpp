@@ -46,10 +46,14 @@ int orbit_diagram_command(const OrbitDiagramArgs& args, std::ostream& out) {
   config.options.transient = args.transient;
   config.options.keep = args.keep;
   if (const std::string err = validate(config.options); !err.empty()) throw SceneError("--" + err);
+  if (args.scale == "log" && !(lo > 0.0))
+    throw SceneError(cat("--scale log: needs --from > 0 and --to > 0 (got ", number(lo, 12), ")"));
+  const CommandAxis axis = command_axis(cat("--param ", clip(args.param)), args.param,
+                                        axis_points(lo, hi, args.steps, parse_axis_scale(args.scale)),
+                                        parse_axis_scale(args.scale), false);
   const ParamScene ps = scene_with_param(
-      [&](const auto& sets) { return load_scene_everywhere(mpi, args.scene, sets); }, args.sets, args.param,
-      cat("{from=", number(lo, 17), ",to=", number(hi, 17), ",n=", std::to_string(args.steps),
-          ",scale=\"", args.scale, "\"}"));
+      [&](const auto& sets, const auto& axes) { return load_scene_everywhere(mpi, args.scene, sets, axes); }, args.sets,
+      axis);
   const Scene& scene = ps.scene;
   config.axis = ps.axis;
   config.output = args.output;

@@ -40,12 +40,13 @@ std::string default_output(const std::string& scene_path) {
 
 }  // namespace
 
-Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets) {
+Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets,
+                            const std::vector<CommandAxis>& axes) {
   Scene scene;
-  mpi.agree([&] { scene = load_scene(path, sets); }, exit_status_of);
+  mpi.agree([&] { scene = load_scene(path, sets, axes); }, exit_status_of);
   std::vector<char> text(scene.text.begin(), scene.text.end());
   mpi.broadcast(text);
-  if (mpi.rank() != 0) scene = parse_scene(std::string_view(text.data(), text.size()), path);
+  if (mpi.rank() != 0) scene = parse_scene(std::string_view(text.data(), text.size()), path, {}, axes);
   return scene;
 }
 

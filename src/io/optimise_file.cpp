@@ -232,13 +232,24 @@ void write_soft_check(Group g, const SoftCheck& c, const OptimiseOptions& o) {
   column("soft", soft);
 }
 
+// The parameters a best point's group names as attributes: the source paper's search box and the
+// restitution always (so that files of any run compare), then every other free parameter.
+std::vector<Key> point_attribute_keys(const OptimiseOptions& o) {
+  std::vector<Key> keys;
+  for (const std::string_view name : {"E1", "E2", "R1", "R2", "m2", "k2", "omega2", "restitution"})
+    keys.push_back(Key::at(name));
+  for (const FreeVariable& f : o.variables)
+    if (std::find(keys.begin(), keys.end(), f.key) == keys.end()) keys.push_back(f.key);
+  return keys;
+}
+
 void write_best(Group& g, const VerifiedPoint& v, const OptimiseOptions& o, const Dataset& variable) {
   const double sense = objective_sense(o.objective);
   g.set_attribute("start", v.start);
   g.set_attribute("evaluation", static_cast<std::int64_t>(v.evaluation));
   g.set_attribute("objective", sense * v.value);
   g.set_attribute("soft_fraction", v.soft_fraction);
-  for (const std::string_view name : free_parameter_names()) g.set_attribute(name, get_parameter(v.params, name));
+  for (const Key k : point_attribute_keys(o)) g.set_attribute(k.info().name, k.value(v.params));
   g.set_attribute("law", to_string(v.params.law));
   g.write_dataset("x", v.x).attach_dimension_scale(variable, 0);
   write_solve(g.create_group("integrate"), v.integrate);

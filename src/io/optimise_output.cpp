@@ -20,8 +20,15 @@ namespace {
 
 constexpr double kAgreeTol = 1e-6;  // relative k_con difference under which the two re-solves agree
 
-// The free parameters a best point lists, in this order.
-constexpr std::string_view kShownParameters[] = {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"};
+// The parameters a best point shows: the source paper's search box always, then every other free
+// parameter (the restitution is shown with the law).
+std::vector<Key> shown_parameters(const OptimiseOptions& o) {
+  std::vector<Key> keys;
+  for (const std::string_view name : {"m2", "k2", "omega2", "E1", "E2", "R1", "R2"}) keys.push_back(Key::at(name));
+  for (const FreeVariable& f : o.variables)
+    if (std::find(keys.begin(), keys.end(), f.key) == keys.end() && f.name() != "restitution") keys.push_back(f.key);
+  return keys;
+}
 
 // One algorithm's starts taken together (every algorithm runs from the same seeds).
 struct AlgorithmSummary {
@@ -96,7 +103,7 @@ void write_soft_check_json(JsonWriter& w, const VerifiedPoint& v, const Optimise
 void write_best_json(JsonWriter& w, const OptimiseReport& r, const VerifiedPoint& v, const OptimiseOptions& o) {
   const PointSummary& s = v.integrate;
   w.begin_object().key("params").begin_object();
-  for (const std::string_view name : kShownParameters) w.field(name, get_parameter(v.params, name));
+  for (const Key k : shown_parameters(o)) w.field(k.info().name, k.value(v.params));
   w.end_object().field("k_con", s.k_con).field("T_con", s.T_con).field("F_max", s.F_max).field("regime", s.regime.label());
   write_stable_json(w.key("stable"), s.stable);
   w.field("z_ratio", s.z_ratio).field("hertz_valid", s.hertz_valid).field("soft", s.soft);
@@ -259,7 +266,7 @@ void write_best_point(std::ostream& out, std::size_t i, const VerifiedPoint& v, 
         << " beyond [analysis] hertz_limit: the force law does not hold there (optimise.hertz_valid = false)\n    ";
   out << "soft " << (s.soft ? "yes" : "no") << " (periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon)\n    ";
   write_soft_check(out, v, o);
-  for (const std::string_view name : kShownParameters) out << name << " " << number(get_parameter(v.params, name)) << "  ";
+  for (const Key k : shown_parameters(o)) out << k.info().name << " " << number(k.value(v.params)) << "  ";
   out << "law " << to_string(v.params.law);
   if (v.params.law != ContactLawKind::hertz) out << " (restitution " << number(v.params.restitution) << ")";
   out << "\n    --set:";

@@ -10,23 +10,23 @@ vibromap_cli_test(optimise_without_section RC 2 ARGS optimise jobs/paper/table1.
 # optimise.law: the contact law as a categorical variable, named like the algorithms.
 vibromap_cli_test(optimise_unknown_law RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.law=flors
-                  ERR "--set optimise\\.law=flors: unknown contact law 'flors' \\(did you mean 'flores'\\?\\); allowed: hertz, hunt-crossley, lankarani-nikravesh, flores, gonthier, or \"all\"")
+                  ERR "--set optimise\\.law=flors: \\[optimise\\] law = \"flors\": unknown contact law 'flors' \\(did you mean 'flores'\\?\\); allowed: hertz, hunt-crossley, lankarani-nikravesh, flores, gonthier, or \"all\"")
 vibromap_cli_test(optimise_bad_algorithm RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.algorithm=bobyq
-                  ERR "--set optimise\\.algorithm=bobyq: unknown algorithm 'bobyq' \\(did you mean 'bobyqa'\\?\\)")
+                  ERR "--set optimise\\.algorithm=bobyq: \\[optimise\\] algorithm = \"bobyq\": unknown algorithm 'bobyq' \\(did you mean 'bobyqa'\\?\\)")
 # optimise.min_soft_fraction and its re-check size: out of range or not a number, before any work.
 vibromap_cli_test(optimise_min_soft_fraction_above_one RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.min_soft_fraction=1.5
-                  ERR "jobs/paper/optimise_box\\.toml: --set optimise\\.min_soft_fraction=1\\.5: must be in \\[0, 1\\]")
+                  ERR "jobs/paper/optimise_box\\.toml: --set optimise\\.min_soft_fraction=1\\.5: \\[optimise\\] min_soft_fraction = 1\\.5: must be in \\[0, 1\\]")
 vibromap_cli_test(optimise_min_soft_fraction_negative RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.min_soft_fraction=-0.2
-                  ERR "jobs/paper/optimise_box\\.toml: --set optimise\\.min_soft_fraction=-0\\.2: must be in \\[0, 1\\]")
+                  ERR "jobs/paper/optimise_box\\.toml: --set optimise\\.min_soft_fraction=-0\\.2: \\[optimise\\] min_soft_fraction = -0\\.2: must be in \\[0, 1\\]")
 vibromap_cli_test(optimise_min_soft_fraction_not_a_number RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.min_soft_fraction=most
-                  ERR "--set optimise\\.min_soft_fraction=most: must be a finite number in \\[0, 1\\]")
+                  ERR "--set optimise\\.min_soft_fraction=most: \\[optimise\\] min_soft_fraction = \"most\": must be a finite number in \\[0, 1\\]")
 vibromap_cli_test(optimise_soft_check_without_states RC 2
                   ARGS optimise jobs/paper/optimise_box.toml --set optimise.soft_check_initial_conditions=0
-                  ERR "--set optimise\\.soft_check_initial_conditions=0: must be an integer in \\[1, 1e\\+06\\]")
+                  ERR "--set optimise\\.soft_check_initial_conditions=0: \\[optimise\\] soft_check_initial_conditions = 0: must be an integer in \\[1, 1e\\+06\\]")
 vibromap_cli_test(optimise_output_directory_missing RC 4
                   ARGS optimise jobs/paper/optimise_box.toml -o no_such_dir/o.h5
                   ERR "no_such_dir/o\\.h5: cannot write here: directory 'no_such_dir' does not exist")
@@ -48,7 +48,7 @@ vibromap_cli_test(basins_at_plane_variable RC 2 ARGS basins jobs/paper/table2.to
 vibromap_cli_test(basins_at_bad_value RC 2 ARGS basins jobs/paper/table2.toml --at x2=abc -o no_file.h5
                   ERR "--at x2=abc: the value must be a finite number")
 vibromap_cli_test(basins_bad_census RC 2 ARGS basins jobs/paper/table2.toml --set "census.x1=[1, 0]" -o no_file.h5
-                  ERR "census\\.x1=\\[1, 0\\]: must be an array \\[lo, hi\\]")
+                  ERR "census\\.x1=\\[1, 0\\]: \\[census\\] x1 = \\[1, 0\\]: must be an array \\[lo, hi\\]")
 
 if(NOT VibromapPython_FOUND)
   message(WARNING "campaign tests not added: no Python with numpy, h5py and pytest")

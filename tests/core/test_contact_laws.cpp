@@ -10,6 +10,7 @@
 
 #include "problems/free_spheres.hpp"
 #include "support/monodromy_testing.hpp"
+#include "vibromap/core/model/keys.hpp"
 #include "vibromap/core/analysis/point/impact.hpp"
 #include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/analysis/point/restitution.hpp"
@@ -110,11 +111,13 @@ TEST(ContactLaws, DampingGivenDirectlyReplacesTheCalibrationAndNeedsADampedLaw) 
   ASSERT_EQ(validate(p).size(), 1u);
   EXPECT_NE(validate(p).front().find("restitution = 0: must be in (0, 1]"), std::string::npos);
   // The law as a categorical parameter: its index in all_contact_laws().
-  set_parameter(p, "law", 3.0);
+  Key::at("law").set(p, 3.0);
   EXPECT_EQ(p.law, ContactLawKind::flores);
-  EXPECT_EQ(get_parameter(p, "law"), 3.0);
-  EXPECT_THROW(set_parameter(p, "law", 5.0), std::invalid_argument);
-  EXPECT_THROW(set_parameter(p, "law", 1.5), std::invalid_argument);
+  EXPECT_EQ(Key::at("law").value(p), 3.0);
+  EXPECT_EQ(Key::at("law").check(5.0),
+            "[contact] law = 5: must be one of \"hertz\", \"hunt-crossley\", \"lankarani-nikravesh\", \"flores\", "
+            "\"gonthier\"");
+  EXPECT_NE(Key::at("law").check(1.5), "");
 }
 
 TEST(ContactLaws, EveryLawAtRestitutionOneIsElasticHertz) {

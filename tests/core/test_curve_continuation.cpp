@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "support/linear_response.hpp"
+#include "vibromap/core/model/keys.hpp"
 #include "vibromap/core/analysis/continuation/continuation.hpp"
 #include "vibromap/core/analysis/continuation/curve_continuation.hpp"
 #include "vibromap/core/analysis/continuation/orbit_extent.hpp"
@@ -24,19 +25,19 @@ using test::Linear;
 
 using test::table2;  // tests/support/paper_points.hpp
 
-// The points of base with one parameter (set_parameter's name) stepped; and with two.
+// The points of base with one parameter (a key's name, Key::at) stepped; and with two.
 PointAt path(const Parameters& base, const PointOptions& o, const char* name) {
   return [=](double x) {
     Parameters p = base;
-    set_parameter(p, name, x);
+    Key::at(name).set(p, x);
     return std::make_pair(p, o);
   };
 }
 PointAt2 plane(const Parameters& base, const PointOptions& o, const char* name, const char* name2) {
   return [=](double x, double y) {
     Parameters p = base;
-    set_parameter(p, name2, y);
-    set_parameter(p, name, x);
+    Key::at(name2).set(p, y);
+    Key::at(name).set(p, x);
     return std::make_pair(p, o);
   };
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "problems/free_spheres.hpp"
+#include "vibromap/core/model/keys.hpp"
 #include "vibromap/core/model/hertz_contact.hpp"
 #include "vibromap/core/model/system.hpp"
 
@@ -45,8 +46,8 @@ TEST(Model, PairsGivenEitherWayGiveTheSameCoefficients) {
   EXPECT_NEAR(mb.k1(), ma.k1(), 1e-9 * ma.k1());
   EXPECT_NEAR(mb.k2(), ma.k2(), 1e-9 * ma.k2());
   EXPECT_NEAR(ma.c1(), 2 * 0.01 * a.m1 * 6.283, 1e-9);
-  EXPECT_NEAR(get_parameter(b, "xi2"), 0.01, 1e-12);
-  EXPECT_NEAR(get_parameter(a, "k2"), 100 * 5.646 * 5.646, 1e-9);
+  EXPECT_NEAR(Key::at("xi2").value(b), 0.01, 1e-12);
+  EXPECT_NEAR(Key::at("k2").value(a), 100 * 5.646 * 5.646, 1e-9);
 }
 
 TEST(Model, NewtonThirdLawCouplingIsMassRatioM2OverM1) {

@@ -1,5 +1,5 @@
 // A sweep cell's parameter point (io/scene/cell_maker.hpp) and the setter of one key
-// (point_setter, io/scene/keys.hpp): a cell must equal the scene read with `--set KEY=value`
+// (Key::set, core/model/keys.hpp): a cell must equal the scene read with `--set KEY=value`
 // for each of its axes, field by field.
 
 #include <array>
@@ -119,29 +119,34 @@ TEST(CellMaker, RefusesAnAxisWithoutASceneKey) {
                std::invalid_argument);
 }
 
-TEST(PointSetter, SetsAKeyAsTheReaderDoes) {
+TEST(KeySet, SetsAKeyAsTheReaderDoes) {
   Parameters p;
   PointOptions o;
-  point_setter("system.k2")(p, o, 3000.0);
+  Key::at("system.k2").set(p, o, 3000.0);
   EXPECT_EQ(p.spring2.form, Spring::Form::stiffness);
   EXPECT_EQ(p.spring2.value, 3000.0);
-  point_setter("system.m2")(p, o, 310.0);
+  Key::at("system.m2").set(p, o, 310.0);
   EXPECT_EQ(p.damper2.form, Damper::Form::ratio);  // xi2 (the default form) is kept
-  point_setter("analysis.max_periods")(p, o, 500.0);
+  Key::at("analysis.max_periods").set(p, o, 500.0);
   EXPECT_EQ(o.analysis.max_periods, 500);
-  point_setter("initial.v1")(p, o, 0.25);  // the other components from the rest state
+  Key::at("initial.v1").set(p, o, 0.25);  // the other components from the rest state
   ASSERT_TRUE(p.initial.has_value());
   EXPECT_EQ(*p.initial, Eigen::Vector4d(0.0, p.D, 0.25, 0.0));
-  point_setter("initial.x1")(p, o, -0.01);
+  Key::at("initial.x1").set(p, o, -0.01);
   EXPECT_EQ(*p.initial, Eigen::Vector4d(-0.01, p.D, 0.25, 0.0));
 }
 
-TEST(PointSetter, RefusesUnknownShortAndNonNumericKeys) {
-  EXPECT_THROW(point_setter("forcing.omgea"), std::invalid_argument);
-  EXPECT_THROW(point_setter("omega"), std::invalid_argument);  // a full key is needed
-  EXPECT_THROW(point_setter("solver.method"), std::invalid_argument);
-  EXPECT_THROW(point_setter("analysis.lyapunov"), std::invalid_argument);
-  EXPECT_NO_THROW(point_setter("forcing.omega"));
+TEST(KeyFind, NamesAKeyInFullOrByANameOneSectionHas) {
+  EXPECT_FALSE(Key::find("forcing.omgea").has_value());
+  EXPECT_THROW(Key::at("forcing.omgea"), std::invalid_argument);
+  EXPECT_EQ(Key::find("omega")->full_name(), "forcing.omega");  // one section has it
+  EXPECT_EQ(Key::find("omega2")->full_name(), "system.omega2");
+  EXPECT_FALSE(Key::find("solver.method")->is_axis());     // a choice of the solver
+  EXPECT_FALSE(Key::find("analysis.lyapunov")->is_axis());  // a boolean
+  EXPECT_TRUE(Key::find("contact.law")->is_axis());         // the categorical law
+  EXPECT_TRUE(Key::find("analysis.n_max")->is_axis());
+  EXPECT_FALSE(Key::find("analysis.n_max")->is_parameter());
+  EXPECT_TRUE(Key::find("forcing.lambda")->is_parameter());
 }
 
 }  // namespace

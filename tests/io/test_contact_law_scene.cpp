@@ -73,7 +73,7 @@ TEST(ContactLawScene, DemoRestitutionE2IsTable2WithFloresOverEAndThePaperBoxOfE2
   const Scene table2 = load_scene(source_path("jobs/paper/table2.toml"));
   ASSERT_TRUE(s.sweep.has_value());
   EXPECT_EQ(s.params.m2, table2.params.m2);
-  EXPECT_EQ(get_parameter(s.params, "omega2"), get_parameter(table2.params, "omega2"));
+  EXPECT_EQ(Key::at("omega2").value(s.params), Key::at("omega2").value(table2.params));
   EXPECT_EQ(s.params.E1, table2.params.E1);
   EXPECT_EQ(s.params.law, ContactLawKind::flores);
   const SweepOptions& w = *s.sweep;
@@ -89,10 +89,10 @@ TEST(ContactLawScene, RestitutionIsAFreeParameterUnderTheSceneLaw) {
   const Scene s = parse("[contact]\nlaw = \"flores\"\n[optimise]\nrestitution = { min = 0.2, max = 0.9 }\n");
   ASSERT_TRUE(s.optimise.has_value());
   ASSERT_EQ(s.optimise->variables.size(), 1u);
-  EXPECT_EQ(s.optimise->variables[0].name, "restitution");
+  EXPECT_EQ(s.optimise->variables[0].name(), "restitution");
   EXPECT_EQ(s.optimise->variables[0].max, 0.9);
   EXPECT_EQ(s.params.law, ContactLawKind::flores);
-  EXPECT_EQ(parameter_override("restitution", 0.5), "contact.restitution=0.5");
+  EXPECT_EQ(parameter_override(Key::at("restitution"), 0.5), "contact.restitution=0.5");
   EXPECT_NE(error_of("[optimise]\nrestitution = { min = 0.2, max = 1.5 }\n").find("restitution"), std::string::npos);
 }
 
@@ -152,7 +152,7 @@ TEST(ContactLawScene, OptimiseLawJobIsTable2WithEveryLawAndRestitutionFree) {
   ASSERT_TRUE(s.optimise.has_value());
   EXPECT_EQ(s.optimise->laws, all_contact_laws());
   ASSERT_EQ(s.optimise->variables.size(), 1u);
-  EXPECT_EQ(s.optimise->variables[0].name, "restitution");
+  EXPECT_EQ(s.optimise->variables[0].name(), "restitution");
   EXPECT_EQ(s.optimise->variables[0].min, 0.3);
   EXPECT_EQ(s.optimise->variables[0].max, 1.0);
   EXPECT_EQ(s.params.m2, 310.0);

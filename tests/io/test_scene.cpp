@@ -36,8 +36,10 @@ using test::read_text;
 using test::source_path;
 
 void expect_same_parameters(const Parameters& a, const Parameters& b) {
-  for (const std::string_view name : variable_parameter_names()) {
-    EXPECT_DOUBLE_EQ(get_parameter(a, name), get_parameter(b, name)) << name;
+  for (const Key k : Key::all()) {
+    if (k.is_parameter()) {
+      EXPECT_DOUBLE_EQ(k.value(a), k.value(b)) << k.full_name();
+    }
   }
   EXPECT_EQ(a.spring1.form, b.spring1.form);
   EXPECT_EQ(a.spring2.form, b.spring2.form);
@@ -206,8 +208,8 @@ TEST(Scene, WholeFloatIsAcceptedForAnInteger) {
 TEST(Scene, PairFormIsKeptAndDerivesTheOther) {
   const Scene s = parse("[system]\nm2 = 100.0\nk2 = 3000.0\nc2 = 10.0\n");
   EXPECT_EQ(s.params.spring2.form, Spring::Form::stiffness);
-  EXPECT_DOUBLE_EQ(get_parameter(s.params, "omega2"), std::sqrt(3000.0 / 100.0));
-  EXPECT_DOUBLE_EQ(get_parameter(s.params, "xi2"), 10.0 / (2.0 * std::sqrt(100.0 * 3000.0)));
+  EXPECT_DOUBLE_EQ(Key::at("omega2").value(s.params), std::sqrt(3000.0 / 100.0));
+  EXPECT_DOUBLE_EQ(Key::at("xi2").value(s.params), 10.0 / (2.0 * std::sqrt(100.0 * 3000.0)));
 }
 
 TEST(Scene, InitialSubsetDefaultsToTheRestState) {
@@ -290,8 +292,8 @@ struct BadScene {
 const std::vector<BadScene>& bad_scenes() {
   static const std::vector<BadScene> cases = {
       {"negative mass", "[system]\nm2 = -5\n", {}, {"jobs/x.toml:2: [system] m2 = -5: must be > 0 (kg)"}},
-      {"zero modulus", "[contact]\nE1 = 0.0\n", {}, {"jobs/x.toml:2:", "[contact] E1 = 0.0", "must be > 0 (Pa)"}},
-      {"negative k2", "[system]\nk2 = -1.0\n", {}, {"[system] k2 = -1.0", "must be >= 0 (N/m)"}},
+      {"zero modulus", "[contact]\nE1 = 0.0\n", {}, {"jobs/x.toml:2:", "[contact] E1 = 0", "must be > 0 (Pa)"}},
+      {"negative k2", "[system]\nk2 = -1.0\n", {}, {"[system] k2 = -1", "must be >= 0 (N/m)"}},
       {"poisson at 0.5", "[contact]\nnu1 = 0.5\n", {}, {"[contact] nu1 = 0.5", "must be in (-1, 0.5)"}},
       {"rtol too loose", "[solver]\nrtol = 0.1\n", {}, {"[solver] rtol = 0.1", "must be in (0, 0.1)"}},
       {"max_step zero", "[solver]\nmax_step = 0\n", {}, {"[solver] max_step = 0", "must be in (0, 1]"}},
@@ -328,7 +330,7 @@ const std::vector<BadScene>& bad_scenes() {
       {"key outside section", "m1 = 1.0\n", {}, {"jobs/x.toml:1: key 'm1' is outside any section: put it under [system]"}},
       {"section as value", "system = 5\n", {}, {"'system' must be a section [system]"}},
       {"malformed toml", "[system]\nm1 = = 3\n", {}, {"jobs/x.toml:2:", "malformed TOML"}},
-      {"set negative mass", "", {"system.m2=-5"}, {"jobs/x.toml: --set system.m2=-5: must be > 0 (kg)"}},
+      {"set negative mass", "", {"system.m2=-5"}, {"jobs/x.toml: --set system.m2=-5: [system] m2 = -5: must be > 0 (kg)"}},
       {"set without =", "", {"system.m2"}, {"jobs/x.toml: --set system.m2: expected section.key=value"}},
       {"set unknown short key", "", {"mass=5"}, {"jobs/x.toml: --set mass=5: unknown key 'mass'",
                                                  "key=value when only one section has the key"}},
@@ -336,7 +338,7 @@ const std::vector<BadScene>& bad_scenes() {
                                                            "initial.x1 or census.x1"}},
       {"set short key of an option too", "", {"law=flores"}, {"several sections have the key 'law'",
                                                               "contact.law or optimise.law"}},
-      {"set short key checked", "", {"m2=-5"}, {"jobs/x.toml: --set m2=-5: must be > 0 (kg)"}},
+      {"set short key checked", "", {"m2=-5"}, {"jobs/x.toml: --set m2=-5: [system] m2 = -5: must be > 0 (kg)"}},
       {"set unknown key", "", {"system.mass=5"}, {"--set system.mass=5: unknown key 'mass' in [system]"}},
       {"set unknown section", "", {"sytem.m2=5"}, {"--set sytem.m2=5: unknown section [sytem]"}},
       {"set bad choice", "", {"solver.method=euler"}, {"--set solver.method=euler", "must be one of"}},
@@ -348,7 +350,7 @@ const std::vector<BadScene>& bad_scenes() {
         "omega/omega_n must be in [0.0001, 1e+04], i.e. forcing.omega in [0.000698, 6.98e+04] rad/s"}},
       {"main spring too stiff", "[system]\nomega1 = 2147483647\n", {},
        {"jobs/x.toml: forcing.omega = 7.23 rad/s is 3.37e-09 times omega_n = 2.15e+09 rad/s"}},
-      {"census span", "", {"census.x1=[-1e308,1e308]"}, {"--set census.x1=[-1e308,1e308]: must be an array [lo, hi]",
+      {"census span", "", {"census.x1=[-1e308,1e308]"}, {"--set census.x1=[-1e308,1e308]: [census] x1 = [-1e+308, 1e+308]: must be an array [lo, hi]",
                                                         "a finite hi - lo"}},
   };
   return cases;
@@ -414,28 +416,30 @@ TEST_F(SceneFile, IsReadUpToItsCap) {
 // The schema, the paper's scenes and the reference scene
 
 TEST(Scene, SchemaKeysAreUniqueAndPairsMutual) {
-  const auto& keys = scene_keys();
-  for (const SceneKey& k : keys) {
+  for (const Key key : Key::all()) {
+    const KeyInfo& k = key.info();
     int same = 0;
-    const SceneKey* partner = nullptr;
-    for (const SceneKey& other : keys) {
-      if (other.section == k.section && other.key == k.key) ++same;
-      if (other.section == k.section && other.key == k.partner) partner = &other;
+    const KeyInfo* partner = nullptr;
+    for (const Key other_key : Key::all()) {
+      const KeyInfo& other = other_key.info();
+      if (other.section == k.section && other.name == k.name) ++same;
+      if (other.section == k.section && other.name == k.partner) partner = &other;
     }
-    EXPECT_EQ(same, 1) << k.key;
+    EXPECT_EQ(same, 1) << k.name;
     if (!k.partner.empty()) {
-      ASSERT_NE(partner, nullptr) << k.key;
-      EXPECT_EQ(partner->partner, k.key);
+      ASSERT_NE(partner, nullptr) << k.name;
+      EXPECT_EQ(partner->partner, k.name);
     }
   }
 }
 
-TEST(Scene, EveryVariableParameterIsASceneKey) {
-  for (const std::string_view name : variable_parameter_names()) {
-    bool found = false;
-    for (const SceneKey& k : scene_keys()) found = found || k.key == name;
-    EXPECT_TRUE(found) << name;
-  }
+// A parameter (an axis, a free variable, a continuation key) is named by its name alone: no two
+// parameters share one.
+TEST(Scene, EveryParameterHasANameOfItsOwn) {
+  for (const Key k : Key::all())
+    if (k.is_parameter()) {
+      EXPECT_EQ(Key::find(k.info().name), k) << k.full_name();
+    }
 }
 
 TEST(Scene, BoundsText) {
@@ -453,9 +457,9 @@ TEST(Scene, PaperTable1HasTheSpecValues) {
   const Parameters p = load_scene(source_path("jobs/paper/table1.toml")).params;
   EXPECT_EQ(p.m1, 1000.0);
   EXPECT_EQ(p.m2, 100.0);
-  EXPECT_EQ(get_parameter(p, "omega1"), 6.283);
-  EXPECT_EQ(get_parameter(p, "omega2"), 5.646);
-  EXPECT_DOUBLE_EQ(get_parameter(p, "k2"), 100.0 * 5.646 * 5.646);
+  EXPECT_EQ(Key::at("omega1").value(p), 6.283);
+  EXPECT_EQ(Key::at("omega2").value(p), 5.646);
+  EXPECT_DOUBLE_EQ(Key::at("k2").value(p), 100.0 * 5.646 * 5.646);
   EXPECT_EQ(p.E1, 2.099e11);
   EXPECT_EQ(p.E2, 2.099e11);
   EXPECT_EQ(p.R1, 2.0);
@@ -463,8 +467,8 @@ TEST(Scene, PaperTable1HasTheSpecValues) {
   EXPECT_EQ(p.F0, 500.0);
   EXPECT_EQ(p.omega, 7.23);
   // The calibration of what the paper does not state (docs/model.md).
-  EXPECT_EQ(get_parameter(p, "xi1"), 0.01);
-  EXPECT_EQ(get_parameter(p, "xi2"), 0.01);
+  EXPECT_EQ(Key::at("xi1").value(p), 0.01);
+  EXPECT_EQ(Key::at("xi2").value(p), 0.01);
   EXPECT_EQ(p.D, 0.05);
   EXPECT_EQ(p.nu1, 0.3);
   EXPECT_EQ(p.nu2, 0.3);
@@ -476,16 +480,16 @@ TEST(Scene, PaperTable2HasTheSpecValues) {
   const Parameters p = load_scene(source_path("jobs/paper/table2.toml")).params;
   EXPECT_EQ(p.m1, 1000.0);
   EXPECT_EQ(p.m2, 310.0);
-  EXPECT_EQ(get_parameter(p, "omega1"), 6.283);
-  EXPECT_EQ(get_parameter(p, "omega2"), 3.606);
-  EXPECT_DOUBLE_EQ(get_parameter(p, "k2"), 310.0 * 3.606 * 3.606);
+  EXPECT_EQ(Key::at("omega1").value(p), 6.283);
+  EXPECT_EQ(Key::at("omega2").value(p), 3.606);
+  EXPECT_DOUBLE_EQ(Key::at("k2").value(p), 310.0 * 3.606 * 3.606);
   EXPECT_EQ(p.E1, 1.4e10);
   EXPECT_EQ(p.E2, 1.0e6);
   EXPECT_EQ(p.R1, 2.0);
   EXPECT_EQ(p.R2, 2.0);
   EXPECT_EQ(p.F0, 500.0);
   EXPECT_EQ(p.omega, 7.23);
-  EXPECT_EQ(get_parameter(p, "xi1"), 0.01);
+  EXPECT_EQ(Key::at("xi1").value(p), 0.01);
   EXPECT_EQ(p.D, 0.05);
 }
 
@@ -499,15 +503,16 @@ TEST(Scene, ReferenceSceneEqualsTheDefaults) {
 // When this fails, regenerate it: `vibromap keys --toml > jobs/reference.toml`.
 TEST(Scene, ReferenceSceneDocumentsEveryKey) {
   const std::string text = read_text(source_path("jobs/reference.toml"));
-  for (const SceneKey& k : scene_keys()) {
+  for (const Key key : Key::all()) {
+    const KeyInfo& k = key.info();
     const auto start = text.find(concat({"\n[", k.section, "]\n"}));
     ASSERT_NE(start, std::string::npos) << k.section;
     const auto end = text.find("\n[", start + 1);
     const std::string body = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
-    const std::string key(k.key);
-    EXPECT_TRUE(body.find(concat({"\n", key, " = "})) != std::string::npos ||
-                body.find(concat({"\n# ", key, " = "})) != std::string::npos)
-        << "[" << k.section << "] " << key << " missing from jobs/reference.toml";
+    const std::string name(k.name);
+    EXPECT_TRUE(body.find(concat({"\n", name, " = "})) != std::string::npos ||
+                body.find(concat({"\n# ", name, " = "})) != std::string::npos)
+        << "[" << k.section << "] " << name << " missing from jobs/reference.toml";
   }
 }
 
@@ -523,8 +528,8 @@ TEST(Scene, KeysListingShowsEveryKeyWithDefaultAndUnit) {
   std::ostringstream os;
   write_scene_keys(os);
   const std::string text = os.str();
-  for (const SceneKey& k : scene_keys()) {
-    EXPECT_NE(text.find(concat({k.section, ".", k.key, " "})), std::string::npos) << k.key;
+  for (const Key k : Key::all()) {
+    EXPECT_NE(text.find(concat({k.full_name(), " "})), std::string::npos) << k.full_name();
   }
   EXPECT_NE(text.find("1e-10"), std::string::npos);  // rtol's default
   EXPECT_NE(text.find("rad/s"), std::string::npos);

@@ -50,4 +50,12 @@ inline std::string shortest(double x) {
   return std::string(buf.data(), res.ptr);
 }
 
+// As shortest(), but always written as a float, as TOML and JSON readers want one: "1000.0",
+// "0.1", "1e-10".
+inline std::string float_text(double x) {
+  std::string t = shortest(x);
+  if (t.find_first_of(".en") == std::string::npos) t += ".0";  // not "1e-10", "inf", "nan"
+  return t;
+}
+
 }  // namespace vibromap

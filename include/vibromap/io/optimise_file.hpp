@@ -36,8 +36,9 @@
 //   /best/NN         the best distinct points, best first (with min_soft_fraction > 0: those
 //                    that pass the soft check first), each re-solved from scratch
 //       attributes   start, evaluation, objective (as found), soft_fraction (the optimiser's
-//                    census there; NaN when min_soft_fraction is 0), and every parameter E1, E2,
-//                    R1, R2, m2, k2 (N/m), omega2 (get_parameter, SI)
+//                    census there; NaN when min_soft_fraction is 0), and the point's E1, E2,
+//                    R1, R2, m2, k2 (N/m), omega2, restitution and every other free parameter
+//                    (Key::value, SI; a spring given by omega2 gives its k2 too)
 //       x            (variable) float64
 //       integrate/, shooting/   the two re-solves (rtol verify_rtol): attributes status,
 //                    message, regime (label), n, k, stable, T, T_con, k_con, F_max, z_max,

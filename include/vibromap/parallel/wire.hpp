@@ -82,10 +82,6 @@ class ByteReader {
   std::size_t position() const { return pos_; }
   std::size_t remaining() const { return size_ - pos_; }
   const char* here() const { return data_ + pos_; }
-  void skip(std::size_t n) {
-    need(n);
-    pos_ += n;
-  }
 
  private:
   void need(std::size_t n) const {

@@ -124,11 +124,11 @@ void to_physical(ContinuationReport& report, const KeyScale& scale) {
 
 ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const ContinuationConfig& config,
                                    const KeyScale& scale) {
-  const PointSetter set = point_setter(axis.key);
+  const Key key = Key::at(axis.key);
   const PointAt at_value = [&](double lambda) {
     std::pair<Parameters, PointOptions> point{scene.params, scene.options};
     point.second.analysis.trajectory_periods = 0;  // continue keeps no trajectory (run --trajectory does)
-    set(point.first, point.second, lambda);
+    key.set(point.first, point.second, lambda);
     return point;
   };
   const PointAt at = scale.log ? PointAt([&](double u) { return at_value(scale.physical(u)); }) : at_value;

@@ -94,14 +94,6 @@ CurveOptions curve_options(const Scene& scene, const ContinuationConfig& config,
   return co;
 }
 
-double scene_value(const Scene& scene, const Axis& axis2) {
-  try {
-    return get_parameter(scene.params, axis2.name);
-  } catch (const std::invalid_argument&) {
-    throw SceneError(cat("--param2 ", axis2.key, ": not a model parameter (a key of [system], [contact] or [forcing])"));
-  }
-}
-
 // A curve's points and codimension-two points in the keys' own units.
 void to_physical(Curve& c, const KeyScale& sp, const KeyScale& sq) {
   for (CurvePoint& p : c.points) p.param = sp.physical(p.param), p.param2 = sq.physical(p.param2);
@@ -135,7 +127,7 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
                         const CurveConfig& curves) {
   const auto t0 = std::chrono::steady_clock::now();
   CurvesReport report;
-  report.q0 = scene_value(scene, axis2);
+  report.q0 = Key::at(axis2.key).value(scene.params);
   if (!(curves.from2 < curves.to2))
     throw SceneError(cat("--from2 ", number(curves.from2, 12), " --to2 ", number(curves.to2, 12),
                          ": need --from2 < --to2"));
@@ -149,12 +141,12 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
   ContinuationConfig branch_config = config;
   branch_config.output.clear();
   report.branch = continue_scaled(scene, axis, branch_config, sp);
-  const PointSetter set = point_setter(axis.key), set2 = point_setter(axis2.key);
+  const Key key = Key::at(axis.key), key2 = Key::at(axis2.key);
   const PointAt2 at = [&](double P, double Q) {
     std::pair<Parameters, PointOptions> point{scene.params, scene.options};
     point.second.analysis.trajectory_periods = 0;  // as for the branch: no trajectory kept
-    set2(point.first, point.second, sq.physical(Q));
-    set(point.first, point.second, sp.physical(P));
+    key2.set(point.first, point.second, sq.physical(Q));
+    key.set(point.first, point.second, sp.physical(P));
     return point;
   };
   const CurveBox box{sp.engine(config.from), sp.engine(config.to), sq.engine(curves.from2), sq.engine(curves.to2),

@@ -305,7 +305,7 @@ OptimiseRun run_optimise(const MpiSession& mpi, const Scene& scene, const Optimi
   run_starts(mpi, scene, config, seeds, run);
   if ((run.stop_signal = mpi.broadcast(run.starts.stop_signal)) != 0 || mpi.rank() != 0) return run;
   OptimiseReport& report = run.report;
-  for (const FreeVariable& v : scene.optimise->variables) report.variables.push_back(v.name);
+  for (const FreeVariable& v : scene.optimise->variables) report.variables.emplace_back(v.name());
   report.measures = PointObjective(scene.params, scene.options, *scene.optimise).measure_names();
   report.seeds = seeds;
   report.optimise_wall_s = seconds_since(t_starts);

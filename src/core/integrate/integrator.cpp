@@ -5,6 +5,8 @@
 
 #include "steppers.hpp"
 #include "vibromap/core/integrate/free_flight.hpp"
+#include "vibromap/core/analysis/point/point_solver.hpp"
+#include "vibromap/core/model/keys.hpp"
 
 namespace vibromap {
 
@@ -28,12 +30,10 @@ std::string to_string(IntegrationStatus s) {
 }
 
 std::string validate(const IntegratorOptions& o) {
-  if (!(o.rtol > 0.0 && o.rtol < 0.1)) return "rtol must be in (0, 0.1)";
-  if (!(o.atol > 0.0 && std::isfinite(o.atol))) return "atol must be > 0";
-  if (!(o.max_step > 0.0 && o.max_step <= 1.0)) return "max_step must be in (0, 1]";
-  if (o.rk4_steps < 1) return "rk4_steps must be >= 1";
-  if (o.max_steps < 1 || o.max_steps > kMaxStepBudget) return "max_steps must be in [1, 1e10]";
-  return {};
+  PointOptions options;
+  options.integrator = o;
+  const std::vector<std::string> r = refusals(Parameters{}, options, "solver");
+  return r.empty() ? std::string() : r.front();
 }
 
 namespace {

@@ -14,33 +14,33 @@ namespace {
 
 constexpr double kSameOrbit = 1e-4;          // scaled distance under which a re-solved orbit is a census attractor
 
-bool is_free(const OptimiseOptions& o, std::string_view name) {
-  return std::any_of(o.variables.begin(), o.variables.end(), [&](const FreeVariable& v) { return v.name == name; });
-}
+// The key a map axis stands for: its full key, or (a map that names only the coordinate) the
+// key of that name.
+std::optional<Key> axis_key(const Axis& a) { return Key::find(a.key.empty() ? a.name : a.key); }
 
-// Every map axis is free, or the other form of a free spring (matched by Axis::name, the
-// parameter's name in maps).
+// Every map axis is a free parameter, or the other form of a free spring or damper (k2 for a
+// free omega2), so that a cell's point has a value of every free variable.
 void check_axes(const Grid& grid, const OptimiseOptions& o) {
   for (const Axis& a : grid.axes()) {
-    const bool spring_pair = (a.name == "k2" && is_free(o, "omega2")) || (a.name == "omega2" && is_free(o, "k2"));
-    if (is_free(o, a.name) || spring_pair) continue;
-    const auto& names = free_parameter_names();
-    if (std::find(names.begin(), names.end(), a.name) != names.end())
+    const std::optional<Key> k = axis_key(a);
+    const auto frees = [&](const FreeVariable& v) { return k && (v.key == *k || v.name() == k->info().partner); };
+    if (std::any_of(o.variables.begin(), o.variables.end(), frees)) continue;
+    if (k && k->is_parameter())
       throw std::invalid_argument(cat("map axis ", a.name, " is not a free parameter of [optimise]: free it (",
                                       a.name, " = { min, max }) or seed from a map without it"));
-    std::string allowed;
-    for (const std::string_view n : names) allowed += cat(allowed.empty() ? "" : ", ", n);
     throw std::invalid_argument(cat("map axis ", clip(a.name), " is not a free parameter of [optimise], nor can it be one ",
-                                    "(free parameters: ", allowed, "): seed from a map without it"));
+                                    "(free parameters are the real keys of [system], [contact] and [forcing]): seed from ",
+                                    "a map without it"));
   }
 }
 
 // The base parameters with cell `flat`'s axis values set (each axis names a free parameter or
-// its spring partner, so k2 and omega2 keep their form); `x` holds one value per axis.
-Parameters cell_parameters(const Grid& grid, const Parameters& base, std::size_t flat, std::vector<double>& x) {
+// its partner, so k2 and omega2 keep their form); `x` holds one value per axis.
+Parameters cell_parameters(const std::vector<Key>& keys, const Grid& grid, const Parameters& base, std::size_t flat,
+                           std::vector<double>& x) {
   grid.coordinates(flat, x);
   Parameters p = base;
-  for (std::size_t d = 0; d < x.size(); ++d) set_parameter(p, grid.axes()[d].name, x[d]);
+  for (std::size_t d = 0; d < x.size(); ++d) keys[d].set(p, x[d]);
   return p;
 }
 
@@ -87,14 +87,15 @@ SeedSelector::SeedSelector(const Grid& grid, const std::vector<Quantity>& stored
     throw std::invalid_argument("the map stores neither hertz_valid nor z_ratio, which hertz_valid = true needs: "
                                 "add one to [sweep] store");
   check_axes(grid, o);
+  for (const Axis& a : grid.axes()) axis_keys_.push_back(*axis_key(a));
 }
 
 void SeedSelector::offer(std::uint64_t flat, const CellResult& c) {
   if (!cell_qualifies(c, o_)) return;
   if (o_.hertz_valid && !cell_hertz_valid(c, stored_, hertz_limit_)) return;
-  const Parameters p = cell_parameters(grid_, base_, static_cast<std::size_t>(flat), x_);
+  const Parameters p = cell_parameters(axis_keys_, grid_, base_, static_cast<std::size_t>(flat), x_);
   Seed s{{}, static_cast<long>(flat), objective_sense(o_.objective) * c.value(quantity_)};
-  for (const FreeVariable& v : o_.variables) s.x.push_back(get_parameter(p, v.name));
+  for (const FreeVariable& v : o_.variables) s.x.push_back(v.key.value(p));
   if (!std::isfinite(s.value) || !box_.contains(s.x)) return;
   s.x = box_.to_physical(box_.to_scaled(s.x));  // a hair outside the box (rounding) comes inside
   best_.push_back(std::move(s));
@@ -128,7 +129,7 @@ std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& 
 Seed scene_seed(const Parameters& base, const OptimiseOptions& o) {
   const Box box(o.variables);
   Seed s;
-  for (const FreeVariable& v : o.variables) s.x.push_back(get_parameter(base, v.name));
+  for (const FreeVariable& v : o.variables) s.x.push_back(v.key.value(base));
   s.x = box.to_physical(box.to_scaled(s.x));
   return s;
 }

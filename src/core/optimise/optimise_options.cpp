@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "vibromap/core/text.hpp"
+
 namespace vibromap {
 namespace {
 
@@ -94,32 +96,26 @@ const std::vector<StabilityRule>& all_stability_rules() {
   return v;
 }
 
-const std::vector<std::string_view>& free_parameter_names() {
-  static const std::vector<std::string_view> names = {"E1", "E2", "R1", "R2", "m2", "k2", "omega2", "restitution"};
-  return names;
-}
-
 std::string validate(const FreeVariable& v) {
-  const auto& names = free_parameter_names();
-  if (std::find(names.begin(), names.end(), v.name) == names.end()) {
-    std::string allowed;
-    for (const std::string_view n : names) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
-    return "unknown free parameter '" + v.name + "' (allowed: " + allowed + ")";
-  }
-  if (!std::isfinite(v.min) || !std::isfinite(v.max)) return v.name + ": bounds must be finite";
-  if (!(v.min < v.max)) return v.name + ": min must be < max";
-  if (v.scale == AxisScale::log && v.min <= 0.0) return v.name + ": a log scale needs min > 0";
+  const std::string name(v.name());
+  if (!v.key.is_parameter())
+    return cat(v.key.full_name(), " cannot be free: a free parameter is a real key of [system], [contact] or [forcing]");
+  if (!std::isfinite(v.min) || !std::isfinite(v.max)) return name + ": bounds must be finite";
+  if (!(v.min < v.max)) return name + ": min must be < max";
+  if (v.scale == AxisScale::log && v.min <= 0.0) return name + ": a log scale needs min > 0";
+  for (const double x : {v.min, v.max})
+    if (std::string r = v.key.check(x); !r.empty()) return cat("the box of ", name, " reaches ", r);
   return {};
 }
 
 std::string validate(const LocalOptions& o) {
-  if (!(o.xtol_rel > 0.0 && o.xtol_rel < 1.0)) return "xtol_rel must be in (0, 1)";
-  if (!(o.ftol_rel >= 0.0 && o.ftol_rel < 1.0)) return "ftol_rel must be in [0, 1)";
-  if (o.max_evaluations < 1) return "max_evaluations must be >= 1";
-  if (!(o.max_time >= 0.0 && std::isfinite(o.max_time))) return "max_time must be >= 0";
-  if (!(o.initial_step > 0.0 && o.initial_step <= 1.0)) return "initial_step must be in (0, 1]";
-  if (!(o.fd_step > 0.0 && o.fd_step <= 0.1)) return "fd_step must be in (0, 0.1]";
-  if (!(o.barrier > 0.0 && std::isfinite(o.barrier))) return "barrier must be finite and > 0";
+  const std::pair<std::string_view, double> numbers[] = {
+      {"optimise.xtol_rel", o.xtol_rel},         {"optimise.ftol_rel", o.ftol_rel},
+      {"optimise.max_evaluations", static_cast<double>(o.max_evaluations)},
+      {"optimise.max_time", o.max_time},         {"optimise.initial_step", o.initial_step},
+      {"optimise.fd_step", o.fd_step},           {"optimise.barrier", o.barrier}};
+  for (const auto& [name, v] : numbers)
+    if (std::string r = check_option(name, v); !r.empty()) return r;
   return {};
 }
 
@@ -128,23 +124,22 @@ std::string validate(const OptimiseOptions& o) {
   for (std::size_t i = 0; i < o.variables.size(); ++i) {
     if (std::string e = validate(o.variables[i]); !e.empty()) return e;
     for (std::size_t j = 0; j < i; ++j)
-      if (o.variables[i].name == o.variables[j].name) return o.variables[i].name + " is free twice";
+      if (o.variables[i].key == o.variables[j].key) return cat(o.variables[i].name(), " is free twice");
+    for (std::size_t j = 0; j < i; ++j)
+      if (o.variables[j].name() == o.variables[i].key.info().partner)
+        return cat(o.variables[j].name(), " and ", o.variables[i].name(), " are both free: free only one");
   }
-  const auto is_free = [&](std::string_view n) {
-    return std::any_of(o.variables.begin(), o.variables.end(), [&](const FreeVariable& v) { return v.name == n; });
-  };
-  if (is_free("k2") && is_free("omega2")) return "k2 and omega2 are both free: free only one";
-  if (o.impact < 0) return "impact must be >= 0";
   if (o.algorithms.empty()) return "no algorithm";
   for (std::size_t i = 0; i < o.laws.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (o.laws[i] == o.laws[j]) return "law " + to_string(o.laws[i]) + " is listed twice";
-  if (o.seeds < 1) return "seeds must be >= 1";
-  if (o.best < 1) return "best must be >= 1";
-  if (!(o.verify_rtol > 0.0 && o.verify_rtol < 0.1)) return "verify_rtol must be in (0, 0.1)";
-  if (!(o.min_soft_fraction >= 0.0 && o.min_soft_fraction <= 1.0)) return "min_soft_fraction must be in [0, 1]";
-  if (o.soft_check_initial_conditions < 1 || o.soft_check_initial_conditions > 1'000'000)
-    return "soft_check_initial_conditions must be in [1, 1000000]";
+  const std::pair<std::string_view, double> numbers[] = {
+      {"optimise.impact", o.impact},           {"optimise.seeds", o.seeds},
+      {"optimise.best", o.best},               {"optimise.verify_rtol", o.verify_rtol},
+      {"optimise.min_soft_fraction", o.min_soft_fraction},
+      {"optimise.soft_check_initial_conditions", o.soft_check_initial_conditions}};
+  for (const auto& [name, v] : numbers)
+    if (std::string r = check_option(name, v); !r.empty()) return r;
   return validate(o.local);
 }
 

@@ -127,7 +127,7 @@ std::vector<std::string> PointObjective::measure_names() const {
 Parameters PointObjective::parameters_at(std::span<const double> x) const {
   if (x.size() != optimise_.variables.size()) throw std::invalid_argument("parameters_at: wrong number of values");
   Parameters p = base_;
-  for (std::size_t i = 0; i < x.size(); ++i) set_parameter(p, optimise_.variables[i].name, x[i]);
+  for (std::size_t i = 0; i < x.size(); ++i) optimise_.variables[i].key.set(p, x[i]);
   return p;
 }
 

@@ -16,7 +16,7 @@ using Side = std::optional<std::array<double, 2>> CensusOptions::*;
 constexpr std::string_view kSideForm = "an array [lo, hi] of two finite numbers with lo <= hi and a finite hi - lo";
 
 template <Side Member>
-void read_side(C& o, const SceneKey&, const toml::node& node, const std::string& loc) {
+void read_side(C& o, const KeyInfo&, const toml::node& node, const std::string& loc) {
   const toml::array* a = node.as_array();
   std::optional<double> lo, hi;
   if (a != nullptr && a->size() == 2) {
@@ -29,19 +29,28 @@ void read_side(C& o, const SceneKey&, const toml::node& node, const std::string&
 }
 
 template <Side Member>
-std::string side_text(const C& o, const SceneKey&) {
+std::string side_text(const C& o, const KeyInfo&) {
   const auto& side = o.*Member;
   return side ? cat("[", shortest((*side)[0]), ", ", shortest((*side)[1]), "]") : std::string("(scaled)");
 }
 
-CensusRow census_row(std::string_view key, SceneKeyType type, Bounds bounds, std::string_view unit,
+CensusRow census_row(std::string_view key, KeyType type, Bounds bounds, std::string_view unit,
                      std::string_view meaning, std::string default_text, RowAccess<C> access) {
   return {{kCensus, key, type, bounds, {}, unit, meaning, {}, std::move(default_text), true}, access.read, access.text, {}};
 }
 
+// A numeric option: its row is the key table's (option_keys(), core/model/keys.hpp).
+CensusRow numeric_row(std::string_view key, std::string default_text, RowAccess<C> access) {
+  KeyInfo info = option_key(cat(kCensus, ".", key));
+  info.default_text = std::move(default_text);
+  return {std::move(info), access.read, access.text, {}};
+}
+
+// A side of the box of initial states: over the [initial] key of its name, in that key's unit.
 template <Side Member>
-CensusRow side_row(std::string_view key, std::string_view unit, std::string_view meaning) {
-  CensusRow r = census_row(key, SceneKeyType::real, any_finite(), unit, meaning, "(scaled)",
+CensusRow side_row(std::string_view key, std::string_view meaning) {
+  const std::string_view unit = Key::at(cat("initial.", key)).info().unit;
+  CensusRow r = census_row(key, KeyType::real, Bounds::finite(), unit, meaning, "(scaled)",
                            {read_side<Member>, side_text<Member>});
   r.allowed_text = "[lo, hi], lo <= hi, hi - lo finite";
   r.info.default_given = false;
@@ -51,42 +60,26 @@ CensusRow side_row(std::string_view key, std::string_view unit, std::string_view
 std::vector<CensusRow> make_rows() {
   const C d;
   std::vector<CensusRow> rows;
-  rows.push_back(census_row("initial_conditions", SceneKeyType::integer, interval(1, 1e6, false, false), "-",
-                            "initial states followed, the rest state (initial condition 0) included",
-                            std::to_string(d.initial_conditions), integer_field<C, &C::initial_conditions>()));
-  rows.push_back(side_row<&C::x1>("x1", "m", "box side of x1; not given: the rest value +- L, L = max(D, lambda F0 / k1)"));
-  rows.push_back(side_row<&C::x2>("x2", "m", "box side of x2; not given: D +- L"));
-  rows.push_back(side_row<&C::v1>("v1", "m/s", "box side of v1; not given: +- omega L"));
-  rows.push_back(side_row<&C::v2>("v2", "m/s", "box side of v2; not given: +- omega L"));
-  rows.push_back(census_row("seed", SceneKeyType::integer, interval(0, 9.0e15, false, false), "-",
-                            "seed of the uniform draws in the box (a draw with x1 - x2 > 0 is drawn again)",
-                            std::to_string(d.seed), integer_field<C, &C::seed>()));
-  rows.push_back(census_row("max_attractors", SceneKeyType::integer, interval(1, 64, false, false), "-",
-                            "attractors listed, most visited first; states reaching others are counted as unlisted",
-                            std::to_string(d.max_attractors), integer_field<C, &C::max_attractors>()));
-  rows.push_back(census_row("recurrences", SceneKeyType::integer, interval(2, 1e5, false, false), "-",
-                            "stroboscopic points in a row on a known non-periodic attractor's cells: a stay on it (a "
-                            "state that stays, then leaves, flags the attractor transient)",
-                            std::to_string(d.recurrences), integer_field<C, &C::recurrences>()));
-  rows.push_back(census_row("max_transient_periods", SceneKeyType::integer, interval(0, 1e8, false, false), "-",
-                            "transient chaos: a state the budget leaves on a non-periodic set that states were seen "
-                            "to leave is followed on in rounds of analysis.max_periods, until at most sqrt(K)/4 "
-                            "such states (and not rest) remain, up to this many periods in all; 0: not at all",
-                            std::to_string(d.max_transient_periods), integer_field<C, &C::max_transient_periods>()));
-  rows.push_back(census_row("decide_by_recurrence", SceneKeyType::boolean, any_finite(), "-",
+  rows.push_back(numeric_row("initial_conditions", std::to_string(d.initial_conditions),
+                             integer_field<C, &C::initial_conditions>()));
+  rows.push_back(side_row<&C::x1>("x1", "box side of x1; not given: the rest value +- L, L = max(D, lambda F0 / k1)"));
+  rows.push_back(side_row<&C::x2>("x2", "box side of x2; not given: D +- L"));
+  rows.push_back(side_row<&C::v1>("v1", "box side of v1; not given: +- omega L"));
+  rows.push_back(side_row<&C::v2>("v2", "box side of v2; not given: +- omega L"));
+  rows.push_back(numeric_row("seed", std::to_string(d.seed), integer_field<C, &C::seed>()));
+  rows.push_back(numeric_row("max_attractors", std::to_string(d.max_attractors), integer_field<C, &C::max_attractors>()));
+  rows.push_back(numeric_row("recurrences", std::to_string(d.recurrences), integer_field<C, &C::recurrences>()));
+  rows.push_back(numeric_row("max_transient_periods", std::to_string(d.max_transient_periods),
+                             integer_field<C, &C::max_transient_periods>()));
+  rows.push_back(census_row("decide_by_recurrence", KeyType::boolean, Bounds::finite(), "-",
                             "a stay labels the state with that attractor unless states were seen to leave it "
                             "(Attractors.jl's rule; faster, but on transient chaos it keeps states brute force sees "
                             "leave before analysis.max_periods); false: non-periodic only at the budget's end, as "
                             "brute force",
                             d.decide_by_recurrence ? "true" : "false", bool_field<C, &C::decide_by_recurrence>()));
-  rows.push_back(census_row("cell", SceneKeyType::real, gt(0), "-",
-                            "cell of the non-periodic recurrence grid, in motion scales (L, omega L)",
-                            toml_float(d.cell), real_field<C, &C::cell>()));
-  rows.push_back(census_row("rtol", SceneKeyType::real, interval(1e-14, 1e-3, false, false), "-",
-                            "tolerance initial states are followed at (orbits are refined at [solver] rtol); the "
-                            "scene's when looser",
-                            toml_float(d.rtol), real_field<C, &C::rtol>()));
-  rows.push_back(census_row("early_stop", SceneKeyType::boolean, any_finite(), "-",
+  rows.push_back(numeric_row("cell", float_text(d.cell), real_field<C, &C::cell>()));
+  rows.push_back(numeric_row("rtol", float_text(d.rtol), real_field<C, &C::rtol>()));
+  rows.push_back(census_row("early_stop", KeyType::boolean, Bounds::finite(), "-",
                             "decide states early (capture, Newton searches, recurrence when asked); false: brute force, every "
                             "state integrated to its steady state at [solver] rtol (for checks)",
                             d.early_stop ? "true" : "false", bool_field<C, &C::early_stop>()));
@@ -103,7 +96,7 @@ const std::vector<CensusRow>& census_rows() {
 const std::vector<std::string_view>& census_keys() {
   static const std::vector<std::string_view> keys = [] {
     std::vector<std::string_view> k;
-    for (const CensusRow& row : census_rows()) k.push_back(row.info.key);
+    for (const CensusRow& row : census_rows()) k.push_back(row.info.name);
     return k;
   }();
   return keys;

@@ -16,7 +16,6 @@ namespace vibromap {
 
 using detail::all_sections;
 using detail::first_axes;
-using detail::free_parameter_key;
 using detail::join;
 using detail::keys_of;
 using detail::kAxisForms;
@@ -27,7 +26,7 @@ using detail::optimise_rows;
 using detail::OptimiseRow;
 using detail::partner_of;
 using detail::quantity_names;
-using detail::schema_sections;
+using detail::point_sections;
 using detail::sweep_intervals;
 using detail::SweepInterval;
 using detail::unit_suffix;
@@ -41,9 +40,9 @@ std::string column(std::string_view s, std::size_t width) {
   return out;
 }
 
-void write_reference_key(std::ostream& os, const SceneKey& k) {
-  std::string lhs = cat(k.key, " = ", k.default_text);
-  if (!k.default_given) lhs = cat("# ", k.key, " = (", k.default_text, ")");
+void write_reference_key(std::ostream& os, const KeyInfo& k) {
+  std::string lhs = cat(k.name, " = ", k.default_text);
+  if (!k.default_given) lhs = cat("# ", k.name, " = (", k.default_text, ")");
   os << column(lhs, 26) << "  # " << k.meaning << unit_suffix(k.unit) << ", " << k.allowed();
   if (!k.partner.empty()) os << "; or give " << k.partner;
   os << "\n";
@@ -54,10 +53,10 @@ struct KeyRow {
   std::string name, default_text, unit, allowed, meaning;
 };
 
-KeyRow key_row(const SceneKey& k) {
+KeyRow key_row(const KeyInfo& k) {
   std::string meaning(k.meaning);
   if (!k.partner.empty()) meaning += cat("; or give ", k.partner);
-  return {cat(k.section, ".", k.key), k.default_text, std::string(k.unit), k.allowed(), meaning};
+  return {k.full_name(), k.default_text, std::string(k.unit), k.allowed(), meaning};
 }
 
 void write_key_table(std::ostream& os, const std::vector<KeyRow>& rows) {
@@ -106,16 +105,13 @@ std::vector<KeyRow> sweep_rows() {
   return rows;
 }
 
-// The [optimise] rows of `vibromap keys`: one per free parameter, then the options.
+// The [optimise] rows of `vibromap keys`: the free parameters (any parameter key), then the options.
 std::vector<KeyRow> optimise_doc_rows() {
   std::vector<KeyRow> rows;
-  for (const std::string_view name : free_parameter_names()) {
-    const SceneKey& k = free_parameter_key(name);
-    std::string meaning = cat("free parameter [", k.section, "] ", name, " and its box: ", kVariableForm,
-                              ", scale \"lin\" or \"log\"");
-    if (!k.partner.empty()) meaning += cat("; or free ", k.partner);
-    rows.push_back({cat(kOptimise, ".", name), "(fixed)", std::string(k.unit), cat("bounds ", k.allowed()), meaning});
-  }
+  rows.push_back({"optimise.KEY", "(fixed)", "KEY's", "bounds KEY allows",
+                  cat("free parameter and its box: any real key of [system], [contact] or [forcing], named by the key "
+                      "alone (E1 = ...) or section.key (\"forcing.omega\" = ...): ", kVariableForm,
+                      ", scale \"lin\" or \"log\"; not both keys of a pair (k2|omega2, ...)")});
   for (const OptimiseRow& row : optimise_rows()) {
     KeyRow r = key_row(row.info);
     r.allowed = row.allowed();
@@ -143,8 +139,9 @@ void write_example_line(std::ostream& os, const std::string& lhs, std::string_vi
 // A commented example [optimise] section: without the leading "# ", its lines parse.
 void write_reference_optimise(std::ostream& os) {
   os << "\n# An optimisation for `vibromap optimise`: the values above are the base point and the free\n"
-        "# parameters move inside their box (any of E1, E2, R1, R2, m2, k2|omega2, as NAME = { min, max[,\n"
-        "# scale] }, scale \"lin\" (default) or \"log\"). The starts are the best cells of a map: `map`, or\n"
+        "# parameters move inside their box (any real key of [system], [contact] or [forcing], as\n"
+        "# NAME = { min, max[, scale] }, scale \"lin\" (default) or \"log\"). The starts are the best cells\n"
+        "# of a map: `map`, or\n"
         "# the scene's [sweep] run first, or else the scene's point. [optimise] has no default: uncomment\n"
         "# and edit this example (jobs/paper/optimise_box.toml is a whole job).\n"
         "#\n"
@@ -152,8 +149,8 @@ void write_reference_optimise(std::ostream& os) {
         "# m2 = { min = 100.0, max = 310.0 }\n"
         "# E1 = { min = 2e4, max = 2.1e11, scale = \"log\" }\n";
   for (const OptimiseRow& row : optimise_rows()) {
-    const SceneKey& k = row.info;
-    const std::string lhs = k.key == "map" ? std::string("map = \"box.h5\"") : cat(k.key, " = ", k.default_text);
+    const KeyInfo& k = row.info;
+    const std::string lhs = k.name == "map" ? std::string("map = \"box.h5\"") : cat(k.name, " = ", k.default_text);
     write_example_line(os, lhs, cat(k.meaning, unit_suffix(k.unit), ", ", row.allowed()));
   }
 }
@@ -166,10 +163,10 @@ void write_reference_census(std::ostream& os) {
         "#\n"
         "# [census]\n";
   for (const detail::CensusRow& row : detail::census_rows()) {
-    const SceneKey& k = row.info;
+    const KeyInfo& k = row.info;
     // The sides' examples are the defaults of Table 1 (L = D = 0.05 m, omega L = 0.3615 m/s).
-    const std::string side = k.key == "x1" ? "[-0.05, 0.05]" : k.key == "x2" ? "[0.0, 0.1]" : "[-0.3615, 0.3615]";
-    const std::string lhs = k.default_given ? cat(k.key, " = ", k.default_text) : cat(k.key, " = ", side);
+    const std::string side = k.name == "x1" ? "[-0.05, 0.05]" : k.name == "x2" ? "[0.0, 0.1]" : "[-0.3615, 0.3615]";
+    const std::string lhs = k.default_given ? cat(k.name, " = ", k.default_text) : cat(k.name, " = ", side);
     write_example_line(os, lhs, cat(k.meaning, unit_suffix(k.unit), ", ", row.allowed()));
   }
 }
@@ -193,8 +190,8 @@ void write_reference_sweep(std::ostream& os) {
   write_example_line(os, cat("store = ", store_text(SweepOptions{}.store)),
        cat("optional per-cell quantities, any of ", join(views(quantity_names()), ", ")));
   for (const SweepInterval& row : sweep_intervals()) {
-    const SceneKey& k = row.info;
-    write_example_line(os, cat(k.key, " = ", k.default_text), cat(k.meaning, unit_suffix(k.unit), ", ", k.allowed()));
+    const KeyInfo& k = row.info;
+    write_example_line(os, cat(k.name, " = ", k.default_text), cat(k.meaning, unit_suffix(k.unit), ", ", k.allowed()));
   }
   const auto& refine = detail::sweep_refine_keys();
   write_example_line(os, cat("refine = ", refine[0].default_text), cat(refine[0].meaning, ", ", refine[0].allowed()));
@@ -216,7 +213,7 @@ std::string frequency_rule_text(std::string_view prefix) {
 
 void write_scene_keys(std::ostream& os) {
   std::vector<KeyRow> rows;
-  for (const SceneKey& k : scene_keys()) rows.push_back(key_row(k));
+  for (const Key k : Key::all()) rows.push_back(key_row(k.info()));
   write_key_table(os, rows);
   os << "\n" << frequency_rule_text("");
   os << "\n[sweep] (only in a sweep scene: a grid around the point above; example in jobs/reference.toml)\n";
@@ -252,10 +249,10 @@ void write_reference_scene(std::ostream& os) {
         "# (give k1 or omega1, xi1 or c1, ..., not both) and [initial], which defaults to\n"
         "# the rest state (x1, x2, v1, v2) = (0, D, 0, 0); set any subset of it.\n"
      << frequency_rule_text("# ");
-  for (std::string_view section : schema_sections()) {
+  for (std::string_view section : point_sections()) {
     os << "\n[" << section << "]\n";
-    for (const SceneKey& k : scene_keys()) {
-      if (k.section == section) write_reference_key(os, k);
+    for (const Key k : Key::all()) {
+      if (k.info().section == section) write_reference_key(os, k.info());
     }
   }
   write_reference_optimise(os);

@@ -10,27 +10,26 @@
 namespace vibromap {
 namespace {
 
-using detail::Binding;
-using detail::KeyValue;
 
 constexpr std::size_t kShownValue = 40;  // characters of a value (or key) shown in a difference
 
-std::string canonical_value(const SceneKey& k, const KeyValue& v) {
+// A value as the identity writes it: a real in its shortest form, a choice by its name.
+std::string canonical_value(const KeyInfo& k, double v) {
   switch (k.type) {
-    case SceneKeyType::real: return shortest(v.real);
-    case SceneKeyType::integer: return std::to_string(v.integer);
-    case SceneKeyType::choice: return std::string(k.choices.at(static_cast<std::size_t>(v.choice)));
-    case SceneKeyType::boolean: return v.integer != 0 ? "true" : "false";
+    case KeyType::real: return shortest(v);
+    case KeyType::integer: return std::to_string(static_cast<long long>(v));
+    case KeyType::choice: return std::string(k.choices.at(static_cast<std::size_t>(v)));
+    case KeyType::boolean: return v != 0.0 ? "true" : "false";
   }
   return {};
 }
 
 void add_point_lines(const Scene& scene, std::vector<std::string>& lines) {
-  for (const Binding& b : detail::bindings()) {
-    const int component = b.access.component;
+  for (const Key k : Key::all()) {
+    const int component = k.component();
     if (component >= 0 && !scene.initial_given.at(static_cast<std::size_t>(component))) continue;
-    if (const auto v = b.access.get(scene.params, scene.options))
-      lines.push_back(cat(detail::full_key(b.info), " = ", canonical_value(b.info, *v)));
+    if (const std::optional<double> v = k.stored(scene.params, scene.options))
+      lines.push_back(cat(k.full_name(), " = ", canonical_value(k.info(), *v)));
   }
 }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "scene_internal.hpp"
@@ -31,11 +32,9 @@ std::string where(const Context& ctx, const toml::node& node) {
   return line > 0 ? ctx.path + ":" + std::to_string(line) : ctx.path;
 }
 
-// "file:3: [system] m2 = -5" or "file: --set system.m2=-5".
-std::string locate(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
-  const auto it = ctx.overrides.find(cat(section, ".", key));
-  if (it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second));
-  return cat(where(ctx, node), ": [", section, "] ", clip(key), " = ", clipped_text(node));
+std::string value_text(const toml::node& node) {
+  if (const auto* f = node.as_floating_point()) return vibromap::value_text(f->get());
+  return clipped_text(node);
 }
 
 std::string origin(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
@@ -43,8 +42,12 @@ std::string origin(const Context& ctx, std::string_view section, std::string_vie
   return it != ctx.overrides.end() ? cat(ctx.path, ": ", clip(it->second)) : where(ctx, node);
 }
 
-std::string locate(const Context& ctx, const SceneKey& k, const toml::node& node) {
-  return locate(ctx, k.section, k.key, node);
+std::string locate(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node) {
+  return cat(origin(ctx, section, key, node), ": [", section, "] ", clip(key), " = ", value_text(node));
+}
+
+std::string locate(const Context& ctx, const KeyInfo& k, const toml::node& node) {
+  return locate(ctx, k.section, k.name, node);
 }
 
 std::optional<double> number_of(const toml::node& node) {
@@ -53,16 +56,13 @@ std::optional<double> number_of(const toml::node& node) {
   return std::nullopt;
 }
 
-double read_real(const SceneKey& k, const toml::node& node, const std::string& loc) {
-  const std::optional<double> x = number_of(node);
-  const bool unbounded = !std::isfinite(k.bounds.lo) && !std::isfinite(k.bounds.hi);
-  const std::string requirement = unbounded ? "a finite number" : cat("a finite number ", k.allowed());
-  if (!x || !std::isfinite(*x)) fail(cat(loc, ": must be ", requirement, unit_suffix(k.unit)));
-  if (!k.bounds.contains(*x)) fail(loc + ": must be " + k.allowed() + unit_suffix(k.unit));
-  return *x;
+double read_real(const KeyInfo& k, const toml::node& node, const std::string& loc) {
+  const double x = number_of(node).value_or(std::numeric_limits<double>::quiet_NaN());
+  if (const std::string need = k.requirement(x); !need.empty()) fail(cat(loc, ": ", need));
+  return x;
 }
 
-int read_choice(const SceneKey& k, const toml::node& node, const std::string& loc) {
+int read_choice(const KeyInfo& k, const toml::node& node, const std::string& loc) {
   const auto* s = node.as_string();
   if (s != nullptr) {
     for (std::size_t i = 0; i < k.choices.size(); ++i) {
@@ -76,7 +76,7 @@ int read_choice(const SceneKey& k, const toml::node& node, const std::string& lo
   fail(msg);
 }
 
-long long read_boolean(const SceneKey& k, const toml::node& node, const std::string& loc) {
+long long read_boolean(const KeyInfo& k, const toml::node& node, const std::string& loc) {
   if (const auto* b = node.as_boolean()) return b->get() ? 1 : 0;
   fail(loc + ": must be " + k.allowed());
 }
@@ -115,8 +115,9 @@ constexpr RetiredKey kRetiredKeys[] = {
   std::string msg = cat(loc, ": unknown key '", clip(key), "' in [", section, "]");
   const auto keys = keys_of(section);
   const auto home = section_of(key);
-  if (home && section == kOptimise && is_parameter_name(key)) {
-    msg += cat(" (", key, " cannot be a free parameter)");
+  if (const std::optional<Key> k = Key::find(key); k && section == kOptimise && !k->is_parameter()) {
+    msg += cat(" (", k->full_name(), " cannot be a free parameter: free parameters are the real keys of [system], ",
+               "[contact] and [forcing])");
   } else if (home) {
     msg += cat(" (it belongs in [", *home, "])");
   } else if (const auto hint = closest(key, keys)) {
@@ -166,8 +167,8 @@ void assign_override_value(toml::table& section, std::string_view key, const std
 // The sections with a key of this name: the schema's, then [sweep], [optimise] and [census] options.
 std::vector<std::string_view> sections_with_key(std::string_view name) {
   std::vector<std::string_view> homes;
-  for (const Binding& b : bindings())
-    if (b.info.key == name) homes.push_back(b.info.section);
+  for (const Key k : Key::all())
+    if (k.info().name == name) homes.push_back(k.info().section);
   const auto has = [&](const std::vector<std::string_view>& keys) { return std::find(keys.begin(), keys.end(), name) != keys.end(); };
   if (has(sweep_option_keys())) homes.push_back(kSweep);
   if (has(optimise_option_keys())) homes.push_back(kOptimise);
@@ -186,7 +187,7 @@ std::string qualified_override_name(const std::string& name, const std::string& 
     fail(cat(loc, ": several sections have the key '", name, "': name it section.key (", join(views(choices), " or "), ")"));
   }
   std::vector<std::string> keys;
-  for (const Binding& b : bindings()) keys.emplace_back(b.info.key);
+  for (const Key k : Key::all()) keys.emplace_back(k.info().name);
   std::string msg = cat(loc, ": unknown key '", clip(name), "'");
   if (const auto hint = closest(name, views(keys))) msg += cat(" (did you mean '", *hint, "'?)");
   fail(cat(msg, "; expected section.key=value, or key=value when only one section has the key (e.g. --set system.m2=310)"));
@@ -211,11 +212,20 @@ void apply_override(toml::table& table, const std::string& given, Context& ctx) 
   if (!table.contains(section)) table.insert(section, toml::table{});
   toml::table* sec = table.get_as<toml::table>(section);
   if (sec == nullptr) fail(cat(where(ctx, *table.get(section)), ": '", section, "' must be a section [", section, "]"));
-  if (section == kSweep && !is_sweep_option(key)) erase_sweep_axis(*sec, key, loc);  // replaces every spelling
+  // --set replaces every spelling of the key and the other form of a pair
+  if (section == kSweep && !is_sweep_option(key)) erase_sweep_axis(*sec, key, loc);
+  if (section == kOptimise && !is_optimise_option(key)) erase_key_entries(*sec, *free_parameter(key), is_optimise_option);
   assign_override_value(*sec, key, trim(std::string_view(given).substr(eq + 1)));
-  if (const auto partner = partner_of(section, key); !partner.empty()) sec->erase(partner);  // --set replaces the other form
+  if (const auto partner = partner_of(section, key); !partner.empty()) sec->erase(partner);
   ctx.overrides[name] = option;
   ctx.override_list.push_back(option);
+}
+
+// A command's axes replace the file's axes of their keys (and of their pair partners).
+void replace_file_axes(toml::table& table, const Context& ctx) {
+  toml::table* sweep = table.get_as<toml::table>(kSweep);
+  if (sweep == nullptr) return;
+  for (const CommandAxis& a : ctx.axes) erase_key_entries(*sweep, Key::at(a.axis.key), is_sweep_option);
 }
 
 void check_structure(const toml::table& table, const Context& ctx) {
@@ -232,59 +242,62 @@ void check_structure(const toml::table& table, const Context& ctx) {
       sweep_axis_entries(*sec, ctx);  // checks the axes' names; the options are known keys
       continue;
     }
+    if (name.str() == kOptimise) {  // the free parameters by any name, the options
+      for_each_key_entry(*sec, is_optimise_option, [&](const std::string& given, const std::string&, const toml::node& value) {
+        if (!free_parameter(given)) fail_unknown_key(where(ctx, value), kOptimise, given);
+      });
+      continue;
+    }
     for (auto&& [key, value] : *sec) {
       if (!has_key(name.str(), key.str())) fail_unknown_key(where(ctx, value), name.str(), key.str());
     }
   }
 }
 
-void check_pair(const toml::table& section, const SceneKey& k, const Context& ctx, const toml::node& node) {
+void check_pair(const toml::table& section, const KeyInfo& k, const Context& ctx, const toml::node& node) {
   if (k.partner.empty() || !section.contains(k.partner)) return;
-  const Binding* other = find_binding(k.section, k.partner);
-  fail(cat(where(ctx, node), ": [", k.section, "] both ", k.key, " and ", k.partner, " given: give only one ",
-           pair_advice(k, other->info)));
+  const KeyInfo& other = Key::at(cat(k.section, ".", k.partner)).info();
+  fail(cat(where(ctx, node), ": [", k.section, "] both ", k.name, " and ", k.partner, " given: give only one ",
+           pair_advice(k, other)));
 }
 
 // ---------------------------------------------------------------------------------------
 // Values.
 
-long long read_integer(const Binding& b, const toml::node& node, const std::string& loc) {
-  const SceneKey& k = b.info;
-  std::optional<long long> n;
-  if (const auto* i = node.as_integer()) n = i->get();
-  if (const auto* f = node.as_floating_point()) {
-    const double v = f->get();  // a whole float such as 2000.0 is accepted
-    if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9.0e18) n = static_cast<long long>(v);
-  }
-  if (!n || !k.bounds.contains(static_cast<double>(*n))) fail(loc + ": must be " + k.allowed());
-  if (*n > b.access.int_max) fail(loc + ": must be at most " + std::to_string(b.access.int_max));
-  return *n;
+// A whole number, from a TOML integer or a whole float such as 2000.0; NaN for anything else.
+double whole_number(const toml::node& node) {
+  if (const auto* i = node.as_integer()) return static_cast<double>(i->get());
+  const double v = number_of(node).value_or(std::numeric_limits<double>::quiet_NaN());
+  return v == std::trunc(v) ? v : std::numeric_limits<double>::quiet_NaN();
 }
 
-KeyValue read_value(const Binding& b, const toml::node& node, const std::string& loc) {
-  KeyValue v;
-  switch (b.info.type) {
-    case SceneKeyType::real: v.real = read_real(b.info, node, loc); break;
-    case SceneKeyType::integer:
-      v.integer = read_integer(b, node, loc);
-      v.real = static_cast<double>(v.integer);
-      break;
-    case SceneKeyType::choice: v.choice = read_choice(b.info, node, loc); break;
-    case SceneKeyType::boolean: v.integer = read_boolean(b.info, node, loc); break;
+// The checked value of point key k as Key::set takes it (a choice: its index; a boolean: 0 or 1).
+double read_value(Key k, const toml::node& node, const std::string& loc) {
+  const KeyInfo& info = k.info();
+  switch (info.type) {
+    case KeyType::real: return read_real(info, node, loc);
+    case KeyType::integer: {
+      const double n = whole_number(node);
+      if (const std::string need = k.requirement(n); !need.empty()) fail(cat(loc, ": ", need));
+      return n;
+    }
+    case KeyType::choice: return read_choice(info, node, loc);
+    case KeyType::boolean: return static_cast<double>(read_boolean(info, node, loc));
   }
-  return v;
+  return 0.0;
 }
 
 // Every key in schema order ([initial] last, after D), then [sweep], [optimise] and [census].
 Scene read_values(const toml::table& table, const Context& ctx) {
   Scene scene;
-  for (const Binding& b : bindings()) {
-    const toml::table* sec = table.get_as<toml::table>(b.info.section);
-    const toml::node* node = sec != nullptr ? sec->get(b.info.key) : nullptr;
+  for (const Key k : Key::all()) {
+    const KeyInfo& info = k.info();
+    const toml::table* sec = table.get_as<toml::table>(info.section);
+    const toml::node* node = sec != nullptr ? sec->get(info.name) : nullptr;
     if (node == nullptr) continue;
-    check_pair(*sec, b.info, ctx, *node);
-    b.access.set(scene.params, scene.options, read_value(b, *node, locate(ctx, b.info, *node)));
-    if (b.access.component >= 0) scene.initial_given.at(static_cast<std::size_t>(b.access.component)) = true;
+    check_pair(*sec, info, ctx, *node);
+    k.set(scene.params, scene.options, read_value(k, *node, locate(ctx, info, *node)));
+    if (k.component() >= 0) scene.initial_given.at(static_cast<std::size_t>(k.component())) = true;
   }
   scene.sweep = read_sweep(table, ctx);
   scene.optimise = read_optimise(table, ctx);
@@ -308,7 +321,15 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
     if (section == kSweep) {  // the axes as given, in the default order, then the options
       for (const SweepAxisEntry& e : sweep_axis_entries(*sec, ctx)) os << e.text_key << " = " << node_text(*e.node) << "\n";
     }
-    for (std::string_view key : keys_of(section)) {
+    if (section == kOptimise) {  // the free parameters as given, in the default order, then the options
+      std::vector<std::pair<std::size_t, std::string>> lines;
+      for_each_key_entry(*sec, is_optimise_option, [&](const std::string& given, const std::string& text_key, const toml::node& node) {
+        lines.emplace_back(key_rank(*free_parameter(given)), cat(text_key, " = ", node_text(node), "\n"));
+      });
+      std::stable_sort(lines.begin(), lines.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const auto& [rank, line] : lines) os << line;
+    }
+    for (std::string_view key : section == kOptimise ? optimise_option_keys() : keys_of(section)) {
       if (const toml::node* node = sec->get(key)) os << key << " = " << node_text(*node) << "\n";
     }
   }
@@ -320,20 +341,18 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
 // (frequency_ratio_error, parameters.hpp). It moves one way with each key it reads, so over a
 // [sweep] grid or an [optimise] box its extremes are at the corners: those are checked.
 
-// The keys frequency_ratio_error reads, as --set names them.
-constexpr std::string_view kRatioKeys[] = {"forcing.omega", "system.m1", "system.m2", "system.k1", "system.omega1",
-                                           "system.k2",     "system.omega2", "system.c1", "system.xi1", "system.c2",
-                                           "system.xi2"};
-
 // "file: --set forcing.omega=1e-9" when one of the rule's keys was overridden, else "file".
 std::string ratio_origin(const Context& ctx) {
-  for (std::string_view key : kRatioKeys)
-    if (const auto it = ctx.overrides.find(key); it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second, 200));
+  for (const Key k : Key::all())
+    if (k.info().frequency_rule)
+      if (const auto it = ctx.overrides.find(k.full_name()); it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second, 200));
   return ctx.path;
 }
 
-// "file: [sweep]", or "file: --set sweep.KEY=..." when one of the axes was set so.
+// "file: --param KEY" for a command's axis, "file: --set sweep.KEY=..." when one of the axes
+// was set so, else "file: [sweep]".
 std::string sweep_origin(const Context& ctx, const std::vector<Axis>& axes) {
+  if (!ctx.axes.empty()) return cat(ctx.path, ": ", ctx.axes.front().option);
   for (const Axis& a : axes)
     for (const std::string& name : {a.key, a.name})
       if (const auto it = ctx.overrides.find(cat(kSweep, ".", name)); it != ctx.overrides.end())
@@ -381,8 +400,8 @@ void check_optimise_corners(const Scene& scene, const Context& ctx) {
     std::vector<std::string> at;
     for (std::size_t d = 0; d < vars.size(); ++d) {
       const double v = ((corner >> d) & 1U) != 0 ? vars[d].max : vars[d].min;
-      set_parameter(p, vars[d].name, v);
-      at.push_back(cat(vars[d].name, " = ", shortest(v)));
+      vars[d].key.set(p, v);
+      at.push_back(cat(vars[d].name(), " = ", shortest(v)));
     }
     if (const std::string err = frequency_ratio_error(p); !err.empty())
       fail(cat(ctx.path, ": [", kOptimise, "] at the corner ", join(views(at), ", "), " of the box: ", err));
@@ -455,16 +474,19 @@ std::string read_file(const std::string& path) {
 }  // namespace
 }  // namespace detail
 
-Scene parse_scene(std::string_view text, const std::string& path, const std::vector<std::string>& overrides) {
-  detail::Context ctx{path, {}, {}};
+Scene parse_scene(std::string_view text, const std::string& path, const std::vector<std::string>& overrides,
+                  const std::vector<CommandAxis>& axes) {
+  detail::Context ctx{path, {}, {}, axes};
   toml::table table = detail::parse_toml(text, path);
   for (const std::string& o : overrides) detail::apply_override(table, o, ctx);
+  detail::replace_file_axes(table, ctx);
   detail::check_structure(table, ctx);
   return detail::finish(detail::read_values(table, ctx), table, ctx);
 }
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  return parse_scene(detail::read_file(path), path, overrides);
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides,
+                 const std::vector<CommandAxis>& axes) {
+  return parse_scene(detail::read_file(path), path, overrides, axes);
 }
 
 }  // namespace vibromap

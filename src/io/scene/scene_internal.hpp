@@ -20,59 +20,12 @@
 namespace vibromap::detail {
 
 // ---------------------------------------------------------------------------------------
-// The schema (keys.cpp).
+// The point keys (core/model/keys.hpp) as a scene names them.
 
-// A checked value of one key: `real` for real and integer keys, `integer` for integer
-// keys, `choice` (index into SceneKey::choices) for choice keys.
-struct KeyValue {
-  double real = 0.0;
-  long long integer = 0;
-  int choice = 0;
-};
-
-// How a key reads and writes its field of a parameter point. The reader applies every key it
-// finds in schema order, [initial] last, so an [initial] key that fills the other components
-// from the rest state (0, D, 0, 0) sees the final D; a [sweep] cell applies its axes the same
-// way (cell_maker.cpp).
-using Setter = void (*)(Parameters&, PointOptions&, const KeyValue&);
-using Getter = std::optional<KeyValue> (*)(const Parameters&, const PointOptions&);  // nullopt: not set in this form
-
-struct Accessors {
-  Setter set;
-  Getter get;
-  long long int_max;   // integer keys: the largest value the field's type holds
-  int component = -1;  // [initial] keys: the index into Parameters::initial (x1, x2, v1, v2)
-};
-
-// One row of the schema: the documentation view plus how to read and write the value.
-struct Binding {
-  SceneKey info;
-  Accessors access;
-  std::string_view unset_default;  // default_text when the default Scene does not set the key
-};
-
-// Every row, in schema order.
-const std::vector<Binding>& bindings();
-const Binding* find_binding(std::string_view section, std::string_view key);  // nullptr: none
-// The row a name stands for: "section.key", or a key name only one section has ("omega").
-// nullptr: no such key, or a name several sections have.
-const Binding* find_key(std::string_view name);
-std::size_t index_of(const Binding& b);  // its position in bindings()
-std::string full_key(const SceneKey& k);  // "forcing.omega"
+// The sections of the point keys, in table order.
+std::vector<std::string_view> point_sections();
 // How to give one key of a pair: "(k2 in N/m, or omega2 in rad/s)", "(xi1 dimensionless, or c1 in N s/m)".
-std::string pair_advice(const SceneKey& a, const SceneKey& b);
-bool is_numeric(const SceneKey& k);       // a real or integer key
-// A choice key of [system], [contact] or [forcing] (contact.law): a [sweep] axis whose
-// values are names, kept as indices into the key's choices.
-bool is_categorical_axis(const SceneKey& k);
-// A value of the key as a double: integer keys read it as a whole number.
-KeyValue numeric_value(const SceneKey& k, double v);
-
-// Bounds of numeric keys.
-Bounds gt(double lo);          // > lo
-Bounds ge(double lo);          // >= lo
-Bounds any_finite();           // finite
-Bounds interval(double lo, double hi, bool lo_open, bool hi_open);
+std::string pair_advice(const KeyInfo& a, const KeyInfo& b);
 
 // ---------------------------------------------------------------------------------------
 // Sections and their keys (sections.cpp; the [sweep] and [optimise] lists in their own files).
@@ -82,13 +35,16 @@ inline constexpr std::string_view kOptimise = "optimise";
 
 const std::vector<std::string_view>& sweep_option_keys();     // order, store, checkpoint_interval, progress_interval
 const std::vector<std::string_view>& optimise_option_keys();  // objective, impact, ...
-const std::vector<std::string_view>& optimise_keys();         // the free parameters, then the options
+const std::vector<std::string_view>& optimise_keys();         // the parameter keys' names, then the options
+bool is_optimise_option(std::string_view key);  // one of optimise_option_keys()
 bool is_sweep_option(std::string_view key);  // one of sweep_option_keys()
 // The first axes of the default order, by name: E1, E2, R1, R2, m2, k2, omega2.
 std::vector<std::string_view> first_axes();
+// A key's place in the default order of [sweep] axes and [optimise] free parameters: the first
+// axes above, then the key table's order.
+std::size_t key_rank(Key k);
 
-std::vector<std::string_view> schema_sections();  // the schema's sections, in order
-std::vector<std::string_view> all_sections();     // the schema's, then [sweep], then [optimise]
+std::vector<std::string_view> all_sections();  // the point keys', then [sweep], [optimise] and [census]
 bool is_section(std::string_view name);
 std::vector<std::string_view> keys_of(std::string_view section);
 bool has_key(std::string_view section, std::string_view key);
@@ -97,15 +53,19 @@ std::optional<std::string_view> section_of(std::string_view key);
 // The other key of an either-or pair (omega2 for k2, also as free parameters of [optimise]),
 // or empty. ([sweep] axes: sweep_section.cpp.)
 std::string_view partner_of(std::string_view section, std::string_view key);
-bool is_free_parameter(std::string_view name);  // free_parameter_names()
-bool is_parameter_name(std::string_view name);  // variable_parameter_names()
-// The schema row of a free parameter (its range and unit): E1 -> [contact] E1.
-const SceneKey& free_parameter_key(std::string_view name);
+// The parameter key (Key::is_parameter) a free variable of [optimise] names, by its name alone
+// (E1, omega) or in full (forcing.omega); nullopt for any other name.
+std::optional<Key> free_parameter(std::string_view name);
+// Calls f(given, text_key, node) for every entry of a [sweep] or [optimise] table that names a
+// key (`is_option` tells the section's options apart): each key but the options, and each key
+// of a point section's table (TOML's dotted form forcing.omega = { ... }). `given` is the name
+// ("E1", "forcing.omega"), `text_key` the name as the scene text writes it back.
+void for_each_key_entry(const toml::table& section, bool (*is_option)(std::string_view),
+                        const std::function<void(std::string, std::string, const toml::node&)>& f);
 
 // ---------------------------------------------------------------------------------------
 // Text (toml_text.cpp).
 
-std::string toml_float(double v);  // as shortest(), but always a TOML float ("1000.0")
 std::string join(const std::vector<std::string_view>& items, std::string_view sep, std::string_view quote = {});
 std::vector<std::string_view> views(const std::vector<std::string>& strings);
 std::string unit_suffix(std::string_view unit);  // " (kg)"; empty for "-"
@@ -117,7 +77,6 @@ std::string toml_key(std::string_view k);     // bare when it can be, else quote
 // A value as TOML text; floats in their shortest round-trip form, arrays and tables inline.
 std::string node_text(const toml::node& node);
 std::string clipped_text(const toml::node& node);  // node_text() clipped for a one-line message
-std::string value_text(const SceneKey& k, const KeyValue& v);
 
 // ---------------------------------------------------------------------------------------
 // Reading (reader.cpp).
@@ -128,20 +87,25 @@ struct Context {
   std::string path;
   std::map<std::string, std::string, std::less<>> overrides;  // "section.key" -> "--set ..." as given
   std::vector<std::string> override_list;                     // in command-line order
+  std::vector<CommandAxis> axes;                              // a command's own [sweep] axes
 };
 
 std::string where(const Context& ctx, const toml::node& node);  // "file:3" (or "file")
-// "file:3: [system] m2 = -5" or "file: --set system.m2=-5".
-std::string locate(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node);
-std::string locate(const Context& ctx, const SceneKey& k, const toml::node& node);
-// Where a key comes from: "file:3", or "file: --set system.m2=-5".
+// Where a key's value comes from: "file:3", or "file: --set system.m2=-5".
 std::string origin(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node);
+// A value in a message: a float in its shortest round-trip form ("-5", "1e-09"), else its TOML
+// text clipped.
+std::string value_text(const toml::node& node);
+// Where a key's value comes from and the key with that value, as a refusal opens
+// (KeyInfo::refusal): "file:3: [system] m2 = -5", "file: --set m2=-5: [system] m2 = -5".
+std::string locate(const Context& ctx, std::string_view section, std::string_view key, const toml::node& node);
+std::string locate(const Context& ctx, const KeyInfo& k, const toml::node& node);
 
 std::optional<double> number_of(const toml::node& node);  // a TOML float or integer
 // The checked value of a key of each type; `loc` (locate()) opens the message.
-double read_real(const SceneKey& k, const toml::node& node, const std::string& loc);
-int read_choice(const SceneKey& k, const toml::node& node, const std::string& loc);
-long long read_boolean(const SceneKey& k, const toml::node& node, const std::string& loc);
+double read_real(const KeyInfo& k, const toml::node& node, const std::string& loc);
+int read_choice(const KeyInfo& k, const toml::node& node, const std::string& loc);
+long long read_boolean(const KeyInfo& k, const toml::node& node, const std::string& loc);
 // An array of strings; `what` says what they name.
 std::vector<std::string> string_list(const toml::node& node, const std::string& loc, std::string_view what);
 
@@ -152,14 +116,14 @@ inline constexpr std::string_view kAxisForms = "{ from, to, n[, scale] } or { va
 
 // [sweep]'s scalar keys, documented as schema rows are, with the SweepOptions field each sets.
 struct SweepInterval {
-  SceneKey info;
+  KeyInfo info;
   double SweepOptions::*field;
 };
 const std::vector<SweepInterval>& sweep_intervals();
 // The refinement keys (sweep_refine.cpp): the rows of refine and refine_audit (refine_on is a
 // list, documented by refine_on_meaning()); the reader (`census`: the scene has [census], which
 // attractors and soft_fraction need); a refined map's identity lines (none when refine = 0).
-const std::vector<SceneKey>& sweep_refine_keys();
+const std::vector<KeyInfo>& sweep_refine_keys();
 std::string refine_on_list(const std::vector<RefineOn>& list);  // ["regime", "k_con:0.1"]
 std::string refine_on_meaning();
 void read_refine(const toml::table& sweep_table, const Context& ctx, bool census, SweepOptions& sweep);
@@ -173,16 +137,20 @@ AxisScale axis_scale(const toml::table& axis, const std::string& loc);          
 struct SweepAxisEntry {
   std::string given;        // its name as given: "E1", "forcing.omega" (quoted or dotted)
   std::string text_key;     // the name as the scene text writes it: E1, "forcing.omega", forcing.omega
-  const Binding* binding;   // the key it sweeps
+  Key key;                  // the key it sweeps
   const toml::node* node;   // its table
 };
 // The axes of a [sweep] table in the default order (E1, E2, R1, R2, m2, k2, omega2, then the
-// schema's order); fails on an unknown or non-numeric key, a key given twice, both keys of a
+// key table's order); fails on an unknown or non-numeric key, a key given twice, both keys of a
 // pair, or more than kMaxSweepAxes axes.
 std::vector<SweepAxisEntry> sweep_axis_entries(const toml::table& sweep, const Context& ctx);
-// `--set sweep.NAME=...`: removes every spelling of NAME's key and of its pair partner from
-// the [sweep] table, so that the override replaces them; fails as the file would on a bad NAME.
+// Removes every entry of a [sweep] or [optimise] table that names `target` or its pair partner,
+// in any spelling (for_each_key_entry), so that an override replaces them.
+void erase_key_entries(toml::table& section, Key target, bool (*is_option)(std::string_view));
+// `--set sweep.NAME=...`: erase_key_entries for NAME's key; fails as the file would on a bad NAME.
 void erase_sweep_axis(toml::table& sweep, std::string_view name, const std::string& loc);
+// The [sweep] section with the command's axes of ctx added (in the default order; `order` of the
+// file, when given, must then name them too); nullopt when there is neither.
 std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& ctx);
 
 // ---------------------------------------------------------------------------------------
@@ -194,9 +162,9 @@ inline constexpr std::string_view kVariableForm = "{ min, max[, scale] }";
 // read into OptimiseOptions.
 template <class Options>
 struct OptionRow {
-  SceneKey info;
-  void (*read)(Options&, const SceneKey&, const toml::node&, const std::string& loc);
-  std::string (*text)(const Options&, const SceneKey&);  // the value read, canonical text
+  KeyInfo info;
+  void (*read)(Options&, const KeyInfo&, const toml::node&, const std::string& loc);
+  std::string (*text)(const Options&, const KeyInfo&);  // the value read, canonical text
   std::string_view allowed_text = {};  // what is allowed, when info.allowed() cannot say it
 
   std::string allowed() const { return allowed_text.empty() ? info.allowed() : std::string(allowed_text); }

@@ -102,21 +102,20 @@ void check_kept(const std::vector<RefineOn>& list, bool census, const std::strin
 
 }  // namespace
 
-const std::vector<SceneKey>& sweep_refine_keys() {
-  static const std::vector<SceneKey> rows = {
-      {kSweep, "refine", SceneKeyType::integer, interval(0, kMaxRefineLevels, false, false), {}, "-",
-       "levels of adaptive refinement: each halves every lin/log axis's spacing where a cell's corners differ in "
-       "refine_on ((n - 1) 2^L + 1 points per axis, categorical axes whole); 0: the uniform map of the axes given",
-       {}, "0", true},
-      {kSweep, "refine_audit", SceneKeyType::real, interval(0, 1, false, false), {}, "-",
-       "share of the inherited points solved again, drawn at random, to count how often inheritance was wrong "
-       "(with a 95 % upper bound)",
-       {}, "0.01", true},
-      {kSweep, "refine_speckle", SceneKeyType::boolean, any_finite(), {}, "-",
-       "solve speckled coarse cells whole: where the answer changes twice within 3 coarse cells along every axis "
-       "around a cell whose corners differ, that cell and the cells touching it are solved at every fine point "
-       "(false: corners alone decide: cheaper, blind to what a cell's agreeing corners hide)",
-       {}, "true", true}};
+const std::vector<KeyInfo>& sweep_refine_keys() {
+  static const std::vector<KeyInfo> rows = [] {
+    const SweepOptions defaults;
+    KeyInfo refine = option_key("sweep.refine"), audit = option_key("sweep.refine_audit");  // the key table's rows
+    refine.default_text = std::to_string(defaults.refine);
+    audit.default_text = shortest(defaults.refine_audit);
+    return std::vector<KeyInfo>{
+        refine, audit,
+        {kSweep, "refine_speckle", KeyType::boolean, Bounds::finite(), {}, "-",
+         "solve speckled coarse cells whole: where the answer changes twice within 3 coarse cells along every axis "
+         "around a cell whose corners differ, that cell and the cells touching it are solved at every fine point "
+         "(false: corners alone decide: cheaper, blind to what a cell's agreeing corners hide)",
+         {}, defaults.refine_speckle ? "true" : "false", true}};
+  }();
   return rows;
 }
 
@@ -134,7 +133,7 @@ std::string refine_on_meaning() {
 }
 
 void read_refine(const toml::table& sec, const Context& ctx, bool census, SweepOptions& sweep) {
-  const std::vector<SceneKey>& keys = sweep_refine_keys();
+  const std::vector<KeyInfo>& keys = sweep_refine_keys();
   if (const toml::node* node = sec.get("refine")) {
     const std::string loc = locate(ctx, keys[0], *node);
     const std::optional<double> x = number_of(*node);

@@ -28,15 +28,13 @@ const std::vector<std::string_view>& sweep_option_keys() {
 const std::vector<SweepInterval>& sweep_intervals() {
   static const std::vector<SweepInterval> rows = [] {
     const SweepOptions defaults;
-    auto interval_row = [&](std::string_view key, std::string_view meaning, double SweepOptions::*f) {
-      return SweepInterval{{kSweep, key, SceneKeyType::real, gt(0), {}, "s", meaning, {}, toml_float(defaults.*f), true},
-                           f};
+    auto interval_row = [&](std::string_view key, double SweepOptions::*f) {
+      KeyInfo info = option_key(cat(kSweep, ".", key));  // the key table's row
+      info.default_text = float_text(defaults.*f);
+      return SweepInterval{std::move(info), f};
     };
-    return std::vector<SweepInterval>{
-        interval_row("checkpoint_interval", "seconds between checkpoints of the map file",
-                     &SweepOptions::checkpoint_interval),
-        interval_row("progress_interval", "seconds between progress lines when stderr is not a terminal",
-                     &SweepOptions::progress_interval)};
+    return std::vector<SweepInterval>{interval_row("checkpoint_interval", &SweepOptions::checkpoint_interval),
+                                      interval_row("progress_interval", &SweepOptions::progress_interval)};
   }();
   return rows;
 }
@@ -113,10 +111,11 @@ std::vector<double> listed_points(const toml::node& node, const std::string& loc
   if (a->empty()) fail(cat(loc, ": values is empty: give at least one point"));
   std::vector<double> v;
   for (const toml::node& e : *a) {
-    const std::optional<double> x = number_of(e);
-    if (!x || !std::isfinite(*x)) fail(cat(loc, ": values must be finite numbers, not ", clipped_text(e)));
+    const std::optional<double> x = number_of(e);  // a non-finite one is the key's to refuse
+    if (!x) fail(cat(loc, ": values must be numbers, not ", clipped_text(e)));
     v.push_back(*x);
   }
+  if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); })) return v;  // the key refuses it
   std::vector<double> sorted = v;
   std::sort(sorted.begin(), sorted.end());
   if (const auto it = std::adjacent_find(sorted.begin(), sorted.end()); it != sorted.end()) {
@@ -125,74 +124,78 @@ std::vector<double> listed_points(const toml::node& node, const std::string& loc
   return v;
 }
 
-// Every point within the range the key allows (E1 > 0, ...), and whole for an integer key.
-void check_axis_range(const Axis& axis, std::string_view name, const Binding& b, const std::string& loc) {
-  const SceneKey& k = b.info;
-  for (const double v : axis.values) {
-    if (axis.scale == AxisScale::log && v <= 0.0) fail(cat(loc, ": a log axis needs values > 0"));
-    if (!k.bounds.contains(v)) {
-      fail(cat(loc, ": axis ", name, " reaches ", shortest(v), ", outside the range of [", k.section, "] ", k.key,
-               ": must be ", k.allowed(), unit_suffix(k.unit)));
-    }
-    if (k.type == SceneKeyType::integer && v != std::trunc(v)) {
-      fail(cat(loc, ": axis ", name, " reaches ", shortest(v), ", not an integer: [", k.section, "] ", k.key,
-               " must be ", k.allowed()));
-    }
-    if (k.type == SceneKeyType::integer && v > static_cast<double>(b.access.int_max)) {
-      fail(cat(loc, ": axis ", name, " reaches ", shortest(v), ": [", k.section, "] ", k.key, " must be at most ",
-               std::to_string(b.access.int_max)));
-    }
+// The axis over key k (make_axis), its values checked against the key: every point within the
+// range the key allows (E1 > 0, ...), and whole for an integer key.
+Axis checked_axis(Key k, std::vector<double> values, AxisScale scale, const std::string& loc) {
+  for (const double v : values) {
+    if (scale == AxisScale::log && v <= 0.0) fail(cat(loc, ": a log axis needs values > 0"));
+    if (const std::string r = k.check(v); !r.empty()) fail(cat(loc, ": the axis reaches ", r));
+  }
+  try {
+    return make_axis(k, std::move(values), scale);
+  } catch (const std::invalid_argument& e) {
+    fail(cat(loc, ": ", e.what()));
   }
 }
 
 // A categorical axis (contact.law = { values = ["hertz", "flores"] }): the names as indices
 // into the key's choices, which the axis keeps whole so that a map names every index.
-Axis read_categorical_axis(const Binding& b, std::string_view name, const toml::table& t, const std::string& loc) {
-  const SceneKey& k = b.info;
+Axis read_categorical_axis(Key k, std::string_view name, const toml::table& t, const std::string& loc) {
+  const KeyInfo& info = k.info();
   const toml::node* values = t.get("values");
   const toml::array* a = values != nullptr ? values->as_array() : nullptr;
   if (a == nullptr || a->empty() || t.size() != 1)
     fail(cat(loc, ": axis ", name, " is categorical: give it as { values = [\"name\", ...] } with names ",
-             k.allowed()));
-  Axis axis{full_key(k), std::string(k.key), "1", std::string(k.meaning), {}, AxisScale::lin, {}};
-  for (const std::string_view c : k.choices) axis.categories.emplace_back(c);
+             info.allowed()));
+  std::vector<double> indices;
   for (const toml::node& e : *a) {
-    const double index = read_choice(k, e, loc);
-    if (std::find(axis.values.begin(), axis.values.end(), index) != axis.values.end())
+    const double index = read_choice(info, e, loc);
+    if (std::find(indices.begin(), indices.end(), index) != indices.end())
       fail(cat(loc, ": values repeat ", clipped_text(e), ": give each point once"));
-    axis.values.push_back(index);
+    indices.push_back(index);
   }
-  return axis;
+  return checked_axis(k, std::move(indices), AxisScale::lin, loc);
 }
 
-// One axis over key `b`, named `given` in the scene.
-Axis read_axis(const Binding& b, std::string_view given, const toml::node& node, const std::string& loc) {
+// One axis over key `k`, named `given` in the scene.
+Axis read_axis(Key k, std::string_view given, const toml::node& node, const std::string& loc) {
   const std::string name = clip(given);
   const toml::table& t = axis_table(name, node, loc);
-  const SceneKey& k = b.info;
-  if (is_categorical_axis(k)) return read_categorical_axis(b, name, t, loc);
-  Axis axis{full_key(k), std::string(k.key), k.unit == "-" ? "1" : std::string(k.unit), std::string(k.meaning),
-            {}, axis_scale(t, loc)};
+  if (k.is_categorical()) return read_categorical_axis(k, name, t, loc);
+  const AxisScale scale = axis_scale(t, loc);
   const toml::node* values = t.get("values");
   if (values != nullptr && (t.contains("from") || t.contains("to") || t.contains("n"))) {
     fail(cat(loc, ": axis ", name, " gives both values and from/to/n: an axis is ", kAxisForms));
   }
-  axis.values = values != nullptr ? listed_points(*values, loc) : range_points(name, t, axis.scale, loc);
-  check_axis_range(axis, name, b, loc);
-  if (const std::string err = validate_axis(axis); !err.empty()) fail(cat(loc, ": ", err));
-  return axis;
+  return checked_axis(k, values != nullptr ? listed_points(*values, loc) : range_points(name, t, scale, loc), scale, loc);
 }
 
-// The axes given, in the default order; `given` receives their names as the scene gives them.
+// The axes the file gives and the command's, in the default order (key_rank); `given` receives
+// their names as the scene or the command gives them.
 std::vector<Axis> read_axes(const toml::table& sweep, const Context& ctx, std::vector<std::string>& given) {
-  std::vector<Axis> axes;
-  for (const SweepAxisEntry& e : sweep_axis_entries(sweep, ctx)) {
-    axes.push_back(read_axis(*e.binding, e.given, *e.node, locate(ctx, kSweep, e.given, *e.node)));
-    given.push_back(e.given);
-  }
-  if (axes.empty()) {
+  struct Given {
+    Axis axis;
+    std::string name;
+  };
+  std::vector<Given> all;
+  for (const SweepAxisEntry& e : sweep_axis_entries(sweep, ctx))
+    all.push_back({read_axis(e.key, e.given, *e.node, locate(ctx, kSweep, e.given, *e.node)), e.given});
+  for (const CommandAxis& a : ctx.axes) all.push_back({a.axis, a.axis.name});
+  if (all.empty()) {
     fail(cat(where(ctx, sweep), ": [sweep] has no axes: give at least one real or integer key (E1, \"forcing.omega\", "
              "...) as KEY = ", kAxisForms));
+  }
+  if (all.size() > kMaxSweepAxes) {
+    fail(cat(where(ctx, sweep), ": [sweep] has ", std::to_string(all.size()), " axes: at most ",
+             std::to_string(kMaxSweepAxes)));
+  }
+  std::stable_sort(all.begin(), all.end(), [](const Given& a, const Given& b) {
+    return key_rank(Key::at(a.axis.key)) < key_rank(Key::at(b.axis.key));
+  });
+  std::vector<Axis> axes;
+  for (Given& g : all) {
+    axes.push_back(std::move(g.axis));
+    given.push_back(std::move(g.name));
   }
   return axes;
 }
@@ -204,9 +207,8 @@ void apply_order(std::vector<Axis>& axes, const std::vector<std::string>& given,
   const std::string axes_text = clip(join(names, ", "), 200);
   std::vector<std::size_t> order;  // indices into axes
   for (const std::string& name : string_list(node, loc, cat("the axes: ", axes_text))) {
-    const Binding* b = find_key(name);
-    const auto it = std::find_if(axes.begin(), axes.end(),
-                                 [&](const Axis& a) { return b != nullptr && a.key == full_key(b->info); });
+    const std::optional<Key> k = Key::find(name);
+    const auto it = std::find_if(axes.begin(), axes.end(), [&](const Axis& a) { return k && a.key == k->full_name(); });
     if (it == axes.end()) {
       std::string msg = cat(loc, ": '", clip(name), "' is not an axis of this sweep");
       if (const auto hint = closest(name, names)) msg += cat(" (did you mean '", *hint, "'?)");
@@ -254,8 +256,10 @@ void check_grid_size(const std::vector<Axis>& axes, const Context& ctx) {
 }  // namespace
 
 std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& ctx) {
+  static const toml::table kNone;
   const toml::table* sec = table.get_as<toml::table>(kSweep);
-  if (sec == nullptr) return std::nullopt;
+  if (sec == nullptr && ctx.axes.empty()) return std::nullopt;
+  if (sec == nullptr) sec = &kNone;  // the command's axes only
   SweepOptions sweep;
   std::vector<std::string> given;
   sweep.axes = read_axes(*sec, ctx, given);
@@ -265,7 +269,7 @@ std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& 
   if (std::find(sweep.store.begin(), sweep.store.end(), Quantity::hertz_valid) == sweep.store.end())
     sweep.store.push_back(Quantity::hertz_valid);
   for (const SweepInterval& row : sweep_intervals()) {
-    if (const toml::node* node = sec->get(row.info.key)) sweep.*row.field = read_real(row.info, *node, locate(ctx, row.info, *node));
+    if (const toml::node* node = sec->get(row.info.name)) sweep.*row.field = read_real(row.info, *node, locate(ctx, row.info, *node));
   }
   check_grid_size(sweep.axes, ctx);
   read_refine(*sec, ctx, table.get_as<toml::table>(kCensus) != nullptr, sweep);

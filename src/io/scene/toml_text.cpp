@@ -16,13 +16,6 @@
 
 namespace vibromap::detail {
 
-// As shortest(), but always a TOML float ("1000.0").
-std::string toml_float(double v) {
-  std::string s = shortest(v);
-  if (std::isfinite(v) && s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s;
-}
-
 std::string join(const std::vector<std::string_view>& items, std::string_view sep, std::string_view quote) {
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) {
@@ -145,7 +138,7 @@ std::string table_text(const toml::table& t) {
 // A value as TOML text; floats in their shortest round-trip form (toml++ prints 17 digits),
 // arrays and tables (also nested) as inline ones.
 std::string node_text(const toml::node& node) {
-  if (const auto* f = node.as_floating_point()) return toml_float(f->get());
+  if (const auto* f = node.as_floating_point()) return float_text(f->get());
   if (const auto* i = node.as_integer()) return std::to_string(i->get());
   if (const auto* s = node.as_string()) return toml_string(s->get());
   if (const auto* a = node.as_array()) {
@@ -161,14 +154,5 @@ std::string node_text(const toml::node& node) {
 
 std::string clipped_text(const toml::node& node) { return clip(node_text(node), 100); }
 
-std::string value_text(const SceneKey& k, const KeyValue& v) {
-  switch (k.type) {
-    case SceneKeyType::real: return toml_float(v.real);
-    case SceneKeyType::integer: return std::to_string(v.integer);
-    case SceneKeyType::choice: return toml_string(k.choices.at(static_cast<std::size_t>(v.choice)));
-    case SceneKeyType::boolean: return v.integer != 0 ? "true" : "false";
-  }
-  return {};
-}
 
 }  // namespace vibromap::detail

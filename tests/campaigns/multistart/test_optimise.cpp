@@ -44,9 +44,9 @@ LocalOptions tight() {
 }
 
 std::vector<FreeVariable> paper_box() {
-  return {{"m2", 100.0, 310.0, AxisScale::lin},
-          {"E1", 2e4, 2.1e11, AxisScale::log},
-          {"R1", 0.09, 2.0, AxisScale::lin}};
+  return {{Key::at("m2"), 100.0, 310.0, AxisScale::lin},
+          {Key::at("E1"), 2e4, 2.1e11, AxisScale::log},
+          {Key::at("R1"), 0.09, 2.0, AxisScale::lin}};
 }
 
 // f(x) = 1 + sum_i w_i (u_i - c_i)^2 in the box's scaled variables u: a quadratic with its
@@ -159,9 +159,11 @@ TEST(Box, LogScaleSpreadsSevenDecadesEvenly) {
 }
 
 TEST(Box, RejectsBadVariables) {
-  EXPECT_THROW(Box({{"E1", 0.0, 1e9, AxisScale::log}}), std::invalid_argument);
-  EXPECT_THROW(Box({{"m2", 310.0, 100.0, AxisScale::lin}}), std::invalid_argument);
-  EXPECT_THROW(Box({{"m1", 1.0, 2.0, AxisScale::lin}}), std::invalid_argument);
+  EXPECT_THROW(Box({{Key::at("E1"), 0.0, 1e9, AxisScale::log}}), std::invalid_argument);
+  EXPECT_THROW(Box({{Key::at("m2"), 310.0, 100.0, AxisScale::lin}}), std::invalid_argument);
+  EXPECT_THROW(Box({{Key::at("n_max"), 1.0, 2.0, AxisScale::lin}}), std::invalid_argument);  // not a parameter
+  EXPECT_THROW(Box({{Key::at("R1"), 0.0, 2.0, AxisScale::lin}}), std::invalid_argument);     // R1 > 1e-9 m
+  EXPECT_NO_THROW(Box({{Key::at("m1"), 1.0, 2.0, AxisScale::lin}}));  // any parameter may be free
 }
 
 // ---------------------------------------------------------------------------------------
@@ -188,7 +190,7 @@ TEST(TrackedObjective, CachesIdenticalPointsAndEnforcesTheBudget) {
 }
 
 TEST(TrackedObjective, AnExceptionIsAFailedInfeasiblePoint) {
-  const Box box({{"m2", 100.0, 310.0, AxisScale::lin}, {"R1", 0.09, 2.0, AxisScale::lin}});
+  const Box box({{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("R1"), 0.09, 2.0, AxisScale::lin}});
   FailingQuadratic f(box);
   TrackedObjective t(f, box, LocalOptions{});
   const std::optional<Evaluation> e = t.evaluate(std::vector<double>{0.9, 0.3});
@@ -230,7 +232,7 @@ TEST_P(EveryAlgorithm, StopsExactlyOnABoundWhenTheOptimumLiesBeyondIt) {
 }
 
 TEST_P(EveryAlgorithm, NeverReportsAnInfeasiblePointAsBest) {
-  const Box box({{"m2", 100.0, 310.0, AxisScale::lin}, {"E1", 2e4, 2.1e11, AxisScale::log}});
+  const Box box({{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("E1"), 2e4, 2.1e11, AxisScale::log}});
   CutQuadratic f(box);
   const LocalResult r = minimise(f, box, box.to_physical(std::vector<double>{0.2, 0.3}), GetParam(), tight());
   const EvaluationRecord& best = best_of(r);
@@ -257,7 +259,7 @@ TEST_P(EveryAlgorithm, NeverReportsAnInfeasiblePointAsBest) {
 }
 
 TEST_P(EveryAlgorithm, SurvivesFailingEvaluationsAndNeverReportsThem) {
-  const Box box({{"m2", 100.0, 310.0, AxisScale::lin}, {"R1", 0.09, 2.0, AxisScale::lin}});
+  const Box box({{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("R1"), 0.09, 2.0, AxisScale::lin}});
   FailingQuadratic f(box);
   LocalOptions o = tight();
   o.max_evaluations = 400;
@@ -288,7 +290,7 @@ TEST(LocalOptimiser, TheBudgetCountsSolvesAndEndsTheStart) {
 }
 
 TEST(LocalOptimiser, GradientProjectionRefusesAnInfeasibleSeed) {
-  const Box box({{"m2", 100.0, 310.0, AxisScale::lin}, {"E1", 2e4, 2.1e11, AxisScale::log}});
+  const Box box({{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("E1"), 2e4, 2.1e11, AxisScale::log}});
   CutQuadratic f(box);
   const LocalResult r =
       minimise(f, box, box.to_physical(std::vector<double>{0.8, 0.8}), Algorithm::gradient_projection, tight());
@@ -395,7 +397,7 @@ TEST(Multistart, SeedsAreTheBestQualifyingCellsInsideTheBox) {
   done[2] = 0;          // not computed
   // Cells 6 and 7 (m2 = 400) lie outside the box.
   OptimiseOptions o;
-  o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}, {"k2", 1e3, 1e4, AxisScale::log}};
+  o.variables = {{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("k2"), 1e3, 1e4, AxisScale::log}};
   o.seeds = 2;
   o.hertz_valid = false;  // first without the Hertz constraint (the map has no z_ratio)
   const std::vector<Quantity> stored = {Quantity::k_con};
@@ -414,25 +416,34 @@ TEST(Multistart, SeedsAreTheBestQualifyingCellsInsideTheBox) {
   EXPECT_EQ(valid[0].cell, 0);
   EXPECT_EQ(valid[1].cell, 5);  // k_con 6
   o.hertz_valid = false;
-  o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}};  // omega2 is an axis but not free
+  o.variables = {{Key::at("m2"), 100.0, 310.0, AxisScale::lin}};  // omega2 is an axis but not free
   EXPECT_THROW(select_seeds(grid, cells, done, stored, Parameters{}, o), std::invalid_argument);
 }
 
-// A map axis over a key that can never be free (the forcing frequency) is refused by name.
+// A map axis over a key that can never be free (the step budget) is refused by name.
 TEST(Multistart, AMapAxisThatCannotBeFreeIsRefused) {
-  const Grid grid({{"forcing.omega", "omega", "rad/s", "forcing frequency", {6.0, 7.0}, AxisScale::lin}});
+  const Grid grid({{"analysis.max_periods", "max_periods", "1", "budget", {100.0, 200.0}, AxisScale::lin}});
   const std::vector<CellResult> cells(grid.size());
   const std::vector<std::uint8_t> done(grid.size(), 1);
   OptimiseOptions o;
-  o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}};
+  o.variables = {{Key::at("m2"), 100.0, 310.0, AxisScale::lin}};
   o.hertz_valid = false;  // the axis is refused first, whatever the map stores
   try {
     select_seeds(grid, cells, done, {Quantity::k_con}, Parameters{}, o);
-    ADD_FAILURE() << "no error for a map axis over omega";
+    ADD_FAILURE() << "no error for a map axis over max_periods";
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
-              "map axis omega is not a free parameter of [optimise], nor can it be one (free parameters: E1, E2, R1, "
-              "R2, m2, k2, omega2, restitution): seed from a map without it");
+              "map axis max_periods is not a free parameter of [optimise], nor can it be one (free parameters are the "
+              "real keys of [system], [contact] and [forcing]): seed from a map without it");
+  }
+  // A parameter's axis that is not free is named so.
+  const Grid omega({{"forcing.omega", "omega", "rad/s", "forcing frequency", {6.0, 7.0}, AxisScale::lin}});
+  try {
+    select_seeds(omega, cells, done, {Quantity::k_con}, Parameters{}, o);
+    ADD_FAILURE() << "no error for a map axis over omega";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "map axis omega is not a free parameter of [optimise]: free it (omega = { min, max }) "
+                                     "or seed from a map without it");
   }
 }
 
@@ -460,7 +471,7 @@ TEST(Multistart, PlansEverySeedWithEveryLawAndAlgorithm) {
 }
 
 TEST(Multistart, BestPointsAreSortedAndMerged) {
-  const Box box({{"m2", 100.0, 310.0, AxisScale::lin}});
+  const Box box({{Key::at("m2"), 100.0, 310.0, AxisScale::lin}});
   auto start = [](double x, double value, bool feasible) {
     StartRecord s;
     EvaluationRecord e;
@@ -489,12 +500,12 @@ TEST(Multistart, BestPointsAreSortedAndMerged) {
 // restitution gives the same k_con, and the verified point carries its start's law.
 TEST(PointObjective, EachLawsStartIsSolvedWithItsLaw) {
   OptimiseOptions o;
-  o.variables = {{"restitution", 0.3, 1.0, AxisScale::lin}};
+  o.variables = {{Key::at("restitution"), 0.3, 1.0, AxisScale::lin}};
   o.laws = {ContactLawKind::flores, ContactLawKind::gonthier};
   o.local.max_evaluations = 15;
   Parameters base;
   base.m2 = 310.0;
-  set_parameter(base, "omega2", 3.606);
+  Key::at("omega2").set(base, 3.606);
   base.E1 = 1.4e10;
   base.E2 = 1.0e6;
   const PointOptions options;
@@ -526,7 +537,7 @@ TEST(PointObjective, AShortStartImprovesOnTheProbedCorner) {
   // The corner m2 = 100 kg, omega2 = 5.646 rad/s, E1 = E2 = 2e4 Pa, R1 = R2 = 0.09 m is a
   // stable (1,1) with k_con = 2.37461 (vibromap run at the defaults).
   OptimiseOptions o;
-  o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}, {"omega2", 3.606, 5.646, AxisScale::lin}};
+  o.variables = {{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("omega2"), 3.606, 5.646, AxisScale::lin}};
   o.local.max_evaluations = 40;
   o.hertz_valid = false;  // the corner is far beyond the Hertz limit (z_max/R* ~ 10): the search alone is tested
   Parameters base;
@@ -560,7 +571,7 @@ constexpr double kTable2SoftFraction = 0.561;  // the (1,1)'s basin fraction, br
 
 OptimiseOptions free_e2(double min_soft_fraction) {
   OptimiseOptions o;
-  o.variables = {{"E2", 2e4, 2.1e11, AxisScale::log}};
+  o.variables = {{Key::at("E2"), 2e4, 2.1e11, AxisScale::log}};
   o.min_soft_fraction = min_soft_fraction;
   return o;
 }
@@ -626,7 +637,7 @@ TEST(PointObjective, SoftShortfallBandsAndAFailedCensus) {
 // commit 8c6da0b, before min_soft_fraction existed, to the integrator's rounding: 2.24686491637905.)
 TEST(PointObjective, MinSoftFractionZeroChangesNothing) {
   OptimiseOptions o;
-  o.variables = {{"m2", 100.0, 310.0, AxisScale::lin}, {"omega2", 3.606, 5.646, AxisScale::lin}};
+  o.variables = {{Key::at("m2"), 100.0, 310.0, AxisScale::lin}, {Key::at("omega2"), 3.606, 5.646, AxisScale::lin}};
   o.local.max_evaluations = 40;
   o.hertz_valid = false;  // AShortStartImprovesOnTheProbedCorner's start, Hertz-invalid
   o.min_soft_fraction = 0.0;

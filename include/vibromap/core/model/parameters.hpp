@@ -71,15 +71,6 @@ struct Parameters {
   double damping_factor() const;                    // chi: `damping` when given, else law's chi(restitution)
 };
 
-// Names of the parameters a sweep or an optimiser may vary.
-const std::vector<std::string_view>& variable_parameter_names();
-// Sets one variable parameter by name (E1, E2, R1, R2, m2, k2, omega2, ...); k2 and omega2
-// replace spring2 in their own form. "law" takes the law's index in all_contact_laws() (a
-// categorical axis stored as an integer). Throws std::invalid_argument for an unknown name.
-void set_parameter(Parameters& p, std::string_view name, double value);
-// Reads one variable parameter by name (k2 and omega2 are derived when given the other way).
-double get_parameter(const Parameters& p, std::string_view name);
-
 // The forcing frequency against the system's own: omega / omega_n, omega_n the fastest undamped
 // natural frequency of the two bodies on their springs without contact (the larger root of
 // det(K - omega^2 M) = 0, M = diag(m1, m2), K = [[k1 + k2, -k2], [-k2, k2]]), must lie in
@@ -106,9 +97,10 @@ double fastest_damping_rate(const Parameters& p);
 // the one-line reason with the range it allows.
 std::string frequency_ratio_error(const Parameters& p);
 
-// Physical checks that do not depend on how the values were read; each message names the
-// parameter and the allowed range (frequency_ratio_error's rule included, once the rest holds).
-// Empty when the point is valid.
+// The point's checks: every key of [system], [contact], [forcing] and [initial] against the key
+// table (keys.hpp), in its refusal's words ("[system] m2 = -5: must be > 0 (kg)"), then the
+// rules that combine keys (a damping factor needs a damped law; frequency_ratio_error's rule,
+// once the rest holds). Empty when the point is valid. Defined with the key table (keys.cpp).
 std::vector<std::string> validate(const Parameters& p);
 
 }  // namespace vibromap

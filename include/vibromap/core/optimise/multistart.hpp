@@ -33,9 +33,10 @@ struct Seed {
 // The best `o.seeds` cells of a map for starting local optimisations: done, status ok, in the
 // kept regime with its stability rule (map column `stable`), inside the box, with the value
 // the objective ranks by stored (k_con; T_con for max_T_con, the longest impact standing in
-// for impact `o.impact`; F_max), best first, ties by cell index. A map axis (matched by
-// Axis::name) must be a free parameter or the other form of a free spring (omega2 for k2, k2
-// for omega2): the seed takes the free values from the cell (get_parameter). With o.hertz_valid, only cells where Hertz
+// for impact `o.impact`; F_max), best first, ties by cell index. A map axis (its Axis::key, or
+// Axis::name in a map that names only that) must be a free parameter or the other form of a free
+// spring or damper (omega2 for k2, k2 for omega2): the seed takes the free values from the
+// cell (Key::value). With o.hertz_valid, only cells where Hertz
 // theory holds qualify: the map's hertz_valid when stored, else z_ratio <= hertz_limit. Throws
 // std::invalid_argument with a one-line reason when the map lacks a quantity it needs, an axis
 // is not free, or no cell qualifies.
@@ -63,6 +64,7 @@ class SeedSelector {
   double hertz_limit_;
   Box box_;
   Quantity quantity_;
+  std::vector<Key> axis_keys_;  // the key of each map axis
   std::vector<double> x_;
   std::vector<Seed> best_;
 };

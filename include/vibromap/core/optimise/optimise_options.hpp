@@ -16,6 +16,7 @@
 #include "vibromap/core/analysis/point/regime.hpp"
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/model/contact_law.hpp"
+#include "vibromap/core/model/keys.hpp"
 
 namespace vibromap {
 
@@ -56,20 +57,20 @@ std::string to_string(StabilityRule r);              // "if_known", "required", 
 StabilityRule parse_stability_rule(std::string_view s);  // throws std::invalid_argument
 const std::vector<StabilityRule>& all_stability_rules();
 
-// The parameters an optimisation may free (set_parameter's names): E1, E2, R1, R2, m2, k2,
-// omega2, in this order.
-const std::vector<std::string_view>& free_parameter_names();
-
-// One free parameter and its box.
+// One free parameter and its box. Any parameter key may be free (Key::is_parameter: a real key
+// of [system], [contact] or [forcing]); a spring or damper freed in one form (k2 or omega2) keeps
+// that form.
 struct FreeVariable {
-  std::string name;                  // one of free_parameter_names()
+  Key key;                           // the parameter
   double min = 0.0;                  // lower bound, SI units
   double max = 0.0;                  // upper bound, SI units (> min; both > 0 on a log scale)
   AxisScale scale = AxisScale::lin;  // lin: u = (x - min)/(max - min); log: the same in log x
+
+  std::string_view name() const { return key.info().name; }  // "E1", "omega2"
 };
 
-// Empty when usable, else what is wrong (unknown name, bounds not finite or not increasing,
-// a log scale with min <= 0).
+// Empty when usable, else what is wrong (not a parameter key, bounds not finite, not increasing
+// or outside the key's range, a log scale with min <= 0).
 std::string validate(const FreeVariable& v);
 
 // One local optimisation (one start).

@@ -72,7 +72,7 @@ class PointObjective final : public Objective {
   Evaluation evaluate(std::span<const double> x) override;
   std::vector<std::string> measure_names() const override;
 
-  // The base parameters with the free ones set to x (set_parameter: k2/omega2 keep their form).
+  // The base parameters with the free ones set to x (Key::set: k2 / omega2 keep their form).
   Parameters parameters_at(std::span<const double> x) const;
 
  private:

@@ -120,15 +120,37 @@ struct Scene {
   std::array<bool, 4> initial_given{};  // the [initial] keys given (x1, x2, v1, v2); the others
                                         // follow the rest state (0, D, 0, 0)
   std::string path;  // the scene file as named by the user
-  std::string text;  // the scene after overrides as TOML (keys as given, schema order);
-                     // parse_scene(text, path) gives this Scene back. For provenance.
+  std::string text;  // the scene after overrides as TOML (keys as given, key table order);
+                     // parse_scene(text, path, {}, axes) with the command's axes gives this Scene
+                     // back. For provenance.
 };
 
-// Reads, overrides and checks a scene file. Throws SceneError.
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+// An axis a command adds to a scene's [sweep] (`continue --param`, `orbit-diagram --param`): the
+// axis (make_axis: its values already checked against its key) and the option that gave it,
+// which messages name ("--param omega").
+struct CommandAxis {
+  Axis axis;
+  std::string option;
+};
+
+// The axis a command's option steps (`--param KEY`): KEY by its name alone or in full, a
+// parameter key (Key::is_parameter) when `parameter_only` (continue), else any key that can be an
+// axis (orbit-diagram); `values` checked against the key. `option` is the option as the
+// messages name it ("--param omega"). Throws SceneError naming it:
+//   --param m2: [system] m2 = -5: must be > 0 (kg)
+CommandAxis command_axis(std::string option, std::string_view name, std::vector<double> values, AxisScale scale,
+                         bool parameter_only);
+
+// Reads, overrides and checks a scene file. Throws SceneError. With `axes`, each is an axis of
+// the scene's [sweep] (one is made when the file has none), replacing the file's axis of the same
+// key or of its pair partner, and the grid so made is checked as one the file gave would be (the
+// rule that combines keys at its corners); the axes are the command's, not the file's, so the
+// scene text does not hold them.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {},
+                 const std::vector<CommandAxis>& axes = {});
 
 // As load_scene, from TOML text; `path` only names the source in messages and Scene::path.
-Scene parse_scene(std::string_view text, const std::string& path,
-                  const std::vector<std::string>& overrides = {});
+Scene parse_scene(std::string_view text, const std::string& path, const std::vector<std::string>& overrides = {},
+                  const std::vector<CommandAxis>& axes = {});
 
 }  // namespace vibromap

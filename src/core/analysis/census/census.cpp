@@ -1,3 +1,4 @@
+#include "vibromap/core/model/keys.hpp"
 #include "vibromap/core/analysis/census/census.hpp"
 
 #include <algorithm>
@@ -14,13 +15,13 @@ using census_detail::AttractorSet;
 using census_detail::Offsets;
 
 std::string validate(const CensusOptions& o) {
-  if (o.initial_conditions < 1 || o.initial_conditions > 1'000'000) return "initial_conditions must be in [1, 1000000]";
-  if (o.max_attractors < 1 || o.max_attractors > 64) return "max_attractors must be in [1, 64]";
-  if (o.recurrences < 2 || o.recurrences > 100'000) return "recurrences must be in [2, 100000]";
-  if (o.max_transient_periods < 0 || o.max_transient_periods > 100'000'000)
-    return "max_transient_periods must be in [0, 100000000]";
-  if (!(o.cell > 0.0 && std::isfinite(o.cell))) return "cell must be > 0";
-  if (!(o.rtol >= 1e-14 && o.rtol <= 1e-3)) return "rtol must be in [1e-14, 1e-3]";
+  const std::pair<std::string_view, double> numbers[] = {
+      {"census.initial_conditions", o.initial_conditions}, {"census.seed", static_cast<double>(o.seed)},
+      {"census.max_attractors", o.max_attractors},           {"census.recurrences", o.recurrences},
+      {"census.max_transient_periods", static_cast<double>(o.max_transient_periods)},
+      {"census.cell", o.cell},                               {"census.rtol", o.rtol}};
+  for (const auto& [name, v] : numbers)
+    if (std::string r = check_option(name, v); !r.empty()) return r;
   const std::pair<const char*, const std::optional<std::array<double, 2>>*> sides[] = {
       {"x1", &o.x1}, {"x2", &o.x2}, {"v1", &o.v1}, {"v2", &o.v2}};
   for (const auto& [name, side] : sides)

@@ -11,26 +11,15 @@
 #include "vibromap/core/analysis/point/section.hpp"
 #include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/analysis/point/steady_state.hpp"
+#include "vibromap/core/model/keys.hpp"
 
 namespace vibromap {
 
 std::string validate(const AnalysisOptions& o) {
-  if (o.n_max < 1 || o.n_max > SteadyStateDetector::kMaxN)
-    return "n_max must be in [1, " + std::to_string(SteadyStateDetector::kMaxN) + "]";
-  if (o.max_periods < 1 || o.max_periods > kMaxPeriodBudget) return "max_periods must be in [1, 1e8]";
-  if (!(o.steady_tol >= 0.0 && std::isfinite(o.steady_tol))) return "steady_tol must be >= 0";
-  if (o.chatter_impacts < 1) return "chatter_impacts must be >= 1";
-  if (!(o.hertz_limit > 0.0)) return "hertz_limit must be > 0";
-  if (!(o.soft_kcon > 0.0 && std::isfinite(o.soft_kcon))) return "soft_kcon must be > 0";
-  if (o.trajectory_periods < 0) return "trajectory_periods must be >= 0";
-  if (o.trajectory_samples < 10) return "trajectory_samples must be >= 10";
-  if (o.transient_periods < 1 || o.transient_periods > kMaxTransientPeriods)
-    return "transient_periods must be in [1, 1000000]";
-  if (o.newton_max_iterations < 1) return "newton_max_iterations must be >= 1";
-  if (!(o.newton_tol >= 0.0 && std::isfinite(o.newton_tol))) return "newton_tol must be >= 0";
-  if (o.lyapunov_periods < 10 || o.lyapunov_periods > kMaxLyapunovPeriods)
-    return "lyapunov_periods must be in [10, 10000000]";
-  return {};
+  PointOptions options;
+  options.analysis = o;
+  const std::vector<std::string> r = refusals(Parameters{}, options, "analysis");
+  return r.empty() ? std::string() : r.front();
 }
 
 std::string to_string(SolveStatus s) {
