@@ -3,8 +3,9 @@
 cell's answer is (the map's steady: the motion from the initial state, or, for shooting, some
 stable orbit, flagged as a warning), the soft cells and the Hertz-invalid cells among those with
 impacts, the slowest cells, and a check that every float quantity of every computed cell is finite
-(NaN is allowed only where the map says "not computed": max_multiplier and lyapunov, and
-steady_residual in a census map). A census map adds how many cells hold 1, 2, ... attractors,
+(NaN is allowed only where the map says "not computed": in a quantity whose long_name says
+"(NaN where not computed)", such as max_multiplier and lyapunov, and in steady_residual in a census
+map). A census map adds how many cells hold 1, 2, ... attractors,
 the soft fraction, and the non-periodic attractors with the cells where states were seen to
 leave them (transient chaos: their fractions depend on analysis.max_periods).
 
@@ -27,8 +28,6 @@ try:
                              read_map, regime_counts)  # fmt: skip
 except ImportError as exc:
     missing_module(PROG, exc)
-
-MAY_BE_NAN = ("max_multiplier", "lyapunov")  # NaN means "not computed for this cell"
 
 
 def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
@@ -56,7 +55,7 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
         index = np.unravel_index(flat, wall.shape)
         where = ", ".join(f"{a.name}={a.values[i]:.3g}" for a, i in zip(sweep.axes.values(), index))
         lines.append(f"  slow: {wall[index]:.3g} s  {where}  {sweep.labels()[index]}")
-    may_be_nan = MAY_BE_NAN + (("steady_residual",) if sweep.is_census else ())
+    may_be_nan = sweep.not_computed_as_nan() + (["steady_residual"] if sweep.is_census else [])
     if sweep.is_census:
         lines.extend(census_lines(sweep, done))
     bad = 0

@@ -36,8 +36,8 @@ from vibromap_regimes import (FLAG_NO, FLAG_UNKNOWN, FLAG_YES, HERTZ_KEY, HERTZ_
                               SOFT_KCON_DEFAULT, SOFT_KEY, STABLE_FLAG_MEANINGS, STABLE_FLAG_VALUES, STABLE_NO,
                               STABLE_UNKNOWN, STABLE_YES, STATUS_FLAG_MEANINGS, STATUS_FLAG_VALUES, STEADY_ANSWERS,
                               _label_key, regime_counts, regime_labels)
-from vibromap_map import (MAP_ALWAYS, MAP_REQUIRED, MapAxis, SweepMap, _check_progress_attributes,
-                          _check_soft_attributes, _map_axes, axis_name, read_map)
+from vibromap_map import (MAP_ALWAYS, MAP_REQUIRED, NOT_COMPUTED_NOTE, MapAxis, SweepMap,
+                          _check_progress_attributes, _check_soft_attributes, _map_axes, axis_name, read_map)
 from vibromap_soft import (SoftInfo, add_soft_cells, computed_soft, hertz_validity, impact_cells,
                            periodic_with_impacts)
 from vibromap_slice import (FixedValue, MapSlice, MapSliceError, _nearest_index, _runs, cell_boundary, cell_edges,

@@ -10,7 +10,8 @@ Map file (include/vibromap/io/map_file.hpp; N axes, first axis slowest):
             in order. regime, status and stable carry CF flag_values/flag_meanings; -1 marks a
             cell not computed (done == 0), where float datasets hold NaN and integer ones 0.
             stable is 1 (stable), 0 (unstable) or -1 (unknown: no periodic orbit, not computed);
-            max_multiplier and lyapunov are NaN also in cells done where they were not computed.
+            a quantity whose long_name ends in "(NaN where not computed)" (max_multiplier,
+            lyapunov) is NaN also in cells done where it was not computed.
   root attributes  title, Conventions, vibromap_version, scene, ranks, cells_total,
             cells_done, complete, stored (the quantity names, space separated),
             census_attractors (A > 0 in a census map)
@@ -53,6 +54,9 @@ from vibromap_regimes import (HERTZ_LIMIT_DEFAULT, REGIME_FLAG_MEANINGS, REGIME_
 # Datasets every map has (map_file.hpp); the optional quantities come on top of these.
 MAP_REQUIRED = ("done", "status", "regime", "n", "k")
 MAP_ALWAYS = MAP_REQUIRED + ("stable", "soft", "wall_s", "steady_residual")
+# How a quantity's long_name says that NaN in a cell done means "not computed there" (the C++
+# quantity table's descriptions, core/quantities.hpp): the file, not a list here, names them.
+NOT_COMPUTED_NOTE = "(NaN where not computed)"
 
 
 @dataclasses.dataclass
@@ -111,6 +115,7 @@ class SweepMap:
     # each of shape + (A,); empty in a map without a census
     filled: tuple[str, ...] = ()  # datasets the file lacks that read_map made up ("stable": unknown)
     sealed: bool = False  # its attributes were verified by their checksum (False: a map made before it had one)
+    long_names: dict[str, str] = dataclasses.field(default_factory=dict)  # dataset name -> long_name ("" when none)
 
     @property
     def is_census(self) -> bool:
@@ -154,6 +159,11 @@ class SweepMap:
         on = _text(self.attrs.get("refine_on", "")).replace(" ", ", ")
         return (f"adaptive: {solved} of {computed.size} points solved ({100.0 * solved / computed.size:.3g} %), "
                 f"{audited} audited,\nrefined where {on or 'the refine quantities'} change; the rest inherited")
+
+    def not_computed_as_nan(self) -> list[str]:
+        """The float datasets whose NaN in a cell done means "not computed there" (max_multiplier,
+        lyapunov, ...): those whose long_name says so (NOT_COMPUTED_NOTE)."""
+        return [name for name, text in self.long_names.items() if text.endswith(NOT_COMPUTED_NOTE)]
 
     @property
     def axis_names(self) -> list[str]:
@@ -225,6 +235,7 @@ def read_map(path: str) -> SweepMap:
         axes = _map_axes(f, path)
         data: dict[str, np.ndarray] = {}
         units: dict[str, str] = {}
+        long_names: dict[str, str] = {}
         census: dict[str, np.ndarray] = {}
         for name, item in f.items():
             if name in axes or not isinstance(item, h5py.Dataset) or item.dtype.kind not in "iufb":
@@ -237,6 +248,7 @@ def read_map(path: str) -> SweepMap:
                 continue
             data[name] = read_dataset(item, path)
             units[name] = _text(item.attrs.get("units", ""))
+            long_names[name] = _text(item.attrs.get("long_name", ""))
         regime_meanings = _flag_meanings(f["regime"], REGIME_FLAG_VALUES, REGIME_FLAG_MEANINGS, path)
         status_meanings = _flag_meanings(f["status"], STATUS_FLAG_VALUES, STATUS_FLAG_MEANINGS, path)
         filled = () if isinstance(f.get("stable"), h5py.Dataset) else ("stable",)
@@ -269,6 +281,7 @@ def read_map(path: str) -> SweepMap:
         census=census,
         filled=filled,
         sealed=opened.sealed,
+        long_names=long_names,
     )
 
 

@@ -116,9 +116,11 @@ def _write_axes(f, axes, categories):
     return scales
 
 
-def _write_cells(f, done, arrays, quantities):
+def _write_cells(f, done, arrays, quantities, long_names):
     """The per-cell datasets in the C++ writer's order; arrays: status, regime, stable, soft,
-    hertz_valid (the last two None: left out), n, k, wall_s, steady_residual."""
+    hertz_valid (the last two None: left out), n, k, wall_s, steady_residual; long_names: the
+    quantities' long_name attributes (a quantity without one has none; units "1" for a name
+    QUANTITY_UNITS does not know)."""
     datasets = [f.create_dataset("done", data=done, dtype="u1")]
     datasets.append(_flag_dataset(f, "status", arrays["status"], done, STATUS_MEANINGS))
     datasets.append(_flag_dataset(f, "regime", arrays["regime"], done, REGIME_MEANINGS))
@@ -136,21 +138,26 @@ def _write_cells(f, done, arrays, quantities):
             dataset = _int_dataset(f, name, values, "i8", done, 0)
             dataset.attrs["units"] = QUANTITY_UNITS[name]
         else:
-            dataset = _float_dataset(f, name, values, done, QUANTITY_UNITS[name])
+            dataset = _float_dataset(f, name, values, done, QUANTITY_UNITS.get(name, "1"))
+        if name in long_names:
+            dataset.attrs["long_name"] = long_names[name]
         datasets.append(dataset)
     return datasets
 
 
 def write_map(path, axes, regime, n, k, *, done=None, status=None, stable=None, wall_s=None, steady_residual=None,
               quantities=None, scene="[system]\nm1 = 1000.0\n\n[sweep]\n", ranks=2, attach_scales=True,
-              title="vibromap regime map", categories=None, soft=None, hertz_valid=None, attributes=None):  # fmt: skip
+              title="vibromap regime map", categories=None, soft=None, hertz_valid=None, attributes=None,
+              long_names=None):  # fmt: skip
     """Writes a map file. axes: [(name, values, scale), ...] in order (first slowest);
     regime, n, k and the optional arrays have the grid's shape; done defaults to regime != -1,
     status to ok where done, stable to unknown (-1) everywhere; quantities: {name: array} of the optional stored quantities.
     attach_scales=False leaves the axes unattached (a malformed map, for the reader's checks);
     categories: {axis name: [choice names]} makes that axis categorical (CF flag_meanings);
     soft, hertz_valid: the new always-present /soft (0/1) and /hertz_valid (0/1) (None: left
-    out, as in older maps); attributes: extra root attributes (soft_kcon, hertz_limit, steady)."""
+    out, as in older maps); attributes: extra root attributes (soft_kcon, hertz_limit, steady);
+    long_names: {quantity: long_name} (the C++ writer gives every quantity one; tests give those
+    they need)."""
     shape = tuple(len(values) for _, values, _ in axes)
     regime = np.asarray(regime)
     assert regime.shape == shape, (regime.shape, shape)
@@ -168,7 +175,7 @@ def write_map(path, axes, regime, n, k, *, done=None, status=None, stable=None, 
     # order written (done, status, regime, ...), not alphabetically.
     with h5py.File(path, "w", track_order=True) as f:
         scales = _write_axes(f, axes, categories)
-        datasets = _write_cells(f, done, arrays, quantities)
+        datasets = _write_cells(f, done, arrays, quantities, dict(long_names or {}))
         if attach_scales:
             for dataset in datasets:
                 for i, axis in enumerate(scales):

@@ -47,6 +47,23 @@ def test_read_map_returns_the_arrays_and_attributes_written(map2d):
     assert "stable" not in m.stored
 
 
+def test_read_map_names_every_quantity_the_file_stores_even_one_it_does_not_know(tmp_path):
+    """The quantities come from the file (its `stored` attribute, each dataset's units and
+    long_name), not from a list in the reader: a name no reader has seen is read like the rest."""
+    regime, n, k, _, _ = pattern_2d()
+    x1_max = np.full(regime.shape, 0.0125)
+    path = tmp_path / "new_quantity.h5"
+    make_map.write_map(path, [("E1", E1_2D, "log"), ("E2", E2_2D, "log")], regime, n, k,
+                       quantities={"x1_max": x1_max, "T_con": np.full(regime.shape, 0.1)},
+                       long_names={"x1_max": "largest x1 of the steady cycle", "T_con": "duration of the longest impact"})
+    m = vibromap_h5.read_map(path)
+    assert m.stored == ["x1_max", "T_con"]
+    assert (m.units["x1_max"], m.long_names["x1_max"]) == ("1", "largest x1 of the steady cycle")
+    assert m.long_names["T_con"] == "duration of the longest impact" and m.long_names["n"] == ""
+    done = m.data["done"] != 0
+    np.testing.assert_array_equal(m.data["x1_max"], np.where(done, 0.0125, np.nan))
+
+
 def test_read_map_exposes_the_stability_and_the_quantities_not_computed(tmp_path):
     regime, n, k, _, _ = pattern_2d()
     periodic = regime == R["periodic"]

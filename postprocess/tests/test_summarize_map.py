@@ -12,12 +12,12 @@ AXES = [("E1", np.array([1e5, 1e7, 1e9]), "log"), ("R1", np.array([0.1, 1.0]), "
 P11, NOC = make_map.REGIME["periodic"], make_map.REGIME["no_contact"]
 
 
-def write(path, k_con):
+def write(path, k_con, quantities=None, long_names=None):
     regime = np.array([[P11, P11], [P11, NOC], [NOC, NOC]], dtype=np.int8)
     n = np.where(regime == P11, 1, 0)
     wall = np.array([[0.1, 0.2], [0.3, 0.9], [0.05, 0.01]])
     make_map.write_map(path, AXES, regime, n, n, wall_s=wall, stable=np.ones((3, 2), np.int8),
-                       quantities={"k_con": k_con})
+                       quantities={"k_con": k_con, **(quantities or {})}, long_names=long_names)
 
 
 def test_counts_and_slowest_cell_are_reported(tmp_path):
@@ -41,6 +41,23 @@ def test_non_finite_value_in_a_computed_cell_fails(tmp_path):
     proc = subprocess.run([sys.executable, summarize_map.__file__, str(path)], capture_output=True, text=True)
     assert proc.returncode == 1
     assert "NON-FINITE: k_con in 1 computed cells" in proc.stdout
+
+
+def test_nan_is_allowed_where_the_long_name_says_not_computed(tmp_path):
+    """The file names the quantities whose NaN means "not computed" (their long_name), even one
+    this reader has never heard of; any other NaN in a cell done is reported."""
+    path = tmp_path / "m.h5"
+    nan_in_one = np.full((3, 2), 1.5)
+    nan_in_one[0, 1] = np.nan
+    write(path, nan_in_one, quantities={"x1_max": nan_in_one, "lyapunov": nan_in_one},
+          long_names={"k_con": "softness", "x1_max": "largest x1 of the cycle (NaN where not computed)",
+                      "lyapunov": "largest Lyapunov exponent"})
+    sweep = read_map(str(path))
+    assert sweep.not_computed_as_nan() == ["x1_max"]
+    lines, bad = summarize_map.summary_lines(sweep, slowest=0)
+    assert bad == 2
+    assert "NON-FINITE: k_con in 1 computed cells" in lines and "NON-FINITE: lyapunov in 1 computed cells" in lines
+    assert not any("x1_max" in line for line in lines)
 
 
 def test_missing_file_is_exit_2(tmp_path):

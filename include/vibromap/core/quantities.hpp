@@ -37,15 +37,19 @@ enum class Quantity {
   energy_dissipated,  // energy the contact dissipates in the longest impact, J
   clipped_impacts,    // impacts of the steady cycle whose damped force was clipped at 0
 };
-// One table in cell_result.cpp holds, per Quantity, its name, units, description and the
-// CellResult member it lives in; everything below (and the map file) reads that table, so
-// adding a quantity means one enum value, one CellResult member and one table row.
+// One table in quantities.cpp (kQuantities) holds, per Quantity, its name, units, description
+// (the map's long_name, ending in "(NaN where not computed)" exactly when a default CellResult
+// holds NaN) and the CellResult member it lives in. Everything below reads it, and so do the
+// map file, the sweep's wire codec, [sweep] store, `vibromap keys` and, through the map's
+// attributes, the Python readers: adding a quantity touches 2 files, this one (an enum value at
+// the end, a CellResult member) and quantities.cpp (a table row, its value in summarize()), then
+// 2 generated ones (docs/developer.md, "How to add a map quantity").
 const std::vector<Quantity>& all_quantities();  // in enum order
 std::string to_string(Quantity q);              // the dataset name, e.g. "T_con"
 Quantity parse_quantity(std::string_view s);    // throws std::invalid_argument
 std::string_view quantity_units(Quantity q);    // "s", "1", "N", "m", "m/s", "N s", "1/s"
 std::string_view quantity_description(Quantity q);  // one line, the map's long_name
-bool quantity_is_integer(Quantity q);           // hertz_valid, periods, rhs_evals, clipped_impacts (int64 in maps)
+bool quantity_is_integer(Quantity q);           // int64 in maps (hertz_valid, periods, ...); else float64
 std::int64_t quantity_max(Quantity q);          // largest valid value of an integer quantity (least: 0)
 
 // Codes of the regime dataset (CF flag_values); -1 marks a cell not computed yet.

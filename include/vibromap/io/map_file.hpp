@@ -21,8 +21,9 @@
 //   /steady_residual N-D float64, units 1
 //   /<quantity>      N-D, only for the scene's [sweep] store list, with units and long_name
 //                    from the quantity catalogue (core/quantities.hpp): int64 for the integer
-//                    quantities, float64 for the others. max_multiplier and lyapunov are NaN
-//                    also in cells done where the solver did not compute them.
+//                    quantities, float64 for the others. A quantity whose long_name ends in
+//                    "(NaN where not computed)" (max_multiplier, lyapunov) is NaN also in
+//                    cells done where the solver did not compute it.
 // With a census (a sweep whose scene has [census]; root attribute census_attractors = A > 0):
 //   /attractor       1-D int32 coordinate 0..A-1, a dimension scale (the census's attractor index)
 //   /attractors      N-D int32: attractors the census lists in the cell (0..A)

@@ -128,7 +128,7 @@ std::string refine_on_list(const std::vector<RefineOn>& list);  // ["regime", "k
 std::string refine_on_meaning();
 void read_refine(const toml::table& sweep_table, const Context& ctx, bool census, SweepOptions& sweep);
 std::vector<std::string> refine_lines(const SweepOptions& sweep);
-const std::vector<std::string>& quantity_names();  // the storable quantities, cell_result.hpp's order
+const std::vector<std::string>& quantity_names();  // the storable quantities, in the table's order
 
 double axis_end(const toml::table& axis, std::string_view field, const std::string& loc);  // a finite number
 AxisScale axis_scale(const toml::table& axis, const std::string& loc);                      // "lin" by default

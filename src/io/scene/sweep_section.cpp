@@ -39,7 +39,7 @@ const std::vector<SweepInterval>& sweep_intervals() {
   return rows;
 }
 
-// The dataset names of the storable quantities, in cell_result.hpp's order.
+// The dataset names of the storable quantities, in the quantity table's order (core/quantities.hpp).
 const std::vector<std::string>& quantity_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;

@@ -11,6 +11,7 @@
 //   orbit diagram:  the steps of one direction (orbit_diagram/steps_codec.hpp)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -154,8 +155,24 @@ TEST(ResultCodecs, AttractorOfAnUnknownRegimeKindIsRefused) {
 
 namespace {
 
-CellResult sample_cell() {
+// Every quantity a value of its own from its place j in the table (1 for hertz_valid, whose
+// largest is 1), none its default: a quantity the codec drops or swaps shows.
+CellResult distinct_quantities() {
   CellResult c;
+  const std::vector<Quantity>& all = all_quantities();
+  for (std::size_t j = 0; j < all.size(); ++j) {
+    if (quantity_is_integer(all[j]))
+      set_quantity_int(c, all[j], std::min<std::int64_t>(quantity_max(all[j]), static_cast<std::int64_t>(j) + 2));
+    else
+      set_quantity(c, all[j], 0.25 + static_cast<double>(j));
+  }
+  return c;
+}
+
+// Extreme values where the wire must not round: the quantities the table gives a value of
+// their own, then the named ones below.
+CellResult sample_cell() {
+  CellResult c = distinct_quantities();
   c.status = 2;
   c.regime = -1;
   c.hertz_valid = 1;
@@ -190,21 +207,28 @@ void expect_same_cell(const CellResult& a, const CellResult& b) {
   EXPECT_EQ(a.soft, b.soft);
   EXPECT_EQ(a.n, b.n);
   EXPECT_EQ(a.k, b.k);
-  EXPECT_EQ(a.periods, b.periods);
-  EXPECT_EQ(a.rhs_evals, b.rhs_evals);
-  EXPECT_EQ(a.clipped_impacts, b.clipped_impacts);
+  for (const Quantity q : all_quantities()) {
+    if (quantity_is_integer(q))
+      EXPECT_EQ(quantity_int(a, q), quantity_int(b, q)) << to_string(q);
+    else
+      EXPECT_TRUE(same_bits(a.value(q), b.value(q))) << to_string(q);
+  }
   for (const double CellResult::*m :
-       {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::T_con, &CellResult::k_con, &CellResult::F_max,
-        &CellResult::z_max, &CellResult::z_ratio, &CellResult::v_in, &CellResult::impulse, &CellResult::max_multiplier,
-        &CellResult::lyapunov, &CellResult::e_effective, &CellResult::energy_dissipated, &CellResult::soft_fraction,
+       {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::soft_fraction,
         &CellResult::unresolved_fraction, &CellResult::unlisted_fraction, &CellResult::budget_fraction})
     EXPECT_TRUE(same_bits(a.*m, b.*m));
   ASSERT_EQ(a.census.size(), b.census.size());
   for (std::size_t i = 0; i < a.census.size(); ++i) expect_same_attractor(a.census[i], b.census[i]);
 }
 
-// Layout: 5 int8 codes, n and k (int32), 3 int64 counters, 13 doubles, the census byte.
-constexpr std::size_t kCellBytes = 5 + 2 * 4 + 3 * 8 + 13 * 8 + 1;
+// Layout: 5 int8 flags (hertz_valid one of them), n and k (int32), an int64 per other integer
+// quantity, wall_s, steady_residual and a double per float quantity, the census byte.
+std::size_t cell_bytes() {
+  const auto& all = all_quantities();
+  const auto integers = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), quantity_is_integer));
+  return 5 + 2 * 4 + (integers - 1) * 8 + (2 + all.size() - integers) * 8 + 1;
+}
+const std::size_t kCellBytes = cell_bytes();
 // The census: 4 fractions, a uint32 count, then each attractor (attractor_codec.hpp).
 constexpr std::size_t kCensusBytes = 4 * 8 + 4;
 
@@ -218,6 +242,44 @@ TEST(ResultCodecs, SweepCellWithoutCensus) {
   const CellResult back = decode_all(codec, bytes);
   expect_same_cell(c, back);  // census empty, its fractions NaN: the defaults on both sides
   expect_prefixes_refused(codec, bytes);
+}
+
+// Every quantity of the table crosses the wire, with the value it had: none of them is left at
+// its default on the other side, nor takes another's value.
+TEST(ResultCodecs, SweepCellCarriesEveryQuantityOfTheTable) {
+  const CellResult fresh;
+  const CellResult c = distinct_quantities();
+  for (const bool census : {false, true}) {
+    const CellCodec codec(census);
+    const CellResult back = decode_all(codec, encode(codec, c));
+    for (const Quantity q : all_quantities()) {
+      EXPECT_EQ(back.value(q), c.value(q)) << to_string(q);
+      EXPECT_NE(back.value(q), fresh.value(q)) << to_string(q);
+    }
+  }
+}
+
+// The layout's version: 6 and 8 for the 15 quantities the generations were set for (the bytes of
+// the header ranks exchanged before the codec followed the table), another number for a quantity
+// more or fewer, or two swapped.
+TEST(ResultCodecs, SweepCellVersionFollowsTheQuantities) {
+  const std::vector<Quantity>& all = all_quantities();
+  ASSERT_GE(all.size(), 15u);
+  const std::vector<Quantity> generation(all.begin(), all.begin() + 15);
+  EXPECT_EQ(cell_layout_version(false, generation), 6u);
+  EXPECT_EQ(cell_layout_version(true, generation), 8u);
+  const std::vector<Quantity> fewer(all.begin(), all.begin() + 14);
+  std::vector<Quantity> more = generation, moved = generation;
+  more.push_back(Quantity::T_con);
+  std::swap(moved[0], moved[1]);
+  for (const auto& other : {fewer, more, moved})
+    for (const bool census : {false, true}) {
+      EXPECT_NE(cell_layout_version(census, other), 6u);
+      EXPECT_NE(cell_layout_version(census, other), 8u);
+    }
+  EXPECT_EQ(CellCodec(false).version(), cell_layout_version(false, all));
+  EXPECT_EQ(CellCodec(true).version(), cell_layout_version(true, all));
+  EXPECT_NE(CellCodec(false).version(), CellCodec(true).version());
 }
 
 TEST(ResultCodecs, SweepCellWithACensus) {

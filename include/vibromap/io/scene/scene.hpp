@@ -35,7 +35,7 @@
 //   "forcing.omega" = { from = 5.0, to = 9.0, n = 41 }       # any numeric key, by its full name
 //   order = ["E1", "E2", "omega"]  # first axis slowest; default E1, E2, R1, R2, m2, k2, omega2,
 //                                  # then the schema's order
-//   store = ["T_con", "k_con"]   # optional quantities (cell_result.hpp); default SweepOptions'
+//   store = ["T_con", "k_con"]   # optional quantities (core/quantities.hpp); default SweepOptions'
 //   checkpoint_interval = 60.0   # s, > 0
 //   progress_interval = 10.0     # s, > 0
 // An axis is any real or integer key of [system] ... [initial], named in full ("forcing.omega",
