@@ -99,36 +99,36 @@ def soft_kcon(scene: str) -> tuple[float, str]:
     return SOFT_KCON_DEFAULT, "analysis.soft_kcon's default; the file does not give the scene"
 
 
+# What read_branch_file needs of a branch file: its datasets and root attributes.
+BRANCH_DATASETS = ("param", "stable", "x1", "x2", "v1", "v2", "k_con", "strobe_x1", "point_branch", "branch_n",
+                   "branch_parent", "branch_born_at", "bifurcation_type", "bifurcation_branch", "bifurcation_param",
+                   "bifurcation_x1", "bifurcation_x2", "bifurcation_v1", "bifurcation_v2")
+BRANCH_ATTRIBUTES = ("key", "units", "n", "stop", "stops", "scene")
+
+
 def read_branch_file(path: str) -> dict:
     """A branch file (HDF5, include/vibromap/io/branch_file.hpp) as the JSON's structure: the first
     branch's points and bifurcations at the top, the switched branches under "branches"."""
-    with open_h5(path) as f:
-        if "param" not in f or "bifurcation_type" not in f or "key" not in f.attrs:
-            raise VibromapFileError(f"{path}: not a branch file of vibromap continue (no param, bifurcation_type or key)")
-        names = ["param", "stable", "x1", "x2", "v1", "v2", "bifurcation_type", "bifurcation_param",
-                 "bifurcation_x1", "bifurcation_x2", "bifurcation_v1", "bifurcation_v2"]
-        names += [n for n in ("point_branch", "bifurcation_branch", "strobe_x1", "branch_n", "branch_parent",
-                              "branch_born_at", "k_con") if n in f]
-        get = {name: np.asarray(read_dataset(f[name], path)) for name in names}
-        data = {"key": _text(f.attrs["key"]), "n": int(f.attrs.get("n", 1)), "stop": _text(f.attrs.get("stop", "")),
-                "units": _text(f.attrs.get("units", f["param"].attrs.get("units", ""))),
-                "scene": _text(f.attrs.get("scene", ""))}
-        stops = _text(f.attrs.get("stops", data["stop"])).split("\n")
-    count = len(get["param"])
-    owner = get.get("point_branch", np.zeros(count, dtype=int))
-    bif_owner = get.get("bifurcation_branch", np.zeros(len(get["bifurcation_type"]), dtype=int))
-    ns = get.get("branch_n", np.array([data["n"]]))
+    with open_h5(path, "branch file") as f:
+        for name in BRANCH_DATASETS:
+            if name not in f:
+                raise VibromapFileError(f"{path}: not a branch file of vibromap continue (no dataset '{name}')")
+        for name in BRANCH_ATTRIBUTES:
+            if name not in f.attrs:
+                raise VibromapFileError(f"{path}: not a branch file of vibromap continue (no root attribute '{name}')")
+        get = {name: np.asarray(read_dataset(f[name], path)) for name in BRANCH_DATASETS}
+        data = {"key": _text(f.attrs["key"]), "n": int(f.attrs["n"]), "stop": _text(f.attrs["stop"]),
+                "units": _text(f.attrs["units"]), "scene": _text(f.attrs["scene"])}
+        stops = _text(f.attrs["stops"]).split("\n")
+    owner, bif_owner, ns = get["point_branch"], get["bifurcation_branch"], get["branch_n"]
 
     def points(k):
         out = []
         for i in np.flatnonzero(owner == k):
-            p = {"param": float(get["param"][i]), "stable": bool(get["stable"][i]),
-                 "y": [float(get[c][i]) for c in ("x1", "x2", "v1", "v2")]}
-            if "strobe_x1" in get:
-                p["strobe_x1"] = [float(x) for x in get["strobe_x1"][i] if np.isfinite(x)]
-            if "k_con" in get:
-                p["k_con"] = float(get["k_con"][i])
-            out.append(p)
+            out.append({"param": float(get["param"][i]), "stable": bool(get["stable"][i]),
+                        "y": [float(get[c][i]) for c in ("x1", "x2", "v1", "v2")],
+                        "strobe_x1": [float(x) for x in get["strobe_x1"][i] if np.isfinite(x)],
+                        "k_con": float(get["k_con"][i])})
         return out
 
     def bifurcations(k):

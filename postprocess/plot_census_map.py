@@ -93,7 +93,7 @@ def parse_args(argv: list[str] | None):
 
 
 def require_census(sweep: SweepMap) -> None:
-    if not sweep.is_census or "attractors" not in sweep.data:
+    if not sweep.is_census:
         raise VibromapFileError(
             f"{sweep.path}: not a census map (no attractor datasets); sweep a scene with a [census] section"
         )
@@ -102,8 +102,7 @@ def require_census(sweep: SweepMap) -> None:
 def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
     """e.g. "(1,1) k_con 8.87 soft" or "non-periodic k_con 40.6 transient".
 
-    "transient": states were seen to leave the non-periodic set (transient chaos); maps
-    written before vibromap kept that flag have no attractor_transient and never say it.
+    "transient": states were seen to leave the non-periodic set (transient chaos).
     """
     c = sweep.census
     regime = int(c["regime"][index + (a,)])
@@ -119,7 +118,7 @@ def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
         text += " unstable"
     if int(c["soft"][index + (a,)]) == 1:
         text += " soft"
-    if "transient" in c and int(c["transient"][index + (a,)]) == 1:
+    if int(c["transient"][index + (a,)]) == 1:
         text += " transient"
     if int(c["from_rest"][index + (a,)]) == 1:
         text += " (from rest)"
@@ -150,9 +149,8 @@ def plot_map(sweep: SweepMap, sl, show: str, curves=()):
         cmap = plt.get_cmap("viridis").copy()
         cmap.set_bad(COLOR_NOT_COMPUTED)
         mesh = ax.pcolormesh(x_edges, y_edges, soft, cmap=cmap, vmin=0.0, vmax=1.0, shading="flat")
-        kcon = f"{sweep.soft_kcon:g}" if "soft_kcon" in sweep.attrs else "census.soft_kcon"  # older maps: the scene's
         fig.colorbar(mesh, ax=ax, pad=0.02).set_label("soft basin fraction (stable periodic with impacts, Hertz-valid, "
-                                                      f"k_con <= {kcon})", fontsize=9)
+                                                      f"k_con <= {sweep.soft_kcon:g})", fontsize=9)
         robust = int((soft >= 0.9).sum())
         title = f"soft basin fraction (census); >= 0.9 in {maps.cells_text(robust)}"
         if (~done).any():

@@ -11,15 +11,14 @@ unresolved or failed (dark grey), any other without a finite k_con (tan), and no
 (light grey). Cells beyond the Hertz limit (z_max/R* > the map's hertz_limit, 0.05 by
 default) are greyed and hatched: their k_con comes from a force law that does not hold there.
 A red line outlines the soft region by the one definition (periodic with impacts, stable,
-Hertz-valid, k_con <= the map's soft_kcon, 10 by default): the map's /soft, or for an older map
-computed from regime, stable, hertz_valid (else z_ratio) and k_con; an invalid cell is never
-inside it. Other axes are held fixed as in plot_regime_map (--fix); the title names their values
+Hertz-valid, k_con <= the map's soft_kcon): the map's /soft, or for another --threshold computed
+from regime, stable, hertz_valid and k_con; an invalid cell is never inside it. Other axes are held fixed as in plot_regime_map (--fix); the title names their values
 and, for a map made by shooting, that each cell is some stable orbit, not necessarily the motion
 from rest. The map must have stored k_con ([sweep] store = ["k_con", ...]).
 
-Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file, or a map
-without k_con (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run
-via postprocess/vmpy).
+Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file, a map of
+another format version or a map without k_con (one line on stderr), 3 when numpy, h5py or
+matplotlib cannot be imported (run via postprocess/vmpy).
 """
 
 from __future__ import annotations
@@ -104,7 +103,7 @@ def parse_args(argv: list[str] | None):
         metavar="K",
         type=float,
         default=None,
-        help="soft means k_con <= K (default: the map's soft_kcon, 10 in maps without it; another K "
+        help="soft means k_con <= K (default: the map's soft_kcon; another K "
         "recomputes the soft cells from regime, stable, Hertz validity and k_con; ~1000 is rigid, ~1-10 soft)",
     )
     args = maps.finish_args(parser, argv, "_kcon")
@@ -161,10 +160,7 @@ def draw_kcon(fig, ax, x_edges, y_edges, k_con: np.ma.MaskedArray, soft_kcon: fl
 
 def soft_outline(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
     """Outlines the soft cells (data[SOFT_KEY] == 1: Hertz-valid ones only) along their edges, a
-    LineCollection with gid SOFT_GID; returns its legend entry, which names the definition, or
-    says why the soft cells cannot be told."""
-    if not info.soft_known:
-        return Line2D([], [], color="none", label=f"soft cells unknown: {info.soft_source}")
+    LineCollection with gid SOFT_GID; returns its legend entry, which names the definition."""
     soft = np.asarray(sl.data[SOFT_KEY]) == FLAG_YES
     if not soft.any():
         return Line2D([], [], color="none", label=f"no soft cell here ({info.definition()})")
@@ -178,8 +174,6 @@ def soft_outline(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
 def hertz_marks(ax, sl: MapSlice, info: SoftInfo, x_edges, y_edges):
     """Greys and hatches the Hertz-invalid cells (z_max/R* > hertz_limit: their k_con is computed
     beyond the force law's validity); returns the legend entry, with their count."""
-    if not info.hertz_known:
-        return Line2D([], [], color="none", label=f"Hertz validity unknown: {info.hertz_source}")
     invalid = np.asarray(sl.data[HERTZ_KEY]) == FLAG_NO
     if invalid.any():
         maps.hatch_cells(ax, x_edges, y_edges, invalid, HERTZ_HATCH, HERTZ_HATCH_COLOR, HERTZ_FACE, HERTZ_GID)

@@ -30,8 +30,9 @@ trajectory) is skipped with a note.
 
 The optimisation file's layout is include/vibromap/io/optimise_file.hpp's.
 
-Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file (one line on
-stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+Exit status: 0 on success, 2 for a bad argument, an unreadable or invalid file, or one of another
+format version (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
+postprocess/vmpy).
 """
 
 from __future__ import annotations
@@ -121,7 +122,7 @@ class Optimisation:
     best: list[dict]  # per best point: every parameter (E1, ..., omega2), objective, regime, k_con, ...
     trajectory: str  # the best point's trajectory file name ("" when none)
     hertz_limit: float = HERTZ_LIMIT_DEFAULT  # z_max/R* above which Hertz theory does not hold
-    scene: str = ""  # the scene the optimisation ran (TOML text; "" in files without one)
+    scene: str = ""  # the scene the optimisation ran (TOML text)
 
     def column(self, name: str) -> int | None:
         return self.variables.index(name) if name in self.variables else None
@@ -139,28 +140,35 @@ def _read_start(group, path: str, variables: int) -> Start:
     for name in ("x", "objective", "feasible", "regime", "n", "k"):
         if name not in group:
             raise VibromapFileError(f"{path}: start {group.name} has no dataset '{name}'")
+    for name in ("index", "seed", "algorithm", "stop", "best"):
+        if name not in group.attrs:
+            raise VibromapFileError(f"{path}: start {group.name} has no attribute '{name}'")
     x = np.asarray(group["x"][()], dtype=np.float64).reshape(-1, variables)
-    best = int(group.attrs.get("best", -1))
+    best = int(group.attrs["best"])
     return Start(
-        index=int(group.attrs.get("index", 0)),
-        seed=int(group.attrs.get("seed", 0)),
-        algorithm=_text(group.attrs.get("algorithm", "")),
-        stop=_text(group.attrs.get("stop", "")),
+        index=int(group.attrs["index"]),
+        seed=int(group.attrs["seed"]),
+        algorithm=_text(group.attrs["algorithm"]),
+        stop=_text(group.attrs["stop"]),
         x=x,
         objective=np.asarray(group["objective"][()], dtype=np.float64),
         feasible=np.asarray(group["feasible"][()]) != 0,
         labels=regime_labels(group["regime"][()], group["n"][()], group["k"][()]),
         best=best if best >= 0 else None,
-        law=_text(group.attrs.get("law", "")),
+        law=_text(group.attrs.get("law", "")),  # only when the contact law is free
     )
 
 
-def _read_best(group) -> dict:
+def _read_best(group, path: str) -> dict:
+    for name in ("law", "integrate"):
+        if name not in group.attrs and name not in group:
+            raise VibromapFileError(f"{path}: best point {group.name} has no '{name}'")
+    for name in ("z_ratio", "hertz_valid"):
+        if name not in group["integrate"].attrs:
+            raise VibromapFileError(f"{path}: best point {group.name}/integrate has no attribute '{name}'")
     point = {name: float(value) for name, value in group.attrs.items() if np.asarray(value).dtype.kind in "iuf"}
-    if "law" in group.attrs:  # the best point's contact law
-        point["law"] = _text(group.attrs["law"])
-    # integrate/: the re-solve from rest; soft_check/: the soft-fraction re-check (min_soft_fraction > 0 only;
-    # older files have none).
+    point["law"] = _text(group.attrs["law"])  # the best point's contact law
+    # integrate/: the re-solve from rest; soft_check/: the soft-fraction re-check (min_soft_fraction > 0 only).
     for sub in ("integrate", "soft_check"):
         solve = group.get(sub)
         if solve is not None:
@@ -180,44 +188,48 @@ def scene_table(scene: str, section: str) -> dict:
         return {}
 
 
-def file_hertz_limit(f) -> float:
-    """The Hertz limit the optimisation ran with: its hertz_limit attribute, else its scene's
-    [analysis] hertz_limit, else the default (0.05)."""
-    if "hertz_limit" in f.attrs:
-        return float(np.asarray(f.attrs["hertz_limit"]).reshape(()))
+def scene_hertz_limit(scene: str) -> float:
+    """The Hertz limit the optimisation ran with: its scene's [analysis] hertz_limit, else the
+    key's default (0.05)."""
     try:
-        return float(scene_table(_text(f.attrs.get("scene", "")), "analysis").get("hertz_limit", HERTZ_LIMIT_DEFAULT))
+        return float(scene_table(scene, "analysis").get("hertz_limit", HERTZ_LIMIT_DEFAULT))
     except (ValueError, TypeError):
         return HERTZ_LIMIT_DEFAULT
+
+
+# Root attributes and datasets every optimisation file has (optimise_file.hpp).
+OPTIMISE_ATTRIBUTES = ("scene", "variables", "scales", "quantity", "sense", "regime", "seeds_from", "trajectory")
+OPTIMISE_ITEMS = ("bounds", "seeds", "starts", "best")
 
 
 def read_optimise(path: str) -> Optimisation:
     """Reads an optimisation file written by vibromap optimise (optimise_file.hpp's layout)."""
     path = os.fspath(path)
-    with open_h5(path) as f:
-        for name in ("variables", "quantity", "sense"):
+    with open_h5(path, "optimisation file") as f:
+        for name in OPTIMISE_ATTRIBUTES:
             if name not in f.attrs:
                 raise VibromapFileError(f"{path}: not a vibromap optimisation file (no attribute '{name}')")
-        if "starts" not in f or "bounds" not in f:
-            raise VibromapFileError(f"{path}: not a vibromap optimisation file (no group 'starts' or dataset 'bounds')")
+        for name in OPTIMISE_ITEMS:
+            if name not in f:
+                raise VibromapFileError(f"{path}: not a vibromap optimisation file (no '{name}')")
         variables = _text(f.attrs["variables"]).split()
         starts = [_read_start(f["starts"][name], path, len(variables)) for name in sorted(f["starts"])]
-        best = [_read_best(f["best"][name]) for name in sorted(f["best"])] if "best" in f else []
+        scene = _text(f.attrs["scene"])
         return Optimisation(
             path=path,
             variables=variables,
-            scales=_text(f.attrs.get("scales", "")).split(),
+            scales=_text(f.attrs["scales"]).split(),
             bounds=np.asarray(f["bounds"][()], dtype=np.float64).reshape(-1, 2),
             quantity=_text(f.attrs["quantity"]),
             sense=_text(f.attrs["sense"]),
-            regime=_text(f.attrs.get("regime", "")),
-            seeds_from=_text(f.attrs.get("seeds_from", "")),
-            seeds=np.asarray(f["seeds"][()], dtype=np.float64).reshape(-1, len(variables)) if "seeds" in f else np.zeros((0, len(variables))),
+            regime=_text(f.attrs["regime"]),
+            seeds_from=_text(f.attrs["seeds_from"]),
+            seeds=np.asarray(f["seeds"][()], dtype=np.float64).reshape(-1, len(variables)),
             starts=starts,
-            best=best,
-            trajectory=_text(f.attrs.get("trajectory", "")),
-            hertz_limit=file_hertz_limit(f),
-            scene=_text(f.attrs.get("scene", "")),
+            best=[_read_best(f["best"][name], path) for name in sorted(f["best"])],
+            trajectory=_text(f.attrs["trajectory"]),
+            hertz_limit=scene_hertz_limit(scene),
+            scene=scene,
         )
 
 
@@ -233,14 +245,12 @@ def soft_check_text(point: dict) -> str:
 def hertz_text(opt: Optimisation) -> str:
     """The best point's Hertz validity as its re-solve from rest (the motion STEM_best.png
     shows) found it, e.g. "Hertz-valid: z_max/R* = 0.012 <= 0.05" or "Hertz-INVALID: z_max/R* =
-    0.21 > 0.05"; "" when the file holds neither its z_ratio nor its hertz_valid."""
-    point = opt.best[0] if opt.best else {}
-    z, flag = point.get("integrate_z_ratio"), point.get("integrate_hertz_valid")
-    if z is None and flag is None:
+    0.21 > 0.05"; "" without a best point."""
+    if not opt.best:
         return ""
-    valid = bool(flag) if flag is not None else z <= opt.hertz_limit
+    z, valid = opt.best[0]["integrate_z_ratio"], bool(opt.best[0]["integrate_hertz_valid"])
     verdict = "Hertz-valid" if valid else "Hertz-INVALID (not a valid answer)"
-    if z is None or not np.isfinite(z):
+    if not np.isfinite(z):
         return verdict
     if (z <= opt.hertz_limit) != valid:  # the file's flag against another limit: say only the ratio
         return f"{verdict}: z_max/R* = {z:.3g}"

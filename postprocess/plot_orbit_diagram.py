@@ -6,8 +6,9 @@ two) show.
 
   postprocess/vmpy plot_orbit_diagram FILE.h5 [--var x1|x2|v1|v2] [-o FILE.png] [--dpi 150]
 
-Exit status: 0 on success, 2 for a bad argument or an unreadable file (one line on stderr),
-3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+Exit status: 0 on success, 2 for a bad argument, an unreadable file or one of another format
+version (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
+postprocess/vmpy).
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ UNITS = {"x1": "m", "x2": "m", "v1": "m/s", "v2": "m/s"}
 
 def read_diagram(path: str, var: str):
     """(key name, units, values (steps,), states (2, steps, keep), key) or VibromapFileError."""
-    with open_h5(path) as f:
+    with open_h5(path, "orbit-diagram file") as f:
         key = _text(f.attrs.get("key", ""))
         if not key or "direction" not in f or var not in f:
             raise VibromapFileError(f"{path}: not an orbit-diagram file of vibromap orbit-diagram (no key, direction or {var})")

@@ -190,15 +190,11 @@ def snapped_notes(sl: MapSlice) -> list[str]:
 
 
 def soft_notes(info: SoftInfo) -> list[str]:
-    """Notes on what the soft cells rest on when it is not the map's own /soft and hertz_valid:
-    computed for an older map, not known at all, or a /soft cell overruled as Hertz-invalid."""
+    """Notes on what the soft cells rest on when it is not the map's own /soft: computed for
+    another soft_kcon, or a /soft cell overruled as Hertz-invalid."""
     notes = []
-    if not info.soft_known:
-        notes.append(f"soft cells unknown: {info.soft_source}")
-    elif info.soft_source != SOFT_FROM_MAP:
+    if info.soft_source != SOFT_FROM_MAP:
         notes.append(f"soft cells {info.soft_source} ({info.definition()})")
-    if not info.hertz_known:
-        notes.append(f"Hertz validity unknown: {info.hertz_source}")
     if info.overruled:
         notes.append(f"{cells_text(info.overruled)} the map calls soft are Hertz-invalid: shown as not soft")
     return notes
@@ -258,10 +254,7 @@ def slice_title(what: str, sweep: SweepMap, sl: MapSlice) -> str:
 
 def unstable_cells(sl: MapSlice) -> np.ndarray:
     """(ny, nx) mask of the cells done whose periodic orbit is unstable (stable == 0)."""
-    stable = sl.data.get("stable")
-    if stable is None:
-        return np.zeros(sl.data["regime"].shape, dtype=bool)
-    return (np.asarray(stable) == STABLE_NO) & (np.asarray(sl.data["done"]) != 0)
+    return (np.asarray(sl.data["stable"]) == STABLE_NO) & (np.asarray(sl.data["done"]) != 0)
 
 
 def mask_rectangles(mask) -> list[tuple[int, int, int, int]]:
@@ -330,18 +323,15 @@ def read_curve_files(paths: list[str]) -> list[tuple[str, list[dict]]]:
 
 
 def axis_has_key(axis: MapAxis, key: str) -> bool:
-    """Whether a map axis is the scene key (forcing.omega): its full key, or, in a map written
-    before axes kept it, its name (omega)."""
-    if axis.key:
-        return axis.key == key
-    return axis.name in (key, key.rsplit(".", 1)[-1])
+    """Whether a map axis is the scene key (forcing.omega)."""
+    return axis.key == key
 
 
 def curve_swapped(sl: MapSlice, path: str, curve: dict) -> bool:
     """Whether the curve's (param, param2) are the plot's (y, x) rather than (x, y); an error
     naming the file, the curve's keys and the plot's axes when they are neither."""
     keys = (curve["param_name"], curve["param2_name"])
-    shown = " and ".join(f"{axis.key or axis.name} ({role})" for axis, role in ((sl.x, "x"), (sl.y, "y")) if axis)
+    shown = " and ".join(f"{axis.key} ({role})" for axis, role in ((sl.x, "x"), (sl.y, "y")) if axis)
     if sl.y is not None:
         if axis_has_key(sl.x, keys[0]) and axis_has_key(sl.y, keys[1]):
             return False

@@ -9,8 +9,7 @@ and its cell count in the legend:
   Hertz-invalid         z_max/R* > hertz_limit: the force law does not hold, so the answer is
                         no answer (hatched); split into "would be soft" (stable, periodic with
                         impacts, k_con <= soft_kcon) and the rest
-  soft                  the map's /soft (for a map written before /soft: computed from regime,
-                        stable, hertz_valid or z_ratio, and k_con)
+  soft                  the map's /soft
   rigid                 periodic with impacts, stable, Hertz-valid, k_con > soft_kcon
   unstable orbit        periodic with impacts, unstable; "stability unknown" where not computed
   no impact             no contact or permanent contact
@@ -18,10 +17,9 @@ and its cell count in the legend:
 The title states the definition and, for a map made by shooting, that each cell is some stable
 orbit, not necessarily the motion from rest. Axes and --fix work as in plot_regime_map.
 
-Exit status: 0 on success, 2 for a bad argument, an unreadable or invalid file, or a map whose
-soft cells cannot be told (no /soft, and no k_con, Hertz validity or stability to compute it
-from; one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
-postprocess/vmpy).
+Exit status: 0 on success, 2 for a bad argument, an unreadable or invalid file, or a map of
+another format version (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported
+(run via postprocess/vmpy).
 """
 
 from __future__ import annotations
@@ -39,7 +37,6 @@ try:
     import matplotlib.colors
     import matplotlib.pyplot as plt
     import numpy as np
-    from matplotlib.lines import Line2D
 
     # vibromap_h5 (h5py) first, so that a missing module is reported under this script's name.
     from vibromap_h5 import (
@@ -47,7 +44,6 @@ try:
         FLAG_YES,
         HERTZ_KEY,
         REGIME_PERIODIC,
-        SOFT_FROM_MAP,
         SOFT_KEY,
         STABLE_NO,
         STABLE_YES,
@@ -103,27 +99,20 @@ def parse_args(argv: list[str] | None):
     return maps.finish_args(parser, argv, "_soft")
 
 
-def require_soft(sweep: SweepMap, info: SoftInfo) -> None:
-    """Refuses a map whose soft cells cannot be told, rather than guessing them."""
-    if not info.soft_known:
-        raise VibromapFileError(f"{sweep.path}: cannot tell the soft cells: {info.soft_source}")
-
-
 def classify(sl: MapSlice, info: SoftInfo) -> np.ndarray:
     """Each cell's category (an index into CATEGORIES): the first of them that applies. A
     Hertz-invalid cell is never soft, whatever the map's /soft says."""
     data = sl.data
     done = np.asarray(data["done"]) != 0
     soft = np.asarray(data[SOFT_KEY]) == FLAG_YES
-    zeros = np.zeros(done.shape, dtype=bool)
-    invalid = np.asarray(data[HERTZ_KEY]) == FLAG_NO if info.hertz_known else zeros
+    invalid = np.asarray(data[HERTZ_KEY]) == FLAG_NO
     periodic = periodic_with_impacts(data)
     stable = np.asarray(data["stable"])
     if "k_con" in data:
         k_con = np.asarray(data["k_con"], dtype=np.float64)
         would_be_soft = periodic & (stable == STABLE_YES) & (k_con > 0) & (k_con <= info.soft_kcon)
     else:
-        would_be_soft = zeros
+        would_be_soft = np.zeros(done.shape, dtype=bool)
     codes = [code for code, meaning in sl.regime_meanings.items() if meaning in NO_IMPACT_REGIMES]
     regime = np.asarray(data["regime"])
     no_impact = np.isin(regime, codes) | ((regime == REGIME_PERIODIC) & (np.asarray(data["k"]) == 0))
@@ -158,23 +147,18 @@ def legend_handles(counts: dict[int, int], info: SoftInfo, has_kcon: bool) -> li
     shown = [code for code in LEGEND_ORDER if counts[code] or code in ALWAYS_SHOWN]
     if not has_kcon:  # "would be soft" cannot be told
         shown = [code for code in shown if code != INVALID_SOFT or counts[code]]
-    if not info.hertz_known:
-        shown = [code for code in shown if code not in (INVALID_SOFT, INVALID)]
     handles = []
     for code in shown:
         _, color, hatch = CATEGORIES[code]
         handles.append(maps.cell_patch(color, f"{labels[code]}: {maps.cells_text(counts[code])}", hatch,
                                        INVALID_HATCH_COLOR))  # fmt: skip
-    if not info.hertz_known:
-        handles.append(Line2D([], [], color="none", label=f"Hertz validity unknown: {info.hertz_source}"))
     return handles
 
 
 def caption(info: SoftInfo) -> str:
-    """The definition, with where the soft cells come from when not the map's own /soft."""
-    text = (f"soft = periodic with impacts, stable, Hertz-valid (z_max/R* <= {info.hertz_limit:g}) "
+    """The definition, with the map's hertz_limit and soft_kcon."""
+    return (f"soft = periodic with impacts, stable, Hertz-valid (z_max/R* <= {info.hertz_limit:g}) "
             f"and k_con <= {info.soft_kcon:g}")  # fmt: skip
-    return text if info.soft_source == SOFT_FROM_MAP else f"{text}\n(soft cells {info.soft_source}: the map has no /soft)"
 
 
 def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
@@ -205,8 +189,7 @@ def main(argv: list[str] | None = None) -> int:
     def figure():
         sweep = read_map(args.map)
         info = add_soft_cells(sweep)
-        sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)  # a bad axis is named first
-        require_soft(sweep, info)
+        sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
         notes.extend(maps.snapped_notes(sl) + maps.soft_notes(info))
         fig = plot(sweep, sl, info, maps.read_curve_files(args.curves))
         if args.solved:

@@ -10,8 +10,9 @@ the soft fraction, and the non-periodic attractors with the cells where states w
 leave them (transient chaos: their fractions depend on analysis.max_periods).
 
 Usage: postprocess/vmpy summarize_map MAP.h5 [--slowest N]
-Exit status: 0 printed, 2 unreadable or damaged file (one line "summarize_map: error: MAP.h5: ..."
-on stderr: its attribute checksum fails, a chunk fails its checksum, or it is truncated), 1 a
+Exit status: 0 printed, 2 unreadable or damaged file, or a map of another format version (one
+line "summarize_map: error: MAP.h5: ..." on stderr: its format version is not the one this
+vibromap reads, its attribute checksum fails, a chunk fails its checksum, or it is truncated), 1 a
 computed cell holds a non-finite value.
 """
 import argparse
@@ -35,8 +36,7 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
     done = sweep.data["done"].astype(bool)
     lines = [f"map {sweep.path}: {int(done.sum())}/{done.size} cells done, axes "
              + ", ".join(f"{a.name} ({len(a.values)})" for a in sweep.axes.values())]
-    lines.append("attributes: verified by their checksum" if sweep.sealed
-                 else "attributes: not verified (a map made before vibromap gave maps an attribute checksum)")
+    lines.append("attributes: verified by their checksum")
     status = sweep.data["status"][done]
     lines.append("status: " + ", ".join(f"{sweep.status_meanings.get(int(c), c)} {int((status == c).sum())}"
                                          for c in sorted(set(status.tolist()))))
@@ -95,17 +95,12 @@ def soft_lines(sweep, done) -> list[str]:
         lines[0] += ('; WARNING: a cell, soft or not, may not be what the system does from rest '
                      '(analysis.steady = "follow" gives that motion)')
     info = add_soft_cells(sweep)
-    if info.soft_known:
-        soft = int((sweep.data[SOFT_KEY][done] == FLAG_YES).sum())
-        lines.append(f"soft: {soft} of {int(done.sum())} cells done ({info.rule()}; {info.soft_source})")
-    else:
-        lines.append(f"soft: unknown ({info.soft_source})")
-    if info.hertz_known:
-        impacts = impact_cells(sweep.data)
-        invalid = int((sweep.data[HERTZ_KEY][impacts] == FLAG_NO).sum())
-        lines.append(f"{info.invalid_text()}: {invalid} of {int(impacts.sum())} cells with impacts ({info.hertz_source})")
-    else:
-        lines.append(f"Hertz validity: unknown ({info.hertz_source})")
+    soft = int((sweep.data[SOFT_KEY][done] == FLAG_YES).sum())
+    lines.append(f"soft: {soft} of {int(done.sum())} cells done ({info.rule()}; {info.soft_source})")
+    impacts = impact_cells(sweep.data)
+    invalid = int((sweep.data[HERTZ_KEY][impacts] == FLAG_NO).sum())
+    lines.append(f"{info.invalid_text()}: {invalid} of {int(impacts.sum())} cells with impacts "
+                 "(from the map's hertz_valid)")
     if info.overruled:
         lines.append(f"WARNING: {info.overruled} cells the map calls soft are Hertz-invalid: not counted as soft")
     return lines
@@ -125,19 +120,17 @@ def census_lines(sweep, done) -> list[str]:
         lines.append(f"soft fraction: median {np.median(soft):.3g}, cells with some soft basin "
                      f"{int((soft > 0).sum())}, with soft fraction >= 0.9: {int((soft >= 0.9).sum())}")
         lines.append(f"unresolved initial states: {np.mean(unresolved):.3g} of all, at most {np.max(unresolved):.3g} in a cell")
-        if "budget_fraction" in sweep.data:  # maps from before it was kept have none
-            budget = sweep.data["budget_fraction"][done]
-            lines.append(f"initial states followed to analysis.max_periods (no early decision): {np.mean(budget):.3g} "
-                         f"of all, at most {np.max(budget):.3g} in a cell")
+        budget = sweep.data["budget_fraction"][done]
+        lines.append(f"initial states followed to analysis.max_periods (no early decision): {np.mean(budget):.3g} "
+                     f"of all, at most {np.max(budget):.3g} in a cell")
     # The census's attractors told by recurrence, not by a period (census.hpp).
     recurrent = [code for code, name in sweep.regime_meanings.items() if name in NON_PERIODIC]
     non_periodic = np.isin(sweep.census["regime"][done], recurrent)  # (cells, A)
     if non_periodic.any():
         line = (f"non-periodic attractors: {int(non_periodic.sum())} in {int(non_periodic.any(axis=1).sum())} cells, "
                 f"basin fraction {np.nansum(np.where(non_periodic, sweep.census['fraction'][done], 0.0)) / len(non_periodic):.3g} of all")
-        if "transient" in sweep.census:  # maps from before the flag have none
-            left = non_periodic & (sweep.census["transient"][done] == 1)
-            line += f"; states seen to leave them (transient chaos) in {int(left.any(axis=1).sum())} cells"
+        left = non_periodic & (sweep.census["transient"][done] == 1)
+        line += f"; states seen to leave them (transient chaos) in {int(left.any(axis=1).sum())} cells"
         lines.append(line)
     return lines
 

@@ -3,10 +3,11 @@ bifurcations (fold, period-doubling, neimark-sacker, grazing) and level curves (
 followed in a plane of two scene keys. Part of the readers that vibromap_h5 gathers (import them
 from there).
 
-Curve file (HDF5, CF-1.8):
+Curve file (HDF5, CF-1.8; include/vibromap/io/curve_file.hpp):
   root attributes  vibromap_file = "curves" (the file's kind), scene, param, param2 (the full
             scene keys of the plane, e.g. "forcing.omega", "forcing.F0"), param_unit,
-            param2_unit ("" when none), version (int), Conventions, vibromap_version
+            param2_unit ("" when none), version (FORMAT_VERSIONS["curve file"]; a file of another
+            version is refused), Conventions, vibromap_version, attribute_checksum
   /curve_0, /curve_1, ...  one group per curve, in the order found; attributes kind ("fold",
             "period-doubling", "neimark-sacker", "grazing", "level:k_con=10"), stop (why it
             ended, one sentence per direction joined by "; "), n (period of the orbit, int);
@@ -19,8 +20,9 @@ Curve file (HDF5, CF-1.8):
   /curve_i/codim2  its codimension-two points (M may be 0): param, param2 (float64) and kind
             (variable-length strings: "cusp", "fold+level:k_con=10", "grazing+fold", ...)
 
-read_curves() gives one dict per curve (see there); a file that is not a curve file, or lacks
-what a curve needs, is a VibromapFileError with a one-line message naming the file.
+read_curves() gives one dict per curve (see there); a file that is not a curve file, is of
+another format version, or lacks any of the above, is a VibromapFileError with a one-line message
+naming the file.
 """
 
 from __future__ import annotations
@@ -40,30 +42,27 @@ _CURVE_GROUP = re.compile(r"curve_(\d+)")
 
 
 def _check_kind(f: h5py.File, path: str) -> None:
-    """A curve file says vibromap_file = "curves" (a writer that marks its files by title alone:
-    a title that names curves)."""
+    """A curve file says vibromap_file = "curves" and names the keys of its plane."""
     what = "not a curve file of vibromap continue --curve"
-    if "vibromap_file" in f.attrs:
-        kind = _text(f.attrs["vibromap_file"])
-        if kind != CURVE_FILE_KIND:
-            raise VibromapFileError(f"{path}: {what} (it is a '{kind}' file)")
-    elif "curve" not in _text(f.attrs.get("title", "")).lower():
-        title = _text(f.attrs.get("title", ""))
-        found = f"title '{title}'" if title else "no title"
-        raise VibromapFileError(f"{path}: {what} (no root attribute vibromap_file = \"curves\"; {found})")
+    if "vibromap_file" not in f.attrs:
+        raise VibromapFileError(f"{path}: {what} (no root attribute vibromap_file = \"curves\")")
+    kind = _text(f.attrs["vibromap_file"])
+    if kind != CURVE_FILE_KIND:
+        raise VibromapFileError(f"{path}: {what} (it is a '{kind}' file)")
     for name in ("param", "param2"):
         if not _text(f.attrs.get(name, "")):
             raise VibromapFileError(f"{path}: {what} (no root attribute '{name}', the key of the plane's axis)")
+    for name in ("param_unit", "param2_unit"):
+        if name not in f.attrs:
+            raise VibromapFileError(f"{path}: {what} (no root attribute '{name}')")
 
 
-def _column(group: h5py.Group, name: str, path: str, length: int | None, required: bool = True):
-    """A 1-D numeric dataset of the group as float64 (None when absent and not required)."""
+def _column(group: h5py.Group, name: str, path: str, length: int | None):
+    """A 1-D numeric dataset of the group as float64."""
     where = f"{group.name.lstrip('/')}/{name}"
     dataset = group.get(name)
     if not isinstance(dataset, h5py.Dataset):
-        if required:
-            raise VibromapFileError(f"{path}: {group.name.lstrip('/')} has no dataset '{name}'")
-        return None
+        raise VibromapFileError(f"{path}: {group.name.lstrip('/')} has no dataset '{name}'")
     if dataset.ndim != 1 or dataset.dtype.kind not in "iuf":
         raise VibromapFileError(f"{path}: dataset '{where}' is not a 1-D numeric array")
     values = np.asarray(read_dataset(dataset, path), dtype=np.float64)
@@ -73,12 +72,10 @@ def _column(group: h5py.Group, name: str, path: str, length: int | None, require
 
 
 def _codim2(group: h5py.Group, path: str) -> list[dict]:
-    """The codimension-two points of a curve: [{param, param2, kind}, ...] ([] without /codim2)."""
+    """The codimension-two points of a curve: [{param, param2, kind}, ...] (the group codim2)."""
     points = group.get("codim2")
-    if points is None:
-        return []
     if not isinstance(points, h5py.Group):
-        raise VibromapFileError(f"{path}: {points.name.lstrip('/')} is not a group")
+        raise VibromapFileError(f"{path}: {group.name.lstrip('/')} has no group 'codim2'")
     param = _column(points, "param", path, None)
     param2 = _column(points, "param2", path, param.size)
     kinds = points.get("kind")
@@ -110,13 +107,13 @@ def _curve(group: h5py.Group, path: str, names: tuple[str, str, str, str]) -> di
         "group": where,
     }
     for name in CURVE_VALUES + ("residual",):
-        values = _column(group, name, path, param.size, required=False)
-        curve[name] = np.full(param.size, np.nan) if values is None else values
-    stable = _column(group, "stable", path, param.size, required=False)
-    curve["stable"] = np.full(param.size, -1, dtype=np.int8) if stable is None else stable.astype(np.int8)
+        curve[name] = _column(group, name, path, param.size)
+    curve["stable"] = _column(group, "stable", path, param.size).astype(np.int8)
     real, imag = group.get("multipliers_re"), group.get("multipliers_im")
-    if isinstance(real, h5py.Dataset) and isinstance(imag, h5py.Dataset) and real.shape == imag.shape:
-        curve["multipliers"] = read_dataset(real, path) + 1j * read_dataset(imag, path)
+    shape = (param.size, 4)
+    if not (isinstance(real, h5py.Dataset) and isinstance(imag, h5py.Dataset) and real.shape == imag.shape == shape):
+        raise VibromapFileError(f"{path}: {where} has no multipliers_re and multipliers_im of {param.size} x 4")
+    curve["multipliers"] = read_dataset(real, path) + 1j * read_dataset(imag, path)
     curve["codim2"] = _codim2(group, path)
     return curve
 
@@ -125,13 +122,12 @@ def read_curves(path: str) -> list[dict]:
     """The curves of a curve file (see the module docstring), in the file's order: one dict each
     with kind, stop, n, param_name, param2_name (the plane's scene keys), param_unit,
     param2_unit, param, param2 (float64 arrays along the curve), T_con, k_con, z_ratio, F_max,
-    residual (float64, NaN when the file lacks them), stable (int8; -1 when the file lacks it),
-    multipliers (complex N x 4, when present), group ("curve_0", ...) and codim2 (a list of
-    {param, param2, kind})."""
+    residual (float64), stable (int8), multipliers (complex N x 4), group ("curve_0", ...) and
+    codim2 (a list of {param, param2, kind})."""
     path = os.fspath(path)
-    with open_h5(path) as f:
+    with open_h5(path, "curve file") as f:
         _check_kind(f, path)
-        names = tuple(_text(f.attrs.get(name, "")) for name in ("param", "param2", "param_unit", "param2_unit"))
+        names = tuple(_text(f.attrs[name]) for name in ("param", "param2", "param_unit", "param2_unit"))
         groups = sorted((int(m.group(1)), name) for name in f if (m := _CURVE_GROUP.fullmatch(name)))
         curves = []
         for _, name in groups:

@@ -6,9 +6,11 @@ Trajectory file (src/io/trajectory_file.cpp, include/vibromap/io/trajectory_file
   datasets  t (s), x1, x2 (m), v1, v2 (m/s), Fc, F (N): 1-D float64 of equal length,
             each with a `units` attribute; t is the time since the start of the kept window
   root attributes  T (s), regime ("(n,k)" or a kind such as "chatter"), n, k,
-            T_con (s), k_con (-), scene (the scene's TOML text), vibromap_version
+            T_con (s), k_con (-), scene (the scene's TOML text), vibromap_version, version
+            (FORMAT_VERSIONS["trajectory file"]), attribute_checksum
 
-Basins file (include/vibromap/io/basins_file.hpp): see read_basins and Basins.
+Basins file (include/vibromap/io/basins_file.hpp; version FORMAT_VERSIONS["basins file"]): see
+read_basins and Basins.
 """
 
 from __future__ import annotations
@@ -57,7 +59,7 @@ class Trajectory:
 def read_trajectory(path: str) -> Trajectory:
     """Reads a trajectory file written by vibromap (see the module docstring for the layout)."""
     path = os.fspath(path)
-    with open_h5(path) as f:
+    with open_h5(path, "trajectory file") as f:
         columns: dict[str, np.ndarray] = {}
         units: dict[str, str] = {}
         for name in TRAJECTORY_COLUMNS:
@@ -127,12 +129,17 @@ class Basins:
 
 
 BASINS_UNRESOLVED, BASINS_UNLISTED, BASINS_OVERLAP, BASINS_NOT_COMPUTED = -1, -2, -3, -4
+# Root attributes every basins file has.
+BASINS_ATTRIBUTES = ("scene", "plane", "fixed", "fixed_state", "complete", "attractors")
 
 
 def read_basins(path: str) -> Basins:
     """Reads a basins file, or raises VibromapFileError with a one-line reason."""
-    with open_h5(path) as f:
-        plane = _text(f.attrs.get("plane", ""))
+    with open_h5(path, "basins file") as f:
+        for name in BASINS_ATTRIBUTES:
+            if name not in f.attrs:
+                raise VibromapFileError(f"{path}: not a basins file of vibromap basins (no root attribute '{name}')")
+        plane = _text(f.attrs["plane"])
         if "," not in plane or "label" not in f:
             raise VibromapFileError(f"{path}: not a basins file of vibromap basins (no plane or label)")
         x_name, y_name = plane.split(",", 1)
@@ -142,9 +149,9 @@ def read_basins(path: str) -> Basins:
         x, y = np.asarray(f[x_name][()]), np.asarray(f[y_name][()])
         if label.shape != (y.size, x.size):
             raise VibromapFileError(f"{path}: 'label' is {label.shape}, the plane {y.size} x {x.size}")
-        count = _scalar(f.attrs.get("attractors", 0), path, "attractors", int)
+        count = _scalar(f.attrs["attractors"], path, "attractors", int)
         attractors = []
-        kinds = _flag_meanings(f["regime"], None, "", path) if count else {}
+        kinds = _flag_meanings(f["regime"], path) if count else {}
         for a in range(count):
             code = int(f["regime"][a])
             n, k = int(f["n"][a]), int(f["k"][a])
@@ -155,8 +162,8 @@ def read_basins(path: str) -> Basins:
                 stable=int(f["stable"][a]), soft=bool(f["soft"][a]), pixels=int(f["pixels"][a]),
                 fraction=float(f["fraction"][a]), strobe=np.asarray(f["strobe"][a, :points, :])))
         return Basins(path=os.fspath(path), x_name=x_name, y_name=y_name, x=x, y=y,
-                      x_units=_text(f[x_name].attrs.get("units", "")), y_units=_text(f[y_name].attrs.get("units", "")),
-                      label=label, fixed=_text(f.attrs.get("fixed", "")),
-                      fixed_state=np.asarray(f.attrs.get("fixed_state", np.full(4, np.nan)), dtype=float),
-                      complete=bool(_scalar(f.attrs.get("complete", 0), path, "complete", int)),
-                      scene=_text(f.attrs.get("scene", "")), attractors=attractors)
+                      x_units=_text(f[x_name].attrs["units"]), y_units=_text(f[y_name].attrs["units"]),
+                      label=label, fixed=_text(f.attrs["fixed"]),
+                      fixed_state=np.asarray(f.attrs["fixed_state"], dtype=float),
+                      complete=bool(_scalar(f.attrs["complete"], path, "complete", int)),
+                      scene=_text(f.attrs["scene"]), attractors=attractors)

@@ -1,8 +1,10 @@
 """Readers for the HDF5 files vibromap writes, shared by the postprocess/ scripts: one import for
 every reader, whose code lives in modules of its own:
 
-  vibromap_h5io     open_h5, read_dataset, VibromapFileError, write_plot, save_figure: opening a
-                    file, reading a dataset, one-line errors for a damaged file, writing a figure
+  vibromap_h5io     open_h5, read_dataset, VibromapFileError, FileVersionError, FORMAT_VERSIONS,
+                    write_plot, save_figure: opening a file (its format version and checksum
+                    checked), reading a dataset, one-line errors for a damaged file or one of
+                    another format version, writing a figure
   vibromap_map      read_map, SweepMap, MapAxis, axis_name: a map file (its layout is described
                     there)
   vibromap_regimes  the flag codes of a map (regime, status, stable, soft), regime_labels,
@@ -15,12 +17,14 @@ every reader, whose code lives in modules of its own:
                     level curves in a plane of two scene keys)
 
 Every reader returns numpy arrays and plain Python numbers and strings, and raises
-VibromapFileError with a one-line message (naming the file) when the file is missing,
-is not HDF5, lacks what the reader needs, or is damaged: open_h5 checks the attribute checksum
-vibromap writes into every file (vibromap_seal.py; "FILE: damaged: its attributes fail their
-checksum (...)"), a chunk that fails its Fletcher32 checksum is named, and whatever else h5py
-raises while reading a damaged or truncated file becomes one line too. Scripts turn that into
-exit status 2. Files without the checksum (written before it) are read as before.
+VibromapFileError with a one-line message (naming the file) when the file is missing, is not
+HDF5, is of another format version, lacks what the reader needs, or is damaged: open_h5 checks
+the file's format version (FileVersionError, the one line vibromap prints: "FILE: a regime map of
+format version 0; this vibromap reads version 1 only: make the file again with this vibromap")
+and then the attribute checksum vibromap writes into every file (vibromap_seal.py; "FILE:
+damaged: its attributes fail their checksum (...)"), a chunk that fails its Fletcher32 checksum is
+named, and whatever else h5py raises while reading a damaged or truncated file becomes one line
+too. Scripts turn that into exit status 2. Only the current format of each kind is read.
 
 Scripts and user code import from here (`from vibromap_h5 import read_map`); every name the
 modules above define, the private helpers some scripts use included, is this module's too
@@ -28,22 +32,24 @@ modules above define, the private helpers some scripts use included, is this mod
 """
 
 # fmt: off
-from vibromap_h5io import (READ_ERRORS, OpenFile, VibromapFileError, _attribute_value, _flag_meanings,
-                           _missing_chunk, _one_line, _scalar, _text, open_h5, read_dataset, save_figure,
-                           write_plot)
+from vibromap_h5io import (FORMAT_VERSIONS, READ_ERRORS, VERSION_ATTRIBUTE, FileVersionError, OpenFile,
+                           VibromapFileError, _attribute_value, _flag_meanings, _missing_chunk, _one_line, _scalar,
+                           _stored_version, _text, open_h5, read_dataset, save_figure, version_refusal, write_plot)
 from vibromap_regimes import (FLAG_NO, FLAG_UNKNOWN, FLAG_YES, HERTZ_KEY, HERTZ_LIMIT_DEFAULT, NOT_COMPUTED,
-                              REGIME_FLAG_MEANINGS, REGIME_FLAG_VALUES, REGIME_PERIODIC, SOFT_FROM_MAP,
-                              SOFT_KCON_DEFAULT, SOFT_KEY, STABLE_FLAG_MEANINGS, STABLE_FLAG_VALUES, STABLE_NO,
-                              STABLE_UNKNOWN, STABLE_YES, STATUS_FLAG_MEANINGS, STATUS_FLAG_VALUES, STEADY_ANSWERS,
-                              _label_key, regime_counts, regime_labels)
-from vibromap_map import (MAP_ALWAYS, MAP_REQUIRED, NOT_COMPUTED_NOTE, MapAxis, SweepMap,
-                          _check_progress_attributes, _check_soft_attributes, _map_axes, axis_name, read_map)
+                              REGIME_FLAG_MEANINGS, REGIME_FLAG_VALUES, REGIME_PERIODIC, SOFT_FROM_MAP, SOFT_KEY,
+                              STABLE_FLAG_MEANINGS, STABLE_FLAG_VALUES, STABLE_NO, STABLE_UNKNOWN, STABLE_YES,
+                              STATUS_FLAG_MEANINGS, STATUS_FLAG_VALUES, STEADY_ANSWERS, _label_key, regime_counts,
+                              regime_labels)
+from vibromap_map import (CENSUS_ATTRACTOR, CENSUS_CELL, MAP_ATTRIBUTES, MAP_REQUIRED, NOT_COMPUTED_NOTE,
+                          REFINE_ATTRIBUTES, REFINE_DATASETS, MapAxis, SweepMap, _check_layout,
+                          _check_progress_attributes, _check_soft_attributes, _map_axes, _read_cells, axis_name,
+                          read_map)
 from vibromap_soft import (SoftInfo, add_soft_cells, computed_soft, hertz_validity, impact_cells,
                            periodic_with_impacts)
 from vibromap_slice import (FixedValue, MapSlice, MapSliceError, _nearest_index, _runs, cell_boundary, cell_edges,
                             parse_fix, slice2d)
-from vibromap_files import (BASINS_NOT_COMPUTED, BASINS_OVERLAP, BASINS_UNLISTED, BASINS_UNRESOLVED,
-                            TRAJECTORY_ATTRIBUTES, TRAJECTORY_COLUMNS, BasinAttractor, Basins, Trajectory,
+from vibromap_files import (BASINS_ATTRIBUTES, BASINS_NOT_COMPUTED, BASINS_OVERLAP, BASINS_UNLISTED,
+                            BASINS_UNRESOLVED, TRAJECTORY_ATTRIBUTES, TRAJECTORY_COLUMNS, BasinAttractor, Basins, Trajectory,
                             read_basins, read_trajectory)
 from vibromap_curves import (CURVE_FILE_KIND, CURVE_KINDS, CURVE_VALUES, _CURVE_GROUP, _check_kind, _codim2, _column,
                              _curve, read_curves)

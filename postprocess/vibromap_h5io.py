@@ -2,12 +2,16 @@
 Part of the readers that vibromap_h5 gathers (import them from there).
 
 Every reader raises VibromapFileError with a one-line message (naming the file) when the file is
-missing, is not HDF5, lacks what the reader needs, or is damaged: open_h5 checks the attribute
+missing, is not HDF5, is of another format version, lacks what the reader needs, or is damaged.
+open_h5(path, kind) checks, before any value is read, the file's format version (the root
+attribute `version`, FORMAT_VERSIONS: a file of another version, older or newer, raises
+FileVersionError, "FILE: a regime map of format version 0; this vibromap reads version 1 only:
+make the file again with this vibromap", the line vibromap itself prints) and then the attribute
 checksum vibromap writes into every file (vibromap_seal.py; "FILE: damaged: its attributes fail
-their checksum (...)"), read_dataset names a chunk that fails its Fletcher32 checksum or is missing
-from its chunk index, and whatever else h5py raises while reading a damaged or truncated file
-inside `with open_h5(path) as f:` becomes one line too. Scripts turn that into exit status 2.
-Files without the checksum (written before it) are read as before.
+their checksum (...)"); read_dataset names a chunk that fails its Fletcher32 checksum or is
+missing from its chunk index, and whatever else h5py raises while reading a damaged or truncated
+file inside `with open_h5(path, kind) as f:` becomes one line too. Scripts turn that into exit
+status 2. There is no reader of an older layout: a file of another version is refused.
 """
 
 from __future__ import annotations
@@ -18,11 +22,38 @@ import os
 import h5py
 import numpy as np
 
-from vibromap_seal import DamagedAttributes, check_seal
+from vibromap_seal import DamagedAttributes, check_heaps, check_seal
+
+# The format version of each kind of file vibromap writes and reads, as
+# include/vibromap/io/file_format.hpp declares them (tests/campaigns/outputs checks that they
+# agree): a reader takes its kind's version and no other. A file without the root attribute
+# `version` is version 0 (made before vibromap versioned its files).
+FORMAT_VERSIONS = {
+    "regime map": 1,
+    "basins file": 1,
+    "optimisation file": 1,
+    "trajectory file": 1,
+    "branch file": 1,
+    "curve file": 1,
+    "orbit-diagram file": 1,
+}
+VERSION_ATTRIBUTE = "version"
 
 
 class VibromapFileError(Exception):
     """A vibromap file cannot be read: missing, not HDF5, or not of the expected layout."""
+
+
+class FileVersionError(VibromapFileError):
+    """A file of another format version than this vibromap reads: one line naming the file and
+    both versions (version_refusal)."""
+
+
+def version_refusal(path: str, kind: str, found: int) -> str:
+    """The line vibromap prints for a file of kind `kind` at version `found` (file_format.cpp)."""
+    article = "an" if kind[0] in "aeiou" else "a"
+    return (f"{path}: {article} {kind} of format version {found}; this vibromap reads version "
+            f"{FORMAT_VERSIONS[kind]} only: make the file again with this vibromap")
 
 
 def _text(value) -> str:
@@ -53,13 +84,12 @@ def _one_line(exc: BaseException) -> str:
 
 
 class OpenFile:
-    """open_h5's answer, for `with open_h5(path) as f:` (f is the h5py.File). `sealed` says
-    whether the file's attribute checksum was verified (False: a file written before vibromap
-    sealed its files). Leaving the block closes the file and turns what a damaged file raises
-    there (READ_ERRORS) into VibromapFileError naming the file."""
+    """open_h5's answer, for `with open_h5(path, kind) as f:` (f is the h5py.File). Leaving the
+    block closes the file and turns what a damaged file raises there (READ_ERRORS) into
+    VibromapFileError naming the file."""
 
-    def __init__(self, file: h5py.File, path: str, sealed: bool):
-        self.file, self.path, self.sealed = file, path, sealed
+    def __init__(self, file: h5py.File, path: str):
+        self.file, self.path = file, path
 
     def __enter__(self) -> h5py.File:
         return self.file
@@ -71,9 +101,28 @@ class OpenFile:
         return False
 
 
-def open_h5(path: str) -> OpenFile:
-    """Opens an HDF5 file for reading and checks its attribute checksum when it has one
-    (vibromap_seal.py), or raises VibromapFileError with a one-line reason."""
+def _stored_version(f: h5py.File, path: str, kind: str) -> int:
+    """The file's format version: its root attribute `version`, 0 when it has only
+    vibromap_version (made before files were versioned); VibromapFileError for a file with
+    neither, DamagedAttributes for a version that is not one integer."""
+    try:
+        if VERSION_ATTRIBUTE not in f.attrs:
+            if "vibromap_version" in f.attrs:
+                return 0
+            raise VibromapFileError(f"{path}: not a vibromap {kind} (no root attribute '{VERSION_ATTRIBUTE}')")
+        value = np.asarray(f.attrs[VERSION_ATTRIBUTE])
+    except READ_ERRORS as exc:
+        raise DamagedAttributes(f"its attributes cannot be read ({_one_line(exc)})") from exc
+    if value.size != 1 or value.dtype.kind not in "iu":
+        raise DamagedAttributes(f"its attribute '{VERSION_ATTRIBUTE}' is not one integer")
+    return int(value.reshape(()).item())
+
+
+def open_h5(path: str, kind: str) -> OpenFile:
+    """Opens a vibromap HDF5 file of kind `kind` (a key of FORMAT_VERSIONS) for reading and checks
+    it before any value is read: its global heaps and its format version, then its attribute
+    checksum (vibromap_seal.py); or raises VibromapFileError (FileVersionError for another
+    version) with a one-line reason."""
     path = os.fspath(path)
     if not os.path.exists(path):
         raise VibromapFileError(f"{path}: no such file")
@@ -88,18 +137,27 @@ def open_h5(path: str) -> OpenFile:
             raise
         raise VibromapFileError(f"{path}: cannot open ({_one_line(exc)})") from exc
     try:
-        sealed = check_seal(f)
+        check_heaps(f)
+        found = _stored_version(f, path, kind)
+        if found != FORMAT_VERSIONS[kind]:
+            raise FileVersionError(version_refusal(path, kind, found))
+        check_seal(f)
     except DamagedAttributes as exc:
         f.close()
         raise VibromapFileError(f"{path}: damaged: {exc}; make it again with vibromap --overwrite") from None
-    return OpenFile(f, path, sealed)
+    except VibromapFileError:
+        f.close()
+        raise
+    return OpenFile(f, path)
 
 
-def _flag_meanings(dataset: h5py.Dataset, default_values, default_meanings: str, path: str) -> dict[int, str]:
-    """code -> meaning from a dataset's CF flag_values / flag_meanings (defaults if absent)."""
-    values = dataset.attrs.get("flag_values", default_values)
-    meanings = _text(dataset.attrs.get("flag_meanings", default_meanings)).split()
-    values = [int(v) for v in np.asarray(values).ravel()]
+def _flag_meanings(dataset: h5py.Dataset, path: str) -> dict[int, str]:
+    """code -> meaning from a dataset's CF flag_values / flag_meanings."""
+    for name in ("flag_values", "flag_meanings"):
+        if name not in dataset.attrs:
+            raise VibromapFileError(f"{path}: dataset '{dataset.name.lstrip('/')}' has no attribute '{name}'")
+    meanings = _text(dataset.attrs["flag_meanings"]).split()
+    values = [int(v) for v in np.asarray(dataset.attrs["flag_values"]).ravel()]
     if len(values) != len(meanings):
         raise VibromapFileError(
             f"{path}: dataset '{dataset.name.lstrip('/')}' has {len(values)} flag_values but {len(meanings)} flag_meanings"

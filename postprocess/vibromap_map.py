@@ -1,41 +1,38 @@
 """Reading a map file (one file per sweep) into a SweepMap. Part of the readers that vibromap_h5
 gathers (import them from there).
 
-Map file (include/vibromap/io/map_file.hpp; N axes, first axis slowest):
+Map file (include/vibromap/io/map_file.hpp; N axes, first axis slowest; format version
+FORMAT_VERSIONS["regime map"], a map of another version is refused):
   /<axis>   1-D float64 coordinate of each swept parameter (E1, E2, R1, R2, m2, k2, omega2),
-            a dimension scale with attributes units, long_name, scale ("lin" | "log")
-  /done (uint8), /status (int8), /regime (int8), /stable (int8), /n, /k (int32), /wall_s,
-            /steady_residual (float64) and the scene's stored quantities (T_con, k_con, ...,
-            max_multiplier, lyapunov): N-D datasets with the axes attached as dimension scales,
-            in order. regime, status and stable carry CF flag_values/flag_meanings; -1 marks a
-            cell not computed (done == 0), where float datasets hold NaN and integer ones 0.
-            stable is 1 (stable), 0 (unstable) or -1 (unknown: no periodic orbit, not computed);
-            a quantity whose long_name ends in "(NaN where not computed)" (max_multiplier,
-            lyapunov) is NaN also in cells done where it was not computed.
-  root attributes  title, Conventions, vibromap_version, scene, ranks, cells_total,
-            cells_done, complete, stored (the quantity names, space separated),
-            census_attractors (A > 0 in a census map)
+            a dimension scale with attributes units, long_name, key (the full scene key,
+            "forcing.omega"), scale ("lin" | "log")
+  /done (uint8), /status (int8), /regime (int8), /stable (int8), /soft (int8), /n, /k (int32),
+            /wall_s, /steady_residual (float64) and the scene's stored quantities (hertz_valid
+            always; T_con, k_con, ..., max_multiplier, lyapunov): N-D datasets with the axes
+            attached as dimension scales, in order. regime, status, stable and soft carry CF
+            flag_values/flag_meanings; -1 marks a cell not computed (done == 0), where float
+            datasets hold NaN and integer ones 0. stable is 1 (stable), 0 (unstable) or -1
+            (unknown: no periodic orbit, not computed); soft is 1 where the motion is periodic
+            with impacts, stable, Hertz-valid and has k_con <= soft_kcon; a quantity whose long_name
+            ends in "(NaN where not computed)" (max_multiplier, lyapunov) is NaN also in cells
+            done where it was not computed.
+  root attributes  title, Conventions, vibromap_version, scene, identity, ranks, cells_total,
+            cells_done, complete, stored (the quantity names, space separated), census_attractors
+            (A > 0 in a census map), steady ("follow": the motion the initial state settles into;
+            "shooting": some stable periodic orbit found by Newton's method, not necessarily that
+            motion; "integrate": brute-force integration), hertz_limit, soft_kcon, version,
+            attribute_checksum; an adaptive map (sweep.refine) adds refine_levels, refine_on,
+            refine_audit_fraction, refine_speckle and its figures, and the datasets computed and
+            level
   census map (a sweep whose scene had [census]): /attractors (N-D int32), /soft_fraction,
-            /unresolved_fraction, /unlisted_fraction, /budget_fraction (N-D float64; budget_fraction
-            absent from maps written before it was kept), and per (cell, attractor)
-            /attractor_<q> of shape + (A,) over the coordinate /attractor: regime, stable,
-            hertz_valid, from_rest, soft, transient (int8, -1 beyond the cell's attractors;
-            transient absent from maps written before it was kept), n, k,
-            T_con, k_con, F_max, z_ratio, max_floquet, fraction, fraction_stderr, x1, x2, v1, v2
-            (NaN beyond the cell's attractors); the ordinary datasets describe the attractor the
-            rest state reaches, and steady_residual is NaN there
-  soft flag (maps written since the one definition of a soft motion; older maps lack all of it):
-            /soft (N-D int8, flag_values -1 0 1, flag_meanings "not_computed no yes"): 1 where the
-            motion is periodic with impacts, stable, Hertz-valid and has k_con <= soft_kcon;
-            /hertz_valid (N-D int64 0/1: z_ratio <= hertz_limit) always, no longer only when stored;
-            root attributes soft_kcon (default 10), hertz_limit (default 0.05) and steady ("follow":
-            the motion the initial state settles into; "shooting": some stable periodic orbit found
-            by Newton's method, not necessarily that motion; "integrate": brute-force integration).
-            add_soft_cells() reads them, or computes them from regime, stable, hertz_valid (else
-            z_ratio <= hertz_limit, 0.05 without the attribute) and k_con for an older map, or says
-            why it cannot.
-read_map() reads it (census datasets in SweepMap.census) (a map from before /stable was kept
-reads as stable == -1 everywhere).
+            /unresolved_fraction, /unlisted_fraction, /budget_fraction (N-D float64), and per
+            (cell, attractor) /attractor_<q> of shape + (A,) over the coordinate /attractor:
+            regime, stable, hertz_valid, from_rest, soft, transient (int8, -1 beyond the cell's
+            attractors), n, k, T_con, k_con, F_max, z_ratio, max_floquet, fraction,
+            fraction_stderr, x1, x2, v1, v2 (NaN beyond the cell's attractors); the ordinary
+            datasets describe the attractor the rest state reaches, and steady_residual is NaN there
+read_map() reads it (census datasets in SweepMap.census), and refuses a map that lacks any of
+these (VibromapFileError naming what).
 """
 
 from __future__ import annotations
@@ -47,13 +44,23 @@ import h5py
 import numpy as np
 
 from vibromap_h5io import VibromapFileError, _attribute_value, _flag_meanings, _text, open_h5, read_dataset
-from vibromap_regimes import (HERTZ_LIMIT_DEFAULT, REGIME_FLAG_MEANINGS, REGIME_FLAG_VALUES, SOFT_KCON_DEFAULT,
-                              STABLE_FLAG_MEANINGS, STABLE_FLAG_VALUES, STABLE_UNKNOWN, STATUS_FLAG_MEANINGS,
-                              STATUS_FLAG_VALUES, STEADY_ANSWERS, regime_labels)  # fmt: skip
+from vibromap_regimes import STEADY_ANSWERS, regime_labels
 
-# Datasets every map has (map_file.hpp); the optional quantities come on top of these.
-MAP_REQUIRED = ("done", "status", "regime", "n", "k")
-MAP_ALWAYS = MAP_REQUIRED + ("stable", "soft", "wall_s", "steady_residual")
+# Datasets every map has (map_file.hpp); the stored quantities (hertz_valid always) come on top.
+MAP_REQUIRED = ("done", "status", "regime", "stable", "soft", "n", "k", "wall_s", "steady_residual")
+# Root attributes every map has.
+MAP_ATTRIBUTES = ("title", "Conventions", "vibromap_version", "scene", "identity", "ranks", "cells_total",
+                  "cells_done", "complete", "stored", "census_attractors", "steady", "hertz_limit", "soft_kcon")
+# A census map's datasets (census_attractors > 0): per cell, then per (cell, attractor) without
+# their prefix attractor_.
+CENSUS_CELL = ("attractors", "soft_fraction", "unresolved_fraction", "unlisted_fraction", "budget_fraction")
+CENSUS_ATTRACTOR = ("regime", "stable", "hertz_valid", "from_rest", "soft", "transient", "n", "k", "T_con", "k_con",
+                    "F_max", "z_ratio", "max_floquet", "fraction", "fraction_stderr", "x1", "x2", "v1", "v2")
+# An adaptive map's root attributes (refine_levels > 0) and datasets.
+REFINE_ATTRIBUTES = ("refine_on", "refine_audit_fraction", "refine_speckle", "refine_solved_per_level",
+                     "refine_solved", "refine_inherited", "refine_audited", "refine_mismatches",
+                     "refine_mismatch_bound", "refine_whole_blocks")
+REFINE_DATASETS = ("computed", "level")
 # How a quantity's long_name says that NaN in a cell done means "not computed there" (the C++
 # quantity table's descriptions, core/quantities.hpp): the file, not a list here, names them.
 NOT_COMPUTED_NOTE = "(NaN where not computed)"
@@ -68,7 +75,7 @@ class MapAxis:
     scale: str  # "lin" or "log" (plots use a log axis for "log")
     units: str  # e.g. "Pa"
     long_name: str  # e.g. "Young's modulus of body 1"
-    key: str = ""  # the full scene key, e.g. "forcing.omega" ("" in maps written before it was kept)
+    key: str  # the full scene key, e.g. "forcing.omega"
     # A categorical axis (contact.law): every choice's name; values are indices into it (the
     # coordinate's CF flag_meanings). Empty for a numeric axis.
     categories: list[str] = dataclasses.field(default_factory=list)
@@ -107,14 +114,10 @@ class SweepMap:
     stored: list[str]  # the optional quantities the scene stored (T_con, k_con, ...)
     regime_meanings: dict[int, str]  # regime code -> meaning as in the file ("no_contact")
     status_meanings: dict[int, str]  # status code -> meaning ("ok", "budget", ...)
-    stable_meanings: dict[int, str] = dataclasses.field(
-        default_factory=lambda: dict(zip(STABLE_FLAG_VALUES, STABLE_FLAG_MEANINGS.split()))
-    )  # stable code -> meaning ("unknown", "unstable", "stable")
+    stable_meanings: dict[int, str]  # stable code -> meaning ("unknown", "unstable", "stable")
     census: dict[str, np.ndarray] = dataclasses.field(default_factory=dict)
     # census maps: "regime", "n", "k_con", "fraction", ... (attractor_<q> without its prefix),
     # each of shape + (A,); empty in a map without a census
-    filled: tuple[str, ...] = ()  # datasets the file lacks that read_map made up ("stable": unknown)
-    sealed: bool = False  # its attributes were verified by their checksum (False: a map made before it had one)
     long_names: dict[str, str] = dataclasses.field(default_factory=dict)  # dataset name -> long_name ("" when none)
 
     @property
@@ -123,24 +126,22 @@ class SweepMap:
 
     @property
     def hertz_limit(self) -> float:
-        """z_max/R* above which Hertz theory does not hold (the file's, else the old default)."""
-        return float(self.attrs.get("hertz_limit", HERTZ_LIMIT_DEFAULT))
+        """z_max/R* above which Hertz theory does not hold (the map's analysis.hertz_limit)."""
+        return float(self.attrs["hertz_limit"])
 
     @property
     def soft_kcon(self) -> float:
-        """The largest k_con of a soft motion (the file's, else the old default)."""
-        return float(self.attrs.get("soft_kcon", SOFT_KCON_DEFAULT))
+        """The largest k_con of a soft motion (the map's analysis.soft_kcon)."""
+        return float(self.attrs["soft_kcon"])
 
     @property
     def steady(self) -> str:
-        """How the cells' motions were found: "follow", "shooting", "integrate"; "" when not recorded."""
-        return str(self.attrs.get("steady", ""))
+        """How the cells' motions were found: "follow", "shooting" or "integrate"."""
+        return str(self.attrs["steady"])
 
     def answer_text(self) -> str:
         """What each cell's answer is, e.g. "some stable orbit (shooting), not necessarily the motion
-        from rest"; "not recorded (...)" for a map written before the steady attribute."""
-        if not self.steady:
-            return "not recorded (map written before the steady attribute)"
+        from rest"."""
         return STEADY_ANSWERS.get(self.steady, f"steady = {self.steady}")
 
     def answer_warning(self) -> str:
@@ -152,7 +153,7 @@ class SweepMap:
         """The two lines every picture of an adaptive map (sweep.refine > 0) carries ("" for any other
         map): how many points were solved, on which quantities, and that the others are inherited,
         so that a class the map was not refined on is not read at the fine resolution."""
-        if "refine_levels" not in self.attrs or "computed" not in self.data:
+        if "refine_levels" not in self.attrs:
             return ""
         computed = np.asarray(self.data["computed"])
         solved, audited = int(np.count_nonzero(computed == 1)), int(np.count_nonzero(computed == 2))
@@ -196,16 +197,19 @@ def _map_axes(f: h5py.File, path: str) -> dict[str, MapAxis]:
             raise VibromapFileError(f"{path}: axis '{name}' is not a 1-D numeric array of length {done.shape[i]}")
         if name in axes:
             raise VibromapFileError(f"{path}: axis '{name}' is attached to two dimensions of 'done'")
-        spacing = _text(scale.attrs.get("scale", "lin"))
+        for attribute in ("scale", "units", "long_name", "key"):
+            if attribute not in scale.attrs:
+                raise VibromapFileError(f"{path}: axis '{name}' has no attribute '{attribute}'")
+        spacing = _text(scale.attrs["scale"])
         if spacing not in ("lin", "log"):
             raise VibromapFileError(f"{path}: axis '{name}' has scale '{spacing}' (expected lin or log)")
         axes[name] = MapAxis(
             name=name,
             values=np.asarray(read_dataset(scale, path), dtype=np.float64),
             scale=spacing,
-            units=_text(scale.attrs.get("units", "")),
-            long_name=_text(scale.attrs.get("long_name", "")),
-            key=_text(scale.attrs.get("key", "")),
+            units=_text(scale.attrs["units"]),
+            long_name=_text(scale.attrs["long_name"]),
+            key=_text(scale.attrs["key"]),
             categories=_text(scale.attrs.get("flag_meanings", "")).split(),
         )
     return axes
@@ -221,53 +225,68 @@ def axis_name(sweep: "SweepMap", name: str | None) -> str | None:
     return name
 
 
+def _check_layout(f: h5py.File, path: str) -> None:
+    """Refuses a map that lacks a dataset or a root attribute every map of its kind has (plain,
+    census, adaptive): VibromapFileError naming the first one missing."""
+    for name in MAP_ATTRIBUTES:
+        if name not in f.attrs:
+            raise VibromapFileError(f"{path}: not a vibromap map file (no root attribute '{name}')")
+    required = list(MAP_REQUIRED) + _text(f.attrs["stored"]).split()
+    if int(np.asarray(f.attrs["census_attractors"]).reshape(())) > 0:
+        required += list(CENSUS_CELL) + [f"attractor_{name}" for name in CENSUS_ATTRACTOR]
+    if "refine_levels" in f.attrs:
+        required += list(REFINE_DATASETS)
+        for name in REFINE_ATTRIBUTES:
+            if name not in f.attrs:
+                raise VibromapFileError(f"{path}: not a vibromap map file (an adaptive map without root attribute "
+                                        f"'{name}')")
+    for name in required:
+        if not isinstance(f.get(name), h5py.Dataset):
+            raise VibromapFileError(f"{path}: not a vibromap map file (no dataset '{name}')")
+    if "hertz_valid" not in required:
+        raise VibromapFileError(f"{path}: not a vibromap map file (its attribute 'stored' lacks hertz_valid)")
+
+
+def _read_cells(f: h5py.File, path: str, axes: dict[str, MapAxis]):
+    """(data, units, long_names, census): every N-D dataset of the map's shape by name, its units
+    and long_name, and the census's per (cell, attractor) ones without their prefix attractor_."""
+    shape = f["done"].shape
+    data: dict[str, np.ndarray] = {}
+    units: dict[str, str] = {}
+    long_names: dict[str, str] = {}
+    census: dict[str, np.ndarray] = {}
+    for name, item in f.items():
+        if name in axes or not isinstance(item, h5py.Dataset) or item.dtype.kind not in "iufb":
+            continue
+        if item.shape != shape:
+            if name in MAP_REQUIRED:
+                raise VibromapFileError(f"{path}: dataset '{name}' has shape {item.shape}, not the map's {shape}")
+            if name.startswith("attractor_") and item.shape[:-1] == shape:
+                census[name[len("attractor_"):]] = read_dataset(item, path)
+            continue
+        data[name] = read_dataset(item, path)
+        units[name] = _text(item.attrs.get("units", ""))
+        long_names[name] = _text(item.attrs.get("long_name", ""))
+    return data, units, long_names, census
+
+
 def read_map(path: str) -> SweepMap:
     """Reads a map file written by vibromap (see the module docstring for the layout)."""
     path = os.fspath(path)
-    opened = open_h5(path)
-    with opened as f:
-        for name in MAP_REQUIRED:
-            if not isinstance(f.get(name), h5py.Dataset):
-                raise VibromapFileError(f"{path}: not a vibromap map file (no dataset '{name}')")
-        shape = f["done"].shape
-        if len(shape) == 0:
+    with open_h5(path, "regime map") as f:
+        _check_layout(f, path)
+        if len(f["done"].shape) == 0:
             raise VibromapFileError(f"{path}: not a vibromap map file (dataset 'done' is a scalar)")
         axes = _map_axes(f, path)
-        data: dict[str, np.ndarray] = {}
-        units: dict[str, str] = {}
-        long_names: dict[str, str] = {}
-        census: dict[str, np.ndarray] = {}
-        for name, item in f.items():
-            if name in axes or not isinstance(item, h5py.Dataset) or item.dtype.kind not in "iufb":
-                continue
-            if item.shape != shape:
-                if name in MAP_ALWAYS:
-                    raise VibromapFileError(f"{path}: dataset '{name}' has shape {item.shape}, not the map's {shape}")
-                if name.startswith("attractor_") and item.shape[:-1] == shape:
-                    census[name[len("attractor_"):]] = read_dataset(item, path)
-                continue
-            data[name] = read_dataset(item, path)
-            units[name] = _text(item.attrs.get("units", ""))
-            long_names[name] = _text(item.attrs.get("long_name", ""))
-        regime_meanings = _flag_meanings(f["regime"], REGIME_FLAG_VALUES, REGIME_FLAG_MEANINGS, path)
-        status_meanings = _flag_meanings(f["status"], STATUS_FLAG_VALUES, STATUS_FLAG_MEANINGS, path)
-        filled = () if isinstance(f.get("stable"), h5py.Dataset) else ("stable",)
-        if not filled:
-            stable_meanings = _flag_meanings(f["stable"], STABLE_FLAG_VALUES, STABLE_FLAG_MEANINGS, path)
-        else:  # written before stability was kept: unknown everywhere
-            stable_meanings = dict(zip(STABLE_FLAG_VALUES, STABLE_FLAG_MEANINGS.split()))
-            data["stable"] = np.full(shape, STABLE_UNKNOWN, dtype=np.int8)
-            units["stable"] = ""
+        data, units, long_names, census = _read_cells(f, path, axes)
+        meanings = {name: _flag_meanings(f[name], path) for name in ("regime", "status", "stable")}
         attrs = {name: _attribute_value(value) for name, value in f.attrs.items()}
     _check_soft_attributes(attrs, path)
     _check_progress_attributes(attrs, path)
-    if "stored" in attrs:
-        stored = str(attrs["stored"]).split()
-        missing = [name for name in stored if name not in data]
-        if missing:
-            raise VibromapFileError(f"{path}: attribute 'stored' names '{missing[0]}', but there is no such dataset")
-    else:
-        stored = [name for name in data if name not in MAP_ALWAYS]
+    stored = str(attrs["stored"]).split()
+    missing = [name for name in stored if name not in data]
+    if missing:
+        raise VibromapFileError(f"{path}: attribute 'stored' names '{missing[0]}', but there is no such dataset")
     return SweepMap(
         path=path,
         axes=axes,
@@ -275,12 +294,10 @@ def read_map(path: str) -> SweepMap:
         units=units,
         attrs=attrs,
         stored=stored,
-        regime_meanings=regime_meanings,
-        status_meanings=status_meanings,
-        stable_meanings=stable_meanings,
+        regime_meanings=meanings["regime"],
+        status_meanings=meanings["status"],
+        stable_meanings=meanings["stable"],
         census=census,
-        filled=filled,
-        sealed=opened.sealed,
         long_names=long_names,
     )
 
@@ -288,11 +305,9 @@ def read_map(path: str) -> SweepMap:
 def _check_progress_attributes(attrs: dict, path: str) -> None:
     """cells_done, complete and ranks, which the attribute checksum does not cover (a run rewrites
     them when it ends; /done is what counts), must at least be in range."""
-    total = attrs.get("cells_total")
+    total = attrs["cells_total"]
     limits = {"cells_done": (0, total if isinstance(total, int) else None), "complete": (0, 1), "ranks": (1, None)}
     for name, (low, high) in limits.items():
-        if name not in attrs:
-            continue
         value = attrs[name]
         if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
             allowed = f"{low}..{high}" if high is not None else f">= {low}"
@@ -300,10 +315,10 @@ def _check_progress_attributes(attrs: dict, path: str) -> None:
 
 
 def _check_soft_attributes(attrs: dict, path: str) -> None:
-    """soft_kcon and hertz_limit, when present, must be positive numbers; steady a string."""
+    """soft_kcon and hertz_limit must be positive numbers; steady a string."""
     for name in ("soft_kcon", "hertz_limit"):
-        value = attrs.get(name, 1.0)
+        value = attrs[name]
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not (np.isfinite(value) and value > 0):
             raise VibromapFileError(f"{path}: root attribute '{name}' is not a positive number ({value!r})")
-    if not isinstance(attrs.get("steady", ""), str):
+    if not isinstance(attrs["steady"], str):
         raise VibromapFileError(f"{path}: root attribute 'steady' is not a string")

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 # The regime and status flags as map_file.hpp lists them (RegimeKind / SolveStatus order, -1
-# first); read_map prefers the file's own flag_values/flag_meanings and falls back to these.
+# first); read_map takes the file's own flag_values/flag_meanings, regime_labels these by default.
 REGIME_FLAG_VALUES = tuple(range(-1, 9))
 REGIME_FLAG_MEANINGS = (
     "not_computed periodic chatter no_contact permanent_contact quasi_periodic chaotic non_periodic unresolved failed"
@@ -27,9 +27,8 @@ FLAG_UNKNOWN, FLAG_NO, FLAG_YES = -1, 0, 1
 # or unknown. Their own keys, so that the file's /soft stays as read.
 SOFT_KEY, HERTZ_KEY = "soft_flag", "hertz_flag"
 SOFT_FROM_MAP = "from the map's /soft"  # SoftInfo.soft_source when the map's own flag is used
-# analysis.hertz_limit and analysis.soft_kcon as maps without the attributes were computed with.
+# analysis.hertz_limit's default: the limit of a scene that does not set it.
 HERTZ_LIMIT_DEFAULT = 0.05
-SOFT_KCON_DEFAULT = 10.0
 # What a cell's answer is, by the map's steady attribute (analysis.steady).
 STEADY_ANSWERS = {
     "follow": "the motion the initial state settles into (follow)",

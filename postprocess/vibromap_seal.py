@@ -9,8 +9,9 @@ canonical record of the file's metadata that src/io/attribute_seal.cpp builds an
 attribute_record() builds the same bytes with h5py's low-level API (raw bytes of every string,
 never a decoded str), so a file vibromap wrote checks here exactly as in `vibromap sweep --resume`.
 
-check_seal(f) -> True (the seal matches) or False (no seal: a file written before vibromap sealed
-its files, read as before); raises DamagedAttributes with a one-line reason otherwise.
+check_heaps(f) refuses a file whose global heaps HDF5 would read for ever (before any attribute is
+read); check_seal(f) refuses one whose seal is missing or does not match its attributes: both
+raise DamagedAttributes with a one-line reason.
 """
 
 from __future__ import annotations
@@ -136,11 +137,6 @@ def _printable(data: bytes) -> str:
     return text + ("..." if len(data) > 60 else "")
 
 
-def _near_seal_name(name: bytes) -> bool:
-    """Of the seal's length and one or two bytes away from it: its own name damaged."""
-    return len(name) == len(_SEAL_NAME) and 0 < sum(a != b for a, b in zip(name, _SEAL_NAME)) <= 2
-
-
 _HEAP_SIGNATURE = b"GCOL\x01\x00\x00\x00"
 _SCAN_WHOLE = 1 << 30   # files up to this are scanned whole, larger ones at both ends (their heaps)
 _SCAN_ENDS = 256 << 20
@@ -190,22 +186,23 @@ def endless_global_heap(path) -> str:
     return ""
 
 
-def check_seal(f: h5py.File) -> bool:
-    """True when the file's seal matches its attributes, False when it has none (older file);
-    DamagedAttributes with a one-line reason when they are damaged or cannot be read."""
+def check_heaps(f: h5py.File) -> None:
+    """DamagedAttributes when the HDF5 library would loop for ever reading the file's string
+    attributes (endless_global_heap); a file that cannot be read here is left to h5py."""
     try:
         why = endless_global_heap(f.filename)
     except OSError:
         why = ""
     if why:
         raise DamagedAttributes(why)
+
+
+def check_seal(f: h5py.File) -> None:
+    """DamagedAttributes with a one-line reason when the file has no seal, when its attributes do
+    not match it, or when they cannot be read."""
     try:
-        names = _attribute_names(f.id)
-        if _SEAL_NAME not in names:
-            for name in names:
-                if _near_seal_name(name):
-                    raise DamagedAttributes(f"it has no attribute '{SEAL_ATTRIBUTE}' but one named '{_printable(name)}'")
-            return False
+        if _SEAL_NAME not in _attribute_names(f.id):
+            raise DamagedAttributes(f"it has no attribute '{SEAL_ATTRIBUTE}'")
         kind, value = _attribute_value(f.id, _SEAL_NAME)
         match = _SEAL_TEXT.fullmatch(value) if kind == b"s" else None
         if match is None:
@@ -216,7 +213,6 @@ def check_seal(f: h5py.File) -> bool:
         if computed != stored:
             raise DamagedAttributes(f"its attributes fail their checksum ({SEAL_ATTRIBUTE} says crc32 {stored}, "
                                     f"the attributes give {computed})")
-        return True
     except DamagedAttributes:
         raise
     except Exception as exc:  # h5py/HDF5 could not read them (KeyError, OSError, ValueError, ...)

@@ -1,6 +1,7 @@
 """Shared fixtures for the postprocess tests: the scripts' directory on sys.path, an analytic
-trajectory file written with h5py in the layout of src/io/trajectory_file.cpp, and the map files
-of map_cases.py (map1d, map2d, map3d)."""
+trajectory file written with h5py in the layout of src/io/trajectory_file.cpp (stamped with its
+version and attribute checksum, stamp.py), and the map files of map_cases.py (map1d, map2d,
+map3d)."""
 
 from __future__ import annotations
 
@@ -48,6 +49,8 @@ def analytic_trajectory(samples_per_period: int, periods: int) -> dict[str, np.n
 
 
 def write_trajectory_h5(path, columns: dict[str, np.ndarray], regime: str = "(1,1)", n: int = 1, k: int = 1) -> None:
+    from stamp import stamp
+
     with h5py.File(path, "w") as f:
         for name, values in columns.items():
             f.create_dataset(name, data=values, dtype="f8")
@@ -60,6 +63,7 @@ def write_trajectory_h5(path, columns: dict[str, np.ndarray], regime: str = "(1,
         f.attrs["k_con"] = T / T_CON
         f.attrs["scene"] = "[system]\nm1 = 1000.0\n"
         f.attrs["vibromap_version"] = "0.1.0"
+    stamp(path, "trajectory file")
 
 
 @pytest.fixture

@@ -3,9 +3,10 @@ layout vibromap_curves.py describes, for the tests of read_curves and of the map
 --curves:
 
   root attributes  vibromap_file = "curves", scene, param, param2, param_unit, param2_unit,
-                   version = 1 (int), Conventions = "CF-1.8", vibromap_version, command
+                   Conventions = "CF-1.8", vibromap_version, command, then version and
+                   attribute_checksum (stamp.py)
   /curve_i         attributes kind, stop, n; datasets over the dimension scale `point` (0..N-1):
-                   param, param2, T_con, k_con, z_ratio (float64), stable (int8),
+                   param, param2, T_con, k_con, z_ratio, F_max (float64), stable (int8),
                    multipliers_re, multipliers_im (N x 4, second dimension the scale
                    `multiplier` 0..3), residual (float64)
   /curve_i/codim2  param, param2 (float64), kind (variable-length strings) over the dimension
@@ -17,6 +18,8 @@ from __future__ import annotations
 import h5py
 import numpy as np
 
+from stamp import stamp
+
 
 def curve(kind: str, param, param2, n: int = 1, stop: str = "left the box; left the box", codim2=()) -> dict:
     """A curve to write: its kind, points and codim-2 points [(param, param2, kind), ...]; the
@@ -24,7 +27,7 @@ def curve(kind: str, param, param2, n: int = 1, stop: str = "left the box; left 
     param, param2 = np.asarray(param, dtype=np.float64), np.asarray(param2, dtype=np.float64)
     k_con = 10.0 + np.arange(param.size, dtype=np.float64)
     return dict(kind=kind, stop=stop, n=n, param=param, param2=param2, k_con=k_con, T_con=1.0 / k_con,
-                z_ratio=np.full(param.size, 0.01), stable=(np.arange(param.size) % 2).astype(np.int8),
+                z_ratio=np.full(param.size, 0.01), F_max=1e4 * k_con, stable=(np.arange(param.size) % 2).astype(np.int8),
                 residual=np.full(param.size, 1e-11), codim2=list(codim2))  # fmt: skip
 
 
@@ -42,7 +45,7 @@ def _write_curve(group, c: dict) -> None:
     point = _scale(group, "point", size)
     multiplier = _scale(group, "multiplier", 4)
     columns = [group.create_dataset(name, data=c[name], dtype="f8")
-               for name in ("param", "param2", "T_con", "k_con", "z_ratio")]  # fmt: skip
+               for name in ("param", "param2", "T_con", "k_con", "z_ratio", "F_max")]  # fmt: skip
     columns.append(group.create_dataset("stable", data=c["stable"], dtype="i1"))
     mu = np.outer(np.linspace(0.2, 0.9, size), [1.0, 0.5, 0.25, 0.125])
     for name, values in (("multipliers_re", mu), ("multipliers_im", 0.1 * mu)):
@@ -66,11 +69,11 @@ def _write_curve(group, c: dict) -> None:
 
 def write_curves(path, curves: list[dict], param: str = "contact.E1", param2: str = "contact.E2", units=("Pa", "Pa"),
                  attributes: dict | None = None) -> None:  # fmt: skip
-    """Writes a curve file of `curves` (curve()) in the plane of param x param2; attributes:
+    """Writes a curve file of `curves` (curve()) in the plane of param x param2, stamped; attributes:
     root attributes replacing or adding to the usual ones (None as a value: left out)."""
     root = dict(vibromap_file="curves", title="vibromap curves", Conventions="CF-1.8", vibromap_version="0.1.0",
                 command="vibromap continue jobs/paper/table2.toml --curve fold", scene="[system]\nm1 = 1000.0\n",
-                param=param, param2=param2, param_unit=units[0], param2_unit=units[1], version=np.int64(1))  # fmt: skip
+                param=param, param2=param2, param_unit=units[0], param2_unit=units[1])  # fmt: skip
     root.update(attributes or {})
     with h5py.File(path, "w", track_order=True) as f:
         for name, value in root.items():
@@ -78,3 +81,4 @@ def write_curves(path, curves: list[dict], param: str = "contact.E1", param2: st
                 f.attrs[name] = value
         for i, c in enumerate(curves):
             _write_curve(f.create_group(f"curve_{i}", track_order=True), c)
+    stamp(path, "curve file")

@@ -1,28 +1,32 @@
 """Writes synthetic vibromap map files with h5py, in the layout of
-include/vibromap/io/map_file.hpp, for the tests of the map readers and plots.
+include/vibromap/io/map_file.hpp (the current format: version and attribute checksum included),
+for the tests of the map readers and plots.
 
 Layout written (N axes, first axis slowest):
   /<axis>          1-D float64, a dimension scale (make_scale), attributes units, long_name,
-                   scale ("lin" | "log")
+                   key (the full scene key, AXIS_KEYS), scale ("lin" | "log")
   /done            N-D uint8
   /status          N-D int8, flag_values -1..3, flag_meanings
   /regime          N-D int8, flag_values -1..8, flag_meanings
   /stable          N-D int8, flag_values -1..1, flag_meanings "unknown unstable stable"
   /soft            N-D int8, flag_values -1..1, flag_meanings "not_computed no yes", long_name
-                   (only when write_map is given soft=: maps from before it have none)
-  /hertz_valid     N-D int64 0/1, units 1 (given as hertz_valid=: always there in new maps, not
-                   named in `stored`; or as a stored quantity, as older maps kept it)
+                   (given as soft=, else the definition applied to the arrays: periodic with
+                   impacts, stable, Hertz-valid and 0 < k_con <= soft_kcon)
   /n, /k           N-D int32
   /wall_s          N-D float64, units s
   /steady_residual N-D float64, units 1
   /<quantity>      N-D float64 with units (T_con, k_con, ..., max_multiplier, lyapunov) or
-                   int64 (hertz_valid, ...); NaN in a float one may also mean "not computed"
+                   int64 (hertz_valid, ...); NaN in a float one may also mean "not computed".
+                   hertz_valid is always one (given as hertz_valid=, else z_ratio <= hertz_limit,
+                   else 1 everywhere), first in `stored`
 Every N-D dataset has the axes attached as dimension scales, in order; links and attributes
 keep their creation order (netCDF-4 needs it tracked). Where done == 0,
 float datasets hold NaN (their _FillValue), integer ones 0, regime, status and stable -1: write_map
 enforces that, so callers may pass full arrays.
-Root attributes: title, Conventions, vibromap_version, scene, ranks, cells_total, cells_done,
-complete, stored; soft_kcon, hertz_limit (float) and steady (str) when given (new maps).
+Root attributes: title, Conventions, vibromap_version, scene, identity, ranks, cells_total,
+cells_done, complete, stored, census_attractors (0), steady, hertz_limit, soft_kcon (MAP_DEFAULTS,
+or as given), then version and attribute_checksum (stamp.py). A test that changes a map after
+write_map stamps it again (seal), or finds it damaged.
 
 Run as a script (python3 make_map.py OUT.h5 [--shooting]) it writes a demo 3-D map for looking
 at plots (--shooting: as if made with analysis.steady = "shooting").
@@ -35,7 +39,11 @@ import sys
 import h5py
 import numpy as np
 
+from stamp import stamp
+
 AXIS_UNITS = {"law": "1", "E1": "Pa", "E2": "Pa", "R1": "m", "R2": "m", "m2": "kg", "k2": "N/m", "omega2": "rad/s"}
+AXIS_KEYS = {"law": "contact.law", "E1": "contact.E1", "E2": "contact.E2", "R1": "contact.R1", "R2": "contact.R2",
+             "m2": "system.m2", "k2": "system.k2", "omega2": "system.omega2"}
 AXIS_LONG_NAMES = {
     "law": "contact law",
     "E1": "Young's modulus of body 1",
@@ -75,6 +83,10 @@ SOFT_LONG_NAME = (
 REGIME = {name: code for code, name in enumerate(REGIME_MEANINGS.split(), start=-1)}
 STATUS = {name: code for code, name in enumerate(STATUS_MEANINGS.split(), start=-1)}
 STABLE = {name: code for code, name in enumerate(STABLE_MEANINGS.split(), start=-1)}
+# The root attributes a map has whatever it holds, as write_map writes them unless given.
+MAP_DEFAULTS = {"identity": "system.m1 = 1000\n", "census_attractors": np.int64(0), "steady": "follow",
+                "hertz_limit": 0.05, "soft_kcon": 10.0}
+UNCOVERED = ("cells_done", "complete", "ranks")  # what a map's seal leaves out (a run rewrites them)
 
 
 def _int_dataset(f, name, values, dtype, done, fill):
@@ -107,6 +119,7 @@ def _write_axes(f, axes, categories):
         axis = f.create_dataset(name, data=np.asarray(values, dtype=np.float64), dtype="f8")
         axis.attrs["units"] = AXIS_UNITS[name]
         axis.attrs["long_name"] = AXIS_LONG_NAMES[name]
+        axis.attrs["key"] = AXIS_KEYS[name]
         axis.attrs["scale"] = scale
         if categories and name in categories:
             axis.attrs["flag_values"] = np.arange(len(categories[name]), dtype=np.int8)
@@ -117,18 +130,15 @@ def _write_axes(f, axes, categories):
 
 
 def _write_cells(f, done, arrays, quantities, long_names):
-    """The per-cell datasets in the C++ writer's order; arrays: status, regime, stable, soft,
-    hertz_valid (the last two None: left out), n, k, wall_s, steady_residual; long_names: the
+    """The per-cell datasets in the C++ writer's order; arrays: status, regime, stable, soft, n,
+    k, wall_s, steady_residual; quantities: the stored ones, hertz_valid first; long_names: the
     quantities' long_name attributes (a quantity without one has none; units "1" for a name
     QUANTITY_UNITS does not know)."""
     datasets = [f.create_dataset("done", data=done, dtype="u1")]
     datasets.append(_flag_dataset(f, "status", arrays["status"], done, STATUS_MEANINGS))
     datasets.append(_flag_dataset(f, "regime", arrays["regime"], done, REGIME_MEANINGS))
     datasets.append(_flag_dataset(f, "stable", arrays["stable"], done, STABLE_MEANINGS))
-    if arrays["soft"] is not None:
-        datasets.append(_flag_dataset(f, "soft", arrays["soft"], done, SOFT_MEANINGS, SOFT_LONG_NAME))
-    if arrays["hertz_valid"] is not None:
-        quantities = {"hertz_valid": arrays["hertz_valid"], **quantities}  # written as the quantity it was
+    datasets.append(_flag_dataset(f, "soft", arrays["soft"], done, SOFT_MEANINGS, SOFT_LONG_NAME))
     datasets.append(_int_dataset(f, "n", arrays["n"], "i4", done, 0))
     datasets.append(_int_dataset(f, "k", arrays["k"], "i4", done, 0))
     datasets.append(_float_dataset(f, "wall_s", arrays["wall_s"], done, "s"))
@@ -145,32 +155,53 @@ def _write_cells(f, done, arrays, quantities, long_names):
     return datasets
 
 
+def _defining_soft(done, regime, k, stable, hertz_valid, k_con, soft_kcon):
+    """The soft flag by the one definition: periodic with impacts, stable, Hertz-valid and
+    0 < k_con <= soft_kcon (0 everywhere without a k_con)."""
+    if k_con is None:
+        return np.zeros(done.shape, dtype=np.int8)
+    k_con = np.asarray(k_con, dtype=np.float64)
+    periodic = (done != 0) & (np.asarray(regime) == REGIME["periodic"]) & (np.asarray(k) > 0)
+    soft = periodic & (np.asarray(stable) == STABLE["stable"]) & (np.asarray(hertz_valid) != 0) & (k_con > 0) \
+        & (k_con <= soft_kcon)
+    return soft.astype(np.int8)
+
+
 def write_map(path, axes, regime, n, k, *, done=None, status=None, stable=None, wall_s=None, steady_residual=None,
               quantities=None, scene="[system]\nm1 = 1000.0\n\n[sweep]\n", ranks=2, attach_scales=True,
               title="vibromap regime map", categories=None, soft=None, hertz_valid=None, attributes=None,
               long_names=None):  # fmt: skip
-    """Writes a map file. axes: [(name, values, scale), ...] in order (first slowest);
-    regime, n, k and the optional arrays have the grid's shape; done defaults to regime != -1,
-    status to ok where done, stable to unknown (-1) everywhere; quantities: {name: array} of the optional stored quantities.
+    """Writes a map file, stamped (version and attribute checksum). axes: [(name, values, scale),
+    ...] in order (first slowest); regime, n, k and the optional arrays have the grid's shape;
+    done defaults to regime != -1, status to ok where done, stable to unknown (-1) everywhere;
+    quantities: {name: array} of the optional stored quantities.
     attach_scales=False leaves the axes unattached (a malformed map, for the reader's checks);
     categories: {axis name: [choice names]} makes that axis categorical (CF flag_meanings);
-    soft, hertz_valid: the new always-present /soft (0/1) and /hertz_valid (0/1) (None: left
-    out, as in older maps); attributes: extra root attributes (soft_kcon, hertz_limit, steady);
+    soft, hertz_valid: /soft (0/1) and /hertz_valid (0/1), by default as the module docstring
+    says; attributes: root attributes replacing MAP_DEFAULTS (soft_kcon, hertz_limit, steady);
     long_names: {quantity: long_name} (the C++ writer gives every quantity one; tests give those
     they need)."""
     shape = tuple(len(values) for _, values, _ in axes)
     regime = np.asarray(regime)
     assert regime.shape == shape, (regime.shape, shape)
     done = ((regime != REGIME["not_computed"]) if done is None else np.asarray(done)).astype(np.uint8)
+    root = {**MAP_DEFAULTS, **(attributes or {})}
+    quantities = dict(quantities or {})
+    if hertz_valid is None:
+        hertz_valid = quantities.get("hertz_valid")
+    if hertz_valid is None:
+        z_ratio = quantities.get("z_ratio")
+        hertz_valid = np.ones(shape) if z_ratio is None else np.asarray(z_ratio) <= root["hertz_limit"]
+    quantities = {"hertz_valid": np.asarray(hertz_valid).astype(np.int64), **quantities}
+    stable = np.full(shape, STABLE["unknown"]) if stable is None else stable
+    if soft is None:
+        soft = _defining_soft(done, regime, k, stable, hertz_valid, quantities.get("k_con"), root["soft_kcon"])
     arrays = dict(
         status=np.full(shape, STATUS["ok"]) if status is None else status,
-        regime=regime,
-        stable=np.full(shape, STABLE["unknown"]) if stable is None else stable,
-        soft=soft, hertz_valid=hertz_valid, n=n, k=k,
+        regime=regime, stable=stable, soft=soft, n=n, k=k,
         wall_s=np.full(shape, 0.25) if wall_s is None else wall_s,
         steady_residual=np.full(shape, 1e-9) if steady_residual is None else steady_residual,
     )  # fmt: skip
-    quantities = dict(quantities or {})
     # Creation order tracked, as the C++ writer does: xarray then lists the variables in the
     # order written (done, status, regime, ...), not alphabetically.
     with h5py.File(path, "w", track_order=True) as f:
@@ -182,22 +213,17 @@ def write_map(path, axes, regime, n, k, *, done=None, status=None, stable=None, 
                     dataset.dims[i].attach_scale(axis)
         root = dict(title=title, Conventions="CF-1.8", vibromap_version="0.1.0", scene=scene, ranks=np.int64(ranks),
                     cells_total=np.int64(done.size), cells_done=np.int64(done.sum()),
-                    complete=np.int64(1 if done.all() else 0), stored=" ".join(quantities), **(attributes or {}))  # fmt: skip
+                    complete=np.int64(1 if done.all() else 0), stored=" ".join(quantities), **root)  # fmt: skip
         for name, value in root.items():
-            f.attrs[name] = value
+            if value is not None:
+                f.attrs[name] = value
+    seal(path)
 
 
-def seal(path, uncovered=("cells_done", "complete", "ranks")):
-    """Gives a map written by write_map the attribute checksum the C++ writer gives its maps
-    (src/io/attribute_seal.hpp), computed by vibromap_seal (the reader's own code)."""
-    import zlib
-
-    import vibromap_seal
-
-    with h5py.File(path, "r+") as f:
-        crc = zlib.crc32(vibromap_seal.attribute_record(f, uncovered)) & 0xFFFFFFFF
-        text = f"crc32 {crc:08x}" + (f"; not covered: {' '.join(uncovered)}" if uncovered else "")
-        f.attrs[vibromap_seal.SEAL_ATTRIBUTE] = text
+def seal(path):
+    """Stamps a map written by write_map (again, after a change) as vibromap's writer stamps its
+    maps: the version, then the attribute checksum over all attributes but UNCOVERED."""
+    stamp(path, "regime map", UNCOVERED)
 
 
 # The soft test map: E1 (log, 6 points) x E2 (log, 4 points), cell [i, j] (i along E1).
@@ -232,18 +258,17 @@ def soft_pattern():
                 soft=soft)  # fmt: skip
 
 
-def write_soft_map(path, steady="follow", new=True, quantities=("k_con", "z_ratio"), **changes):
-    """Writes the soft test map. new: with /soft, /hertz_valid and the attributes soft_kcon,
-    hertz_limit, steady (False: as a map written before them); quantities: the stored ones kept;
-    changes: arrays or attributes (soft_kcon=..., hertz_limit=...) replacing soft_pattern's.
-    Returns the arrays written."""
+def write_soft_map(path, steady="follow", quantities=("k_con", "z_ratio"), **changes):
+    """Writes the soft test map. quantities: the stored ones kept (hertz_valid always); changes:
+    arrays or root attributes (soft_kcon=..., hertz_limit=..., any of MAP_DEFAULTS) replacing
+    soft_pattern's. Returns the arrays written."""
     arrays = soft_pattern()
     attributes = {"soft_kcon": 10.0, "hertz_limit": 0.05, "steady": steady}
     for name, value in changes.items():
-        (attributes if name in attributes else arrays)[name] = value
-    extra = dict(soft=arrays["soft"], hertz_valid=arrays["hertz_valid"], attributes=attributes) if new else {}
+        (attributes if name in attributes or name in MAP_DEFAULTS else arrays)[name] = value
     write_map(path, SOFT_AXES, arrays["regime"], arrays["n"], arrays["k"], stable=arrays["stable"],
-              quantities={name: arrays[name] for name in quantities}, **extra)  # fmt: skip
+              quantities={name: arrays[name] for name in quantities}, soft=arrays["soft"],
+              hertz_valid=arrays["hertz_valid"], attributes=attributes)  # fmt: skip
     return arrays
 
 

@@ -3,7 +3,7 @@ plot_kcon_map, plot_soft_map, plot_census_map): curve files written by make_curv
 layout of vibromap continue --curve, drawn over the maps of map_cases.py and test_plot_census.py.
 
 The 2-D map (map_cases.py) has the axes E1 (log, 1e5..1e10, cell edges 10^4.5..10^10.5) and E2
-(log, 1e4..1e10, edges 1e3..1e11), written without their scene keys: E1 stands for contact.E1.
+(log, 1e4..1e10, edges 1e3..1e11), whose scene keys are contact.E1 and contact.E2.
 """
 import os
 import sys
@@ -16,6 +16,7 @@ import pytest
 
 import conftest
 from conftest import run
+from stamp import stamp
 import make_curves
 import make_map
 import plot_census_map
@@ -24,7 +25,7 @@ import plot_regime_map as maps
 import plot_soft_map
 import test_plot_census
 from map_cases import KCON_SCRIPT, REGIME_SCRIPT, SOFT_SCRIPT, legend_texts, one_line_error
-from vibromap_h5 import VibromapFileError, add_soft_cells, read_curves, read_map
+from vibromap_h5 import FileVersionError, VibromapFileError, add_soft_cells, read_curves, read_map
 
 X_EDGES, Y_EDGES = (10.0**4.5, 10.0**10.5), (1e3, 1e11)
 FOLD = make_curves.curve("fold", [1e6, 1e7, 1e8, 1e9], [1e5, 1e6, 2e7, 1e9], n=1,
@@ -73,23 +74,37 @@ def test_read_curves_gives_every_curve_of_the_file_in_order(curve_files):
     np.testing.assert_array_equal(fold["k_con"], [10.0, 11.0, 12.0, 13.0])
     np.testing.assert_array_equal(fold["T_con"], 1.0 / np.array([10.0, 11.0, 12.0, 13.0]))
     np.testing.assert_array_equal(fold["stable"], [0, 1, 0, 1])
-    assert np.isnan(fold["F_max"]).all() and fold["F_max"].shape == (4,)  # not in this file: NaN
+    np.testing.assert_array_equal(fold["F_max"], [1e5, 1.1e5, 1.2e5, 1.3e5])
     assert fold["stable"].dtype == np.int8
     assert fold["multipliers"].shape == (4, 4) and fold["multipliers"][0, 0] == pytest.approx(0.2 + 0.02j)
     assert fold["codim2"] == [{"param": 1e7, "param2": 1e6, "kind": "cusp"}]
     assert curves[2]["codim2"] == []
 
 
-def test_a_curve_file_marked_by_its_title_alone_is_read(tmp_path):
-    path = tmp_path / "titled.h5"
-    make_curves.write_curves(path, [FOLD], attributes={"vibromap_file": None, "title": "vibromap bifurcation curves"})
-    assert [c["kind"] for c in read_curves(path)] == ["fold"]
+@pytest.mark.parametrize("version", [0, 2])
+def test_a_curve_file_of_another_format_version_is_refused_naming_both_versions(map2d, tmp_path, version):
+    path = tmp_path / "old.h5"
+    make_curves.write_curves(path, [FOLD])
+    stamp(path, "curve file", version=version)
+    line = (f"{path}: a curve file of format version {version}; this vibromap reads version 1 only: make the file "
+            "again with this vibromap")
+    with pytest.raises(FileVersionError) as error:
+        read_curves(path)
+    assert str(error.value) == line
+    out = tmp_path / "out.png"
+    result = run([sys.executable, REGIME_SCRIPT, str(map2d[0]), "--curves", str(path), "-o", str(out)])
+    one_line_error(result, "plot_regime_map", line)
+    assert not out.exists()
 
 
 @pytest.mark.parametrize(
     "change, message",
     [
         ({"attributes": {"vibromap_file": "branch"}}, "not a curve file of vibromap continue --curve (it is a 'branch' file)"),
+        ({"attributes": {"vibromap_file": None}}, 'not a curve file of vibromap continue --curve (no root attribute '
+                                                  'vibromap_file = "curves")'),
+        ({"drop": "F_max"}, "curve_0 has no dataset 'F_max'"),
+        ({"drop": "codim2"}, "curve_0 has no group 'codim2'"),
         ({"attributes": {"param2": None}}, "not a curve file of vibromap continue --curve (no root attribute 'param2', "
                                            "the key of the plane's axis)"),
         ({"drop": "param2"}, "curve_0 has no dataset 'param2'"),
@@ -107,6 +122,7 @@ def test_read_curves_refuses_a_file_that_is_not_a_curve_file_in_one_line(tmp_pat
         if "short" in change:
             del f["curve_0"][change["short"]]
             f["curve_0"].create_dataset(change["short"], data=np.ones(3))
+    stamp(path, "curve file")
     with pytest.raises(VibromapFileError) as error:
         read_curves(path)
     assert str(error.value) == f"{path}: {message}"
@@ -116,7 +132,7 @@ def test_read_curves_names_a_map_given_as_a_curve_file(map2d):
     with pytest.raises(VibromapFileError) as error:
         read_curves(map2d[0])
     assert str(error.value) == (f"{map2d[0]}: not a curve file of vibromap continue --curve (no root attribute "
-                                "vibromap_file = \"curves\"; title 'vibromap regime map')")  # fmt: skip
+                                "vibromap_file = \"curves\")")  # fmt: skip
 
 
 # ---- the curves over a map ------------------------------------------------------------------
@@ -178,8 +194,6 @@ def test_curves_over_a_map_whose_axes_keep_their_keys_and_mix_log_and_linear_axe
     contact.R1 x contact.E1 drawn with x = E1, y = R1 (swapped), the axes' scales kept."""
     path = tmp_path / "census.h5"
     test_plot_census.census_map(path)
-    with h5py.File(path, "a") as f:
-        f["E1"].attrs["key"], f["R1"].attrs["key"] = "contact.E1", "contact.R1"
     curves = tmp_path / "r1.h5"
     fold = make_curves.curve("fold", [0.2, 0.5, 0.9], [2e5, 1e7, 5e8])
     make_curves.write_curves(curves, [fold], param="contact.R1", param2="contact.E1", units=("m", "Pa"))
@@ -223,11 +237,8 @@ def test_a_curve_in_other_keys_is_refused_naming_the_file_the_keys_and_the_axes(
         out = tmp_path / "out.png"
         result = run([sys.executable, script, str(map2d[0]), "--curves", str(curves), "-o", str(out)])
         prog = os.path.basename(script)[:-3]
-        if script == SOFT_SCRIPT:  # map2d has no /soft nor z_ratio: refused before the curves
-            one_line_error(result, prog, "cannot tell the soft cells")
-            continue
         one_line_error(result, prog, f"{curves}: curve_0 (fold) is a curve in forcing.omega and forcing.F0, but the "
-                                     "plot's axes are E1 (x) and E2 (y); draw it over a map of these two keys")  # fmt: skip
+                                     "plot's axes are contact.E1 (x) and contact.E2 (y); draw it over a map of these two keys")  # fmt: skip
         assert not out.exists()
 
 
@@ -235,7 +246,7 @@ def test_a_curve_over_a_strip_is_refused(map1d, curve_files, tmp_path):
     out = tmp_path / "strip.png"
     result = run([sys.executable, REGIME_SCRIPT, str(map1d), "--curves", curve_files[0], "-o", str(out)])
     one_line_error(result, "plot_regime_map", f"{curve_files[0]}: curve_0 (fold) is a curve in contact.E1 and "
-                                              "contact.E2, but the plot's axes are E2 (x);")  # fmt: skip
+                                              "contact.E2, but the plot's axes are contact.E2 (x);")  # fmt: skip
     assert not out.exists()
 
 

@@ -1,5 +1,6 @@
-"""Damaged and truncated files: the postprocess scripts say so in one line on stderr and exit 2,
-never with a traceback and never by printing what the damage made up.
+"""Damaged and truncated files, and files of another format version: the postprocess scripts say
+so in one line on stderr and exit 2, never with a traceback and never by printing what the damage
+made up or reading an older layout.
 
 The maps are the C++ writer's sample (VIBROMAP_SAMPLE_MAP, set by ctest; its attribute checksum
 made by src/io/attribute_seal.cpp) and a map written here by make_map.py and sealed by the
@@ -8,7 +9,9 @@ an attribute's value, found by searching the file for the value's text (the titl
 an axis's units and long_name, the regime's flag_meanings), as in the map of issue 28 whose
 title, Conventions and vibromap_version read back empty, (b) the file cut short, (c) random bytes
 flipped anywhere, at fixed seeds: each run of summarize_map then either prints exactly what it
-prints for the undamaged map (the byte was unused) or refuses the map in one line."""
+prints for the undamaged map (the byte was unused) or refuses the map in one line; (d) the seal
+removed. A map whose root attribute `version` is another (or absent: version 0) is refused with
+the line vibromap prints for it, naming the file and both versions."""
 import contextlib
 import io
 import os
@@ -21,6 +24,7 @@ import numpy as np
 import pytest
 
 import make_map
+from stamp import set_version
 import summarize_map
 import vibromap_h5
 
@@ -35,7 +39,6 @@ def python_map(path):
     n = np.where(regime == 0, 1, 0)
     make_map.write_map(path, AXES, regime, n, n, stable=np.ones((3, 2), np.int8), scene=SCENE,
                        quantities={"k_con": np.full((3, 2), 5.0)})
-    make_map.seal(path)
 
 
 @pytest.fixture(params=["cpp", "python"])
@@ -86,21 +89,32 @@ def flip_inside(path, needle: bytes, at=2):
 
 
 def test_a_sealed_map_reads_as_verified(sealed_map):
-    assert vibromap_h5.read_map(str(sealed_map)).sealed
     proc = run("summarize_map", sealed_map)
     assert proc.returncode == 0, proc.stderr
     assert "attributes: verified by their checksum" in proc.stdout
 
 
-def test_an_unsealed_map_reads_as_older(tmp_path):
-    path = tmp_path / "old.h5"
-    python_map(str(path))
-    with h5py.File(path, "r+") as f:
+def test_a_map_without_its_seal_is_refused_as_damaged(sealed_map):
+    with h5py.File(sealed_map, "r+") as f:
         del f.attrs["attribute_checksum"]
-    assert not vibromap_h5.read_map(str(path)).sealed
-    proc = summarize(path)
-    assert proc.returncode == 0, proc.stderr
-    assert "attributes: not verified (a map made before vibromap gave maps an attribute checksum)" in proc.stdout
+    assert_refused(summarize(sealed_map), "summarize_map", sealed_map,
+                   "damaged: it has no attribute 'attribute_checksum'; make it again with vibromap --overwrite")
+
+
+@pytest.mark.parametrize("version", [0, 2, None])
+def test_a_map_of_another_format_version_is_refused_naming_both_versions(sealed_map, version):
+    """The version changed (None: removed, version 0) without sealing again: it is checked first,
+    so it is named, not reported as damage; the scripts as programs exit 2 with that one line."""
+    set_version(sealed_map, version)
+    line = (f"{sealed_map}: a regime map of format version {version or 0}; this vibromap reads version 1 only: "
+            "make the file again with this vibromap")
+    with pytest.raises(vibromap_h5.FileVersionError) as error:
+        vibromap_h5.read_map(str(sealed_map))
+    assert str(error.value) == line
+    for script in ("summarize_map", "plot_regime_map", "plot_kcon_map", "plot_soft_map"):
+        proc = run(script, sealed_map)
+        assert_refused(proc, script, sealed_map)
+        assert proc.stderr == f"{script}: error: {line}\n"
 
 
 @pytest.mark.parametrize("needle", [b"vibromap regime map", b"CF-1.8", b'note = "UTF-8: \xce\xbb"', b"Young's modulus",

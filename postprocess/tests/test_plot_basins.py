@@ -1,5 +1,6 @@
 """Tests of the basins reader (vibromap_h5.read_basins) and postprocess/plot_basins.py, on a file
-written here in the layout of include/vibromap/io/basins_file.hpp with known contents:
+written here in the layout of include/vibromap/io/basins_file.hpp (stamped: stamp.py) with known
+contents:
 
   x1 (6 points) x v1 (4 points); attractor 0 a soft (1,1) with k_con 8.96 on the left half,
   attractor 1 a (3,3) with k_con 2.5 on the right half, one pixel unresolved, one overlapping.
@@ -13,6 +14,7 @@ import numpy as np
 import conftest
 from conftest import png_size, run
 import plot_basins
+from stamp import stamp
 from vibromap_h5 import read_basins
 
 SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_basins.py")
@@ -25,7 +27,7 @@ def basins_file(path):
     label[0, 0] = -1
     label[3, 5] = -3
     with h5py.File(path, "w") as f:
-        f.attrs.update({"plane": "x1,v1", "fixed": "x2=0.05 v2=0", "complete": 1, "attractors": 2, "scene": SCENE,
+        f.attrs.update({"vibromap_version": "0.1.0", "plane": "x1,v1", "fixed": "x2=0.05 v2=0", "complete": 1, "attractors": 2, "scene": SCENE,
                         "fixed_state": np.array([0.0, 0.05, 0.0, 0.0])})
         for name, values, units in (("x1", x1, "m"), ("v1", v1, "m/s")):
             f[name] = values
@@ -46,6 +48,7 @@ def basins_file(path):
         strobe[0, 0] = [0.01, 0.05, 0.1, 0.0]
         strobe[1] = [[0.02, 0.05, 0.1, 0.0]] * 3
         f["strobe"] = strobe
+    stamp(path, "basins file")
     return path
 
 
@@ -81,7 +84,7 @@ def test_bad_file_is_one_line(tmp_path):
         f["x"] = np.zeros(3)
     proc = run([SCRIPT, str(bad), "-o", str(tmp_path / "b.png")])
     assert proc.returncode == 2
-    assert proc.stderr.count("\n") == 1 and "not a basins file" in proc.stderr
+    assert proc.stderr.count("\n") == 1 and f"{bad}: not a vibromap basins file (no root attribute 'version')" in proc.stderr
     missing = run([SCRIPT, str(tmp_path / "none.h5")])
     assert missing.returncode == 2 and "no such file" in missing.stderr
     assert not (tmp_path / "b.png").exists()

@@ -11,6 +11,7 @@ import pytest
 import conftest
 from conftest import png_size, run
 import plot_branch
+from stamp import stamp
 
 SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_branch.py")
 
@@ -55,7 +56,8 @@ def test_a_file_that_is_not_a_branch_is_one_line_exit_2(tmp_path):
 
 
 def branch_file(path):
-    """The same branch as branch(), in the HDF5 layout of include/vibromap/io/branch_file.hpp."""
+    """The same branch as branch(), in the HDF5 layout of include/vibromap/io/branch_file.hpp
+    (stamped: stamp.py)."""
     import h5py
 
     w = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
@@ -65,14 +67,24 @@ def branch_file(path):
         f.create_dataset("x1", data=w / 10)
         for name in ("x2", "v1", "v2"):
             f.create_dataset(name, data=np.zeros(5))
+        f.create_dataset("k_con", data=10.0 + w)
+        f.create_dataset("strobe_x1", data=(w / 10)[:, None])
+        f.create_dataset("point_branch", data=np.zeros(5, dtype=np.int32))
+        for name, value in (("branch_n", 1), ("branch_parent", -1), ("branch_born_at", -1)):
+            f.create_dataset(name, data=np.array([value], dtype=np.int32))
         f.create_dataset("bifurcation_type", data=np.array([0], dtype=np.int8))
+        f.create_dataset("bifurcation_branch", data=np.array([0], dtype=np.int32))
         f.create_dataset("bifurcation_param", data=np.array([3.0]))
         f.create_dataset("bifurcation_x1", data=np.array([-1.0]))
         for name in ("x2", "v1", "v2"):
             f.create_dataset("bifurcation_" + name, data=np.zeros(1))
         f.attrs["key"] = "forcing.omega"
+        f.attrs["units"] = "rad/s"
         f.attrs["n"] = 1
-        f.attrs["stop"] = "reached the end of the interval"
+        f.attrs["stop"] = f.attrs["stops"] = "reached the end of the interval"
+        f.attrs["scene"] = "[system]\n"
+        f.attrs["vibromap_version"] = "0.1.0"
+    stamp(path, "branch file")
 
 
 def test_the_hdf5_branch_file_reads_as_the_json(tmp_path):

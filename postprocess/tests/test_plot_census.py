@@ -38,6 +38,8 @@ def census_map(path):
         ("regime", -1, np.int8), ("stable", -1, np.int8), ("soft", -1, np.int8), ("from_rest", -1, np.int8),
         ("hertz_valid", -1, np.int8), ("transient", -1, np.int8), ("n", 0, np.int32), ("k", 0, np.int32), ("k_con", np.nan, float),
         ("fraction", np.nan, float), ("fraction_stderr", np.nan, float))}
+    for name in ("T_con", "F_max", "z_ratio", "max_floquet", "x1", "x2", "v1", "v2"):  # not looked at here: NaN
+        per[name] = np.full(shape + (A,), np.nan)
     soft = np.where(done, 0.0, np.nan)
     for i, j in np.ndindex(shape):
         c = int(count[i, j])
@@ -63,6 +65,7 @@ def census_map(path):
             f.create_dataset(name, data=values)
         for name, values in per.items():
             f.create_dataset("attractor_" + name, data=values)
+    make_map.seal(path)
     return count, soft
 
 

@@ -194,7 +194,7 @@ def test_map_without_kcon_gives_exit_2_and_one_line(tmp_path):
     path = tmp_path / "no_kcon.h5"
     regime, n, k, _, _ = pattern_2d()
     make_map.write_map(path, [("E1", E1_2D, "log"), ("E2", E2_2D, "log")], regime, n, k, quantities={"F_max": np.ones(regime.shape)})
-    one_line_error(run([sys.executable, KCON_SCRIPT, str(path)]), "plot_kcon_map", "did not store k_con", "stored: F_max", "[sweep] store")
+    one_line_error(run([sys.executable, KCON_SCRIPT, str(path)]), "plot_kcon_map", "did not store k_con", "stored: hertz_valid F_max", "[sweep] store")
     assert not path.with_name("no_kcon_kcon.png").exists()
 
 

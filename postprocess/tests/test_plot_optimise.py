@@ -28,6 +28,7 @@ import conftest
 from conftest import run
 import make_map
 import plot_optimise
+from stamp import stamp
 
 SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_optimise.py")
 VMPY = os.path.join(conftest.POSTPROCESS_DIR, "vmpy")
@@ -60,12 +61,14 @@ def write_start(group, index, seed, algorithm, x, objective, feasible, regime_n,
     group.create_dataset("stable", data=np.ones(len(objective), dtype=np.int8))
 
 
-def write_optimisation(path, seeds_from="map.h5", trajectory="traj.h5", integrate=None, scene=None):
-    """integrate: more attributes of the best point's re-solve from rest (z_ratio, hertz_valid);
-    scene: the scene text attribute (none by default)."""
+def write_optimisation(path, seeds_from="map.h5", trajectory="traj.h5", integrate=None, scene="[system]\n",
+                       law="hertz", restitution=1.0):
+    """An optimisation file, stamped (version and attribute checksum). integrate: attributes of the
+    best point's re-solve from rest replacing the defaults (z_ratio 0.012, hertz_valid 1); scene:
+    the scene text attribute; law, restitution: the best point's."""
     with h5py.File(path, "w") as f:
-        if scene is not None:
-            f.attrs["scene"] = scene
+        f.attrs["vibromap_version"] = "0.1.0"
+        f.attrs["scene"] = scene
         f.attrs["variables"] = "m2 omega2"
         f.attrs["scales"] = "lin lin"
         f.attrs["quantity"] = "k_con"
@@ -81,9 +84,12 @@ def write_optimisation(path, seeds_from="map.h5", trajectory="traj.h5", integrat
                     [1, 0, 1], 2)
         best = f.create_group("best/00")
         best.attrs.update({"start": np.int64(0), "evaluation": np.int64(3), "objective": 3.0, "m2": 280.0,
-                           "omega2": 4.5, "k2": 280.0 * 4.5**2, "E1": 2.099e11, "E2": 2.099e11, "R1": 2.0, "R2": 2.0})
+                           "omega2": 4.5, "k2": 280.0 * 4.5**2, "E1": 2.099e11, "E2": 2.099e11, "R1": 2.0, "R2": 2.0,
+                           "restitution": restitution, "law": law})
         best.create_dataset("x", data=X0[3])
-        best.create_group("integrate").attrs.update({"regime": "(1,1)", **(integrate or {})})
+        best.create_group("integrate").attrs.update({"regime": "(1,1)", "z_ratio": 0.012, "hertz_valid": np.int64(1),
+                                                     **(integrate or {})})
+    stamp(path, "optimisation file")
 
 
 @pytest.fixture
@@ -183,12 +189,10 @@ def test_bad_files_end_with_one_line_and_exit_2(tmp_path, files):
 
 
 @pytest.mark.parametrize("integrate, scene, expected", [
-    ({"z_ratio": 0.012, "hertz_valid": np.int64(1)}, None, "Hertz-valid: z_max/R* = 0.012 <= 0.05"),
-    ({"z_ratio": 0.21, "hertz_valid": np.int64(0)}, None, "Hertz-INVALID (not a valid answer): z_max/R* = 0.21 > 0.05"),
+    ({"z_ratio": 0.012, "hertz_valid": np.int64(1)}, "[system]\n", "Hertz-valid: z_max/R* = 0.012 <= 0.05"),
+    ({"z_ratio": 0.21, "hertz_valid": np.int64(0)}, "[system]\n", "Hertz-INVALID (not a valid answer): z_max/R* = 0.21 > 0.05"),
     ({"z_ratio": 0.21, "hertz_valid": np.int64(1)}, "[analysis]\nhertz_limit = 0.3\n", "Hertz-valid: z_max/R* = 0.21 <= 0.3"),
-    ({"z_ratio": 0.07}, None, "Hertz-INVALID (not a valid answer): z_max/R* = 0.07 > 0.05"),
-    ({"hertz_valid": np.int64(0)}, None, "Hertz-INVALID (not a valid answer)"),
-    ({}, None, None),
+    ({"z_ratio": np.nan, "hertz_valid": np.int64(0)}, "[system]\n", "Hertz-INVALID (not a valid answer)"),
 ])  # fmt: skip
 def test_best_figure_names_the_best_points_hertz_validity(files, monkeypatch, integrate, scene, expected):
     opt_path = files[0]
@@ -203,8 +207,8 @@ def test_best_figure_names_the_best_points_hertz_validity(files, monkeypatch, in
     assert plot_optimise.main([str(opt_path), "-o", str(opt_path.parent / "out")]) == 0
     lines = titles["out_best.png"].splitlines()
     assert lines[0].startswith("best point: regime (1,1)")
-    assert lines[1] == "contact: hertz, restitution e = 1" if scene is None else lines[1].startswith("contact: hertz")
-    assert lines[2:] == ([expected] if expected else [])
+    assert lines[1] == "contact: hertz, restitution e = 1"
+    assert lines[2:] == [expected]
 
 
 def best_title(opt_path, monkeypatch) -> list[str]:
@@ -220,12 +224,10 @@ def best_title(opt_path, monkeypatch) -> list[str]:
 
 
 def test_best_figure_names_the_contact_law_and_restitution(files, monkeypatch):
+    """The best point's own law and restitution (a free restitution's value), not the scene's."""
     opt_path = files[0]
-    write_optimisation(opt_path, scene='[contact]\nlaw = "hunt-crossley"\nrestitution = 0.6\n')
-    assert best_title(opt_path, monkeypatch)[1] == "contact: hunt-crossley, restitution e = 0.6"
-    with h5py.File(opt_path, "r+") as f:  # as vibromap writes it: the best point's own law and restitution
-        f["best/00"].attrs["restitution"] = 0.35
-        f["best/00"].attrs["law"] = "flores"
+    write_optimisation(opt_path, scene='[contact]\nlaw = "hunt-crossley"\nrestitution = 0.6\n', law="flores",
+                       restitution=0.35)
     assert best_title(opt_path, monkeypatch)[1] == "contact: flores, restitution e = 0.35"
 
 
@@ -257,6 +259,7 @@ def test_convergence_lines_of_one_algorithm_are_told_apart(tmp_path):
             start = f.create_group(f"starts/{i:03d}")
             write_start(start, i, i, "bobyqa", np.tile(seeds[i], (2, 1)), [5.0 - i, 4.0 - i], [1, 1], [1, 1], 1)
             start.attrs["law"] = laws[i]
+    stamp(path, "optimisation file")
     opt = plot_optimise.read_optimise(path)
     fig = plot_optimise.plot_convergence(opt)
     lines = [line for line in fig.axes[0].get_lines() if (line.get_gid() or "").startswith("running-best-")]

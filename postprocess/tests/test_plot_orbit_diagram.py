@@ -9,6 +9,7 @@ import numpy as np
 import conftest
 from conftest import png_size, run
 import plot_orbit_diagram
+from stamp import stamp
 
 SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_orbit_diagram.py")
 
@@ -25,6 +26,8 @@ def diagram(path):
         for name in ("x1", "x2", "v1", "v2"):
             f.create_dataset(name, data=x1)
         f.attrs["key"] = "forcing.omega"
+        f.attrs["vibromap_version"] = "0.1.0"
+    stamp(path, "orbit-diagram file")
 
 
 def test_both_sweeps_are_drawn_with_their_values(tmp_path):
@@ -48,4 +51,4 @@ def test_a_file_of_another_kind_is_one_line_exit_2(tmp_path):
         f.create_dataset("x", data=np.zeros(3))
     proc = run([SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1
-    assert "not an orbit-diagram file" in proc.stderr
+    assert f"{path}: not a vibromap orbit-diagram file (no root attribute 'version')" in proc.stderr

@@ -77,17 +77,11 @@ def test_make_map_writes_the_new_datasets_and_attributes(tmp_path):
     np.testing.assert_array_equal(m.data["hertz_valid"], np.where(done, arrays["hertz_valid"], 0))
     assert m.data["soft"].dtype == np.int8 and m.data["hertz_valid"].dtype == np.int64
     assert (m.soft_kcon, m.hertz_limit, m.steady) == (10.0, 0.05, "shooting")
-    assert m.stored == ["k_con", "z_ratio"]  # /soft and /hertz_valid are always there, not stored quantities
+    assert m.stored == ["hertz_valid", "k_con", "z_ratio"]  # /soft is always there; hertz_valid always stored
     assert m.answer_warning() == SHOOTING_LINE
     with h5py.File(path, "r") as f:
         assert f["soft"].attrs["flag_meanings"] == "not_computed no yes"
         assert [d[0].name for d in f["soft"].dims] == ["/E1", "/E2"]
-    old = tmp_path / "old.h5"
-    make_map.write_soft_map(old, new=False)
-    m = vibromap_h5.read_map(old)
-    assert "soft" not in m.data and "hertz_valid" not in m.data
-    assert (m.soft_kcon, m.hertz_limit, m.steady) == (10.0, 0.05, "")
-    assert m.answer_text() == "not recorded (map written before the steady attribute)" and m.answer_warning() == ""
 
 
 @pytest.mark.parametrize("name, value", [("soft_kcon", -1.0), ("hertz_limit", "big"), ("steady", 3)])
@@ -98,42 +92,26 @@ def test_read_map_refuses_bad_soft_attributes(tmp_path, name, value):
         vibromap_h5.read_map(path)
 
 
-def test_add_soft_cells_computes_an_older_maps_soft_cells_as_the_map_would_hold_them(tmp_path):
-    new, old = tmp_path / "new.h5", tmp_path / "old.h5"
-    make_map.write_soft_map(new)
-    make_map.write_soft_map(old, new=False)
-    m_new, m_old = vibromap_h5.read_map(new), vibromap_h5.read_map(old)
-    info_new, info_old = vibromap_h5.add_soft_cells(m_new), vibromap_h5.add_soft_cells(m_old)
-    assert (info_new.soft_source, info_new.hertz_source) == ("from the map's /soft", "from the map's hertz_valid")
-    assert (info_old.soft_source, info_old.hertz_source) == ("computed from regime, stable, z_ratio and k_con",
-                                                             "from z_ratio <= 0.05")  # fmt: skip
-    for key in (vibromap_h5.SOFT_KEY, vibromap_h5.HERTZ_KEY):
-        np.testing.assert_array_equal(m_new.data[key], m_old.data[key])
-    soft = m_new.data[vibromap_h5.SOFT_KEY]
+def test_add_soft_cells_takes_the_maps_own_soft_and_hertz_valid(tmp_path):
+    path = tmp_path / "soft.h5"
+    make_map.write_soft_map(path)
+    m = vibromap_h5.read_map(path)
+    info = vibromap_h5.add_soft_cells(m)
+    assert info.soft_source == "from the map's /soft" and info.overruled == 0
+    soft = m.data[vibromap_h5.SOFT_KEY]
     assert sorted(map(tuple, np.argwhere(soft == 1).tolist())) == sorted(make_map.SOFT_CELLS)
-    assert soft[5, 2] == -1 and m_new.data[vibromap_h5.HERTZ_KEY][5, 2] == -1  # not computed
-    assert sorted(map(tuple, np.argwhere(m_old.data[vibromap_h5.HERTZ_KEY] == 0).tolist())) == sorted(make_map.SOFT_HERTZ_INVALID)
+    assert soft[5, 2] == -1 and m.data[vibromap_h5.HERTZ_KEY][5, 2] == -1  # not computed
+    assert sorted(map(tuple, np.argwhere(m.data[vibromap_h5.HERTZ_KEY] == 0).tolist())) == sorted(make_map.SOFT_HERTZ_INVALID)
 
 
-def test_add_soft_cells_says_why_it_cannot_tell_rather_than_guess(tmp_path):
-    cases = {
-        "no_hertz": (dict(quantities=("k_con",)), "no hertz_valid or z_ratio"),
-        "no_kcon": (dict(quantities=("z_ratio",)), "no k_con"),
-    }
-    for name, (changes, reason) in cases.items():
-        path = tmp_path / f"{name}.h5"
-        make_map.write_soft_map(path, new=False, **changes)
-        m = vibromap_h5.read_map(path)
-        info = vibromap_h5.add_soft_cells(m)
-        assert not info.soft_known and reason in info.soft_source, (name, info.soft_source)
-        assert vibromap_h5.SOFT_KEY not in m.data
-    path = tmp_path / "no_stable.h5"
-    make_map.write_soft_map(path, new=False)
-    with h5py.File(path, "a") as f:
-        del f["stable"]  # written before stability was kept: unknown, not "not stable"
-    info = vibromap_h5.add_soft_cells(vibromap_h5.read_map(path))
-    assert not info.soft_known and "stable (written before stability was kept)" in info.soft_source
-    assert info.hertz_known
+def test_another_soft_kcon_without_k_con_is_refused_rather_than_guessed(tmp_path):
+    path = tmp_path / "no_kcon.h5"
+    make_map.write_soft_map(path, quantities=("z_ratio",))
+    m = vibromap_h5.read_map(path)
+    assert vibromap_h5.add_soft_cells(m).soft_source == "from the map's /soft"  # its own soft_kcon: its /soft
+    with pytest.raises(vibromap_h5.VibromapFileError) as error:
+        vibromap_h5.add_soft_cells(m, 20.0)
+    assert str(error.value) == f"{path}: cannot tell the soft cells for k_con <= 20: the map did not store k_con"
 
 
 def test_a_hertz_invalid_cell_the_map_calls_soft_is_never_shown_soft(tmp_path):
@@ -217,39 +195,6 @@ def test_soft_map_script_writes_a_png_with_each_categorys_colour(tmp_path):
         assert cells * 20_000 < pixels_near(image, colors[name], tol=0.02) < cells * 40_000, name
 
 
-def test_soft_map_of_an_older_map_says_its_soft_cells_are_computed(tmp_path):
-    path = tmp_path / "old.h5"
-    make_map.write_soft_map(path, new=False)
-    _, _, _, fig = soft_figure(path)
-    try:
-        assert legend_texts(fig)[:4] == ["soft (k_con <= 10): 4 cells", "rigid: periodic with impacts, k_con > 10: 12 cells",
-                                         "Hertz-invalid (z_max/R* > 0.05), would be soft: 2 cells",
-                                         "Hertz-invalid (z_max/R* > 0.05), would not be soft either: 2 cells"]  # fmt: skip
-        assert "(soft cells computed from regime, stable, z_ratio and k_con: the map has no /soft)" in fig.axes[0].get_title()
-    finally:
-        matplotlib.pyplot.close(fig)
-    out = tmp_path / "old.png"
-    result = run([sys.executable, SCRIPT, str(path), "-o", str(out)])
-    assert result.returncode == 0, result.stderr
-    assert result.stdout.splitlines() == [
-        "plot_soft_map: note: soft cells computed from regime, stable, z_ratio and k_con "
-        "(soft: stable periodic with impacts, Hertz-valid, k_con <= 10)",
-        f"plot_soft_map: wrote {out}",
-    ]
-
-
-def test_soft_map_without_what_soft_takes_exits_2_with_one_line(tmp_path):
-    path = tmp_path / "bare.h5"
-    make_map.write_soft_map(path, new=False, quantities=("k_con",))
-    result = run([sys.executable, SCRIPT, str(path), "-o", str(tmp_path / "never.png")])
-    assert result.returncode == 2 and result.stdout == ""
-    assert result.stderr.splitlines() == [
-        f"plot_soft_map: error: {path}: cannot tell the soft cells: the map has no /soft, and no hertz_valid or "
-        "z_ratio to compute it from"
-    ]
-    assert not (tmp_path / "never.png").exists()
-
-
 def test_soft_map_of_a_3d_map_holds_the_other_axis(tmp_path):
     """The soft pattern repeated over R1 (3 values), /soft 0 where R1 = 2: the slice taken decides."""
     path = tmp_path / "map3d.h5"
@@ -315,16 +260,20 @@ def test_every_map_picture_of_a_shooting_map_says_so(tmp_path):
 
 def test_the_census_cell_picture_of_a_shooting_map_says_so(tmp_path):
     path = tmp_path / "census.h5"
-    make_map.write_soft_map(path, steady="shooting")
+    make_map.write_soft_map(path, steady="shooting", census_attractors=np.int64(1))
     with h5py.File(path, "a") as f:  # a one-attractor census in every cell
         for name, value in (("attractors", np.ones((6, 4), np.int32)), ("soft_fraction", np.ones((6, 4))),
-                            ("unresolved_fraction", np.zeros((6, 4))), ("unlisted_fraction", np.zeros((6, 4)))):  # fmt: skip
+                            ("unresolved_fraction", np.zeros((6, 4))), ("unlisted_fraction", np.zeros((6, 4))),
+                            ("budget_fraction", np.zeros((6, 4)))):  # fmt: skip
             f.create_dataset(name, data=value)
         for name, value in (("regime", 0), ("n", 1), ("k", 1), ("stable", 1), ("soft", 1), ("from_rest", 1),
-                            ("k_con", 5.0), ("fraction", 1.0), ("fraction_stderr", 0.0)):  # fmt: skip
+                            ("hertz_valid", 1), ("transient", 0), ("k_con", 5.0), ("T_con", 0.17), ("F_max", 1e4),
+                            ("z_ratio", 0.01), ("max_floquet", 0.5), ("fraction", 1.0), ("fraction_stderr", 0.0),
+                            ("x1", 0.0), ("x2", 0.05), ("v1", 0.0), ("v2", 0.0)):  # fmt: skip
             f.create_dataset(f"attractor_{name}", data=np.full((6, 4, 1), value))
         f["attractor_regime"].attrs["flag_values"] = np.arange(-1, 9, dtype=np.int8)
         f["attractor_regime"].attrs["flag_meanings"] = make_map.REGIME_MEANINGS
+    make_map.seal(path)
     m = vibromap_h5.read_map(path)
     fig = plot_census_map.plot_cell(m, (0, 1))
     try:

@@ -24,7 +24,7 @@ E1 = np.geomspace(1e5, 1e9, 9)
 E2 = np.linspace(1e6, 2e6, 5)
 
 
-def refined_map(path, with_computed=True):
+def refined_map(path, with_computed=True, refine_on="regime"):
     shape = (len(E1), len(E2))
     i, _ = np.indices(shape)
     regime = np.where(i < 5, R["periodic"], R["chatter"])
@@ -40,10 +40,17 @@ def refined_map(path, with_computed=True):
     computed[1, 3] = computed[8, 1] = 2  # audited
     if with_computed:
         with h5py.File(path, "a") as f:
-            f.create_dataset("computed", data=computed)
-            f["computed"].dims[0].attach_scale(f["E1"])
-            f["computed"].dims[1].attach_scale(f["E2"])
-            f.attrs["refine_levels"] = np.int64(2)
+            level = np.where(computed > 0, 0, 2).astype(np.int8)
+            for name, values in (("computed", computed), ("level", level)):
+                f.create_dataset(name, data=values)
+                f[name].dims[0].attach_scale(f["E1"])
+                f[name].dims[1].attach_scale(f["E2"])
+            f.attrs.update({"refine_levels": np.int64(2), "refine_on": refine_on, "refine_audit_fraction": 0.05,
+                            "refine_speckle": np.int64(0), "refine_solved_per_level": np.array([6.0, 0.0, 13.0]),
+                            "refine_solved": np.int64(19), "refine_inherited": np.int64(24),
+                            "refine_audited": np.int64(2), "refine_mismatches": np.int64(0),
+                            "refine_mismatch_bound": 0.78, "refine_whole_blocks": np.int64(0)})
+        make_map.seal(path)
     return computed
 
 
@@ -59,9 +66,7 @@ def expected(computed, code):
 
 def test_an_adaptive_map_says_in_its_title_how_much_was_solved(tmp_path):
     path = tmp_path / "refined.h5"
-    computed = refined_map(path)
-    with h5py.File(path, "a") as f:
-        f.attrs["refine_on"] = "soft hertz_valid"
+    computed = refined_map(path, refine_on="soft hertz_valid")
     sweep = vibromap_h5.read_map(str(path))
     solved = int(np.count_nonzero(computed == 1))
     assert solved + 2 == 9 * 5 - int(np.count_nonzero(computed == 0))

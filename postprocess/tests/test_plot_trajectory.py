@@ -17,6 +17,7 @@ import conftest
 from conftest import run, png_size, pixels_near
 import plot_trajectory
 import vibromap_h5
+from stamp import stamp
 
 SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_trajectory.py")
 VMPY = os.path.join(conftest.POSTPROCESS_DIR, "vmpy")
@@ -47,6 +48,7 @@ def test_reader_rejects_a_file_without_trajectory_datasets(tmp_path):
     path = tmp_path / "other.h5"
     with h5py.File(path, "w") as f:
         f.create_dataset("t", data=np.zeros(3))
+    stamp(path, "trajectory file")
     with pytest.raises(vibromap_h5.VibromapFileError, match="no dataset 'x1'"):
         vibromap_h5.read_trajectory(path)
 
@@ -142,7 +144,7 @@ def test_hdf5_file_of_another_kind_gives_exit_2_and_one_line(tmp_path):
     other = tmp_path / "map.h5"
     with h5py.File(other, "w") as f:
         f.create_dataset("k_con", data=np.zeros((3, 3)))
-    one_line_error(run([sys.executable, SCRIPT, str(other)]), str(other), "no dataset 't'")
+    one_line_error(run([sys.executable, SCRIPT, str(other)]), str(other), "not a vibromap trajectory file")
 
 
 def test_empty_trajectory_gives_exit_2_and_one_line(tmp_path):

@@ -35,7 +35,7 @@ def test_read_map_returns_the_arrays_and_attributes_written(map2d):
     assert m.data["regime"].dtype == np.int8 and m.data["n"].dtype == np.int32 and m.data["periods"].dtype == np.int64
     assert np.isnan(m.data["wall_s"][0, 3]) and m.data["wall_s"][0, 0] == 0.25
     assert m.units["k_con"] == "1" and m.units["T_con"] == "s" and m.units["wall_s"] == "s"
-    assert m.stored == ["T_con", "k_con", "periods"]
+    assert m.stored == ["hertz_valid", "T_con", "k_con", "periods"]
     assert m.attrs["cells_total"] == 24 and m.attrs["cells_done"] == 22 and m.attrs["complete"] == 0
     assert m.attrs["Conventions"] == "CF-1.8" and m.attrs["ranks"] == 2
     assert m.attrs["scene"].startswith("[system]")
@@ -77,7 +77,7 @@ def test_read_map_exposes_the_stability_and_the_quantities_not_computed(tmp_path
     m = vibromap_h5.read_map(path)
     done = m.data["done"] != 0
     np.testing.assert_array_equal(m.data["stable"], np.where(done, stable, -1))
-    assert m.stored == ["max_multiplier", "lyapunov"]
+    assert m.stored == ["hertz_valid", "max_multiplier", "lyapunov"]
     assert m.units["max_multiplier"] == "1" and m.units["lyapunov"] == "1/s"
     assert m.data["max_multiplier"][4, 1] == 3.0 and m.data["max_multiplier"][0, 0] == 0.5
     # NaN in a cell done: not computed (no periodic orbit); the done mask tells it from not reached.
@@ -88,13 +88,27 @@ def test_read_map_exposes_the_stability_and_the_quantities_not_computed(tmp_path
     assert sl.data["stable"][0, 1] == 0 and sl.data["stable"][1, 4] == 0  # (ny, nx): [E2 index, E1 index]
 
 
-def test_read_map_of_a_map_without_stability_reads_it_unknown(map2d):
+@pytest.mark.parametrize("dataset", ["stable", "soft", "hertz_valid"])
+def test_a_map_without_a_dataset_every_map_has_is_refused(map2d, dataset):
+    """No older layout is read: a map of this format version lacking /stable, /soft or
+    /hertz_valid (sealed again, so that it is not refused as damaged) is malformed."""
     path, _ = map2d
     with h5py.File(path, "a") as f:
-        del f["stable"]  # as written before stability was kept
-    m = vibromap_h5.read_map(path)
-    assert m.data["stable"].shape == (6, 4) and np.all(m.data["stable"] == -1)
-    assert m.stable_meanings[0] == "unstable"
+        del f[dataset]
+    make_map.seal(path)
+    with pytest.raises(vibromap_h5.VibromapFileError) as error:
+        vibromap_h5.read_map(path)
+    assert str(error.value) == f"{path}: not a vibromap map file (no dataset '{dataset}')"
+
+
+@pytest.mark.parametrize("attribute", ["steady", "soft_kcon", "hertz_limit", "census_attractors", "identity"])
+def test_a_map_without_a_root_attribute_every_map_has_is_refused(tmp_path, attribute):
+    path = tmp_path / "m.h5"
+    regime, n, k, _, _ = pattern_2d()
+    make_map.write_map(path, [("E1", E1_2D, "log"), ("E2", E2_2D, "log")], regime, n, k, attributes={attribute: None})
+    with pytest.raises(vibromap_h5.VibromapFileError) as error:
+        vibromap_h5.read_map(path)
+    assert str(error.value) == f"{path}: not a vibromap map file (no root attribute '{attribute}')"
 
 
 def test_read_map_keeps_the_axis_order_of_the_file(map3d):
@@ -188,13 +202,13 @@ def test_slice2d_rejects_bad_axes(map3d, x, y, fixed, message):
 
 
 def test_cell_edges_are_midpoints_in_log_space_for_log_axes():
-    log_axis = vibromap_h5.MapAxis("E1", np.array([1e4, 1e6, 1e8]), "log", "Pa", "")
+    log_axis = vibromap_h5.MapAxis("E1", np.array([1e4, 1e6, 1e8]), "log", "Pa", "", "contact.E1")
     np.testing.assert_allclose(vibromap_h5.cell_edges(log_axis), [1e3, 1e5, 1e7, 1e9], rtol=1e-12)
-    lin_axis = vibromap_h5.MapAxis("R1", np.array([0.5, 1.0, 2.0]), "lin", "m", "")
+    lin_axis = vibromap_h5.MapAxis("R1", np.array([0.5, 1.0, 2.0]), "lin", "m", "", "contact.R1")
     np.testing.assert_allclose(vibromap_h5.cell_edges(lin_axis), [0.25, 0.75, 1.5, 2.5], rtol=1e-15)
-    single = vibromap_h5.MapAxis("m2", np.array([310.0]), "lin", "kg", "")
+    single = vibromap_h5.MapAxis("m2", np.array([310.0]), "lin", "kg", "", "system.m2")
     np.testing.assert_allclose(vibromap_h5.cell_edges(single), [155.0, 465.0])
-    single_log = vibromap_h5.MapAxis("E2", np.array([1e6]), "log", "Pa", "")
+    single_log = vibromap_h5.MapAxis("E2", np.array([1e6]), "log", "Pa", "", "contact.E2")
     np.testing.assert_allclose(vibromap_h5.cell_edges(single_log), [10**5.5, 10**6.5], rtol=1e-12)
 
 
@@ -211,7 +225,7 @@ def test_parse_fix():
 def test_read_map_errors_are_one_line(tmp_path, trajectory_file):
     with pytest.raises(vibromap_h5.VibromapFileError, match="no such file"):
         vibromap_h5.read_map(tmp_path / "missing.h5")
-    with pytest.raises(vibromap_h5.VibromapFileError, match=r"not a vibromap map file \(no dataset 'done'\)"):
+    with pytest.raises(vibromap_h5.VibromapFileError, match=r"not a vibromap map file \(no root attribute 'title'\)"):
         vibromap_h5.read_map(trajectory_file[0])
     unattached = tmp_path / "unattached.h5"
     regime, n, k, _, _ = pattern_2d()
@@ -223,6 +237,7 @@ def test_read_map_errors_are_one_line(tmp_path, trajectory_file):
     with h5py.File(ragged, "a") as f:
         del f["n"]
         f.create_dataset("n", data=np.zeros((6, 3), dtype=np.int32))
+    make_map.seal(ragged)
     with pytest.raises(vibromap_h5.VibromapFileError, match=r"dataset 'n' has shape \(6, 3\)"):
         vibromap_h5.read_map(ragged)
 
@@ -238,7 +253,7 @@ def test_make_map_files_read_as_netcdf_with_xarray(map3d):
     with dataset:
         assert dataset["k_con"].dims == ("E1", "E2", "R1")
         np.testing.assert_array_equal(dataset["R1"].values, R1_3D)
-        assert dataset.attrs["stored"] == "k_con"
+        assert dataset.attrs["stored"] == "hertz_valid k_con"
 
 
 @pytest.mark.skipif("VIBROMAP_SAMPLE_MAP" not in os.environ, reason="no map file from the C++ writer (run via ctest)")

@@ -84,27 +84,20 @@ def test_a_shooting_map_is_flagged_and_soft_and_hertz_invalid_cells_are_counted(
     assert "Hertz-invalid (z_max/R* > 0.05): 4 of 22 cells with impacts (from the map's hertz_valid)" in lines
 
 
-def test_the_answer_kind_of_follow_integrate_and_older_maps(tmp_path):
+def test_the_answer_kind_of_follow_and_integrate_maps(tmp_path):
     for steady, answer in (("follow", "the motion the initial state settles into (follow)"),
                            ("integrate", "the motion the initial state settles into, by brute-force integration (integrate)")):  # fmt: skip
         path = tmp_path / f"{steady}.h5"
         make_map.write_soft_map(path, steady=steady)
         lines, _ = summarize_map.summary_lines(read_map(str(path)), slowest=0)
         assert f"answer: {answer}" in lines and not any("WARNING" in line for line in lines)
-    old = tmp_path / "old.h5"
-    make_map.write_soft_map(old, new=False)
-    lines, bad = summarize_map.summary_lines(read_map(str(old)), slowest=0)
-    assert bad == 0
-    assert "answer: not recorded (map written before the steady attribute)" in lines
-    assert ("soft: 4 of 23 cells done (stable periodic with impacts, Hertz-valid, k_con <= 10; computed from regime, "
-            "stable, z_ratio and k_con)") in lines
-    assert "Hertz-invalid (z_max/R* > 0.05): 4 of 22 cells with impacts (from z_ratio <= 0.05)" in lines
 
 
-def test_a_map_without_what_soft_takes_says_unknown(tmp_path):
+def test_a_map_of_soft_cells_the_writer_computed_reports_them_from_its_soft(tmp_path):
+    """make_map's /soft by the definition (stable, Hertz-valid, k_con 5 <= 10): the 3 periodic cells."""
     path = tmp_path / "m.h5"
-    write(path, np.full((3, 2), 5.0))  # k_con only: no /soft, no hertz_valid, no z_ratio
+    write(path, np.full((3, 2), 5.0))
     lines, bad = summarize_map.summary_lines(read_map(str(path)), slowest=0)
     assert bad == 0
-    assert "soft: unknown (the map has no /soft, and no hertz_valid or z_ratio to compute it from)" in lines
-    assert "Hertz validity: unknown (the map stores neither hertz_valid nor z_ratio)" in lines
+    assert "soft: 3 of 6 cells done (stable periodic with impacts, Hertz-valid, k_con <= 10; from the map's /soft)" in lines
+    assert "Hertz-invalid (z_max/R* > 0.05): 0 of 6 cells with impacts (from the map's hertz_valid)" in lines

@@ -3,6 +3,7 @@
 #include <new>
 
 #include "vibromap/core/integrate/cancel.hpp"
+#include "vibromap/io/file_format.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/parallel/farm.hpp"
@@ -19,6 +20,8 @@ ExitCode exit_code_of(std::exception_ptr error) {
   } catch (const ItemStopped&) {
     return ExitCode::stopped;
   } catch (const SceneError&) {
+    return ExitCode::bad_input;
+  } catch (const FileVersionError&) {  // a file of another format version (io/file_format.hpp)
     return ExitCode::bad_input;
   } catch (const IoError&) {
     return ExitCode::io;

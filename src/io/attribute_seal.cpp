@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <fcntl.h>
@@ -143,14 +144,6 @@ bool parse_seal(std::string_view text, std::string& crc, std::vector<std::string
   return !uncovered.empty();
 }
 
-// True when `name` has the seal's length and differs from it in one or two bytes.
-bool near_seal_name(std::string_view name) {
-  if (name.size() != kSealAttribute.size() || name == kSealAttribute) return false;
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < name.size(); ++i) differ += name[i] != kSealAttribute[i] ? 1 : 0;
-  return differ <= 2;
-}
-
 // ---- Global heaps that HDF5 would read for ever -------------------------------------------
 // A string attribute's bytes live in a global heap collection ("GCOL", version 1, then its size
 // in 8 bytes): objects one after another, each a 16-byte header (index 2 bytes, references 2,
@@ -224,25 +217,51 @@ std::string endless_global_heap(const std::string& path) {
              std::to_string(stuck), ", which the HDF5 library would read for ever");
 }
 
-SealState check_seal(const Hdf5File& file) {
-  if (const std::string why = endless_global_heap(file.path()); !why.empty()) damaged(file, why);
-  if (!file.has_attribute(kSealAttribute)) {
-    for (const std::string& name : file.attribute_names())
-      if (near_seal_name(name))
-        damaged(file, cat("it has no attribute '", kSealAttribute, "' but one named '", printable(name), "'"));
-    return SealState::absent;
+// `read()`, with what HDF5 throws while reading attributes ("<path>: cannot read attribute 'x'
+// (reason)") reported as damage.
+template <class Read>
+auto read_attributes(const Hdf5File& file, Read&& read) {
+  try {
+    return read();
+  } catch (const IoError& e) {
+    const std::string_view what = e.what();
+    if (what.starts_with(cat(file.path(), ": damaged: "))) throw;
+    const std::string prefix = cat(file.path(), ": ");
+    damaged(file, cat("its attributes cannot be read (", what.starts_with(prefix) ? what.substr(prefix.size()) : what, ")"));
   }
-  const AttributeValue seal = file.read_attribute(kSealAttribute);
-  std::string stored;
-  std::vector<std::string> uncovered;
-  if (seal.kind != AttributeValue::Kind::string || !parse_seal(seal.text, stored, uncovered))
-    damaged(file, cat("its attribute '", kSealAttribute, "' is not 'crc32 XXXXXXXX' ('", printable(seal.text), "')"));
-  const std::string record = attribute_record(file, uncovered);
-  const std::string computed = hex(crc32(record.data(), record.size()), 8);
-  if (computed != stored)
-    damaged(file, cat("its attributes fail their checksum (", kSealAttribute, " says crc32 ", stored,
-                      ", the attributes give ", computed, ")"));
-  return SealState::verified;
+}
+
+// The file's format version: its root attribute `version`, 0 when it has only vibromap_version
+// (made before files were versioned).
+std::int64_t stored_version(const Hdf5File& file, const FileFormat& format) {
+  const auto version = read_attributes(file, [&]() -> std::optional<std::int64_t> {
+    if (!file.has_attribute(kVersionAttribute)) {
+      if (file.has_attribute("vibromap_version")) return 0;
+      return std::nullopt;
+    }
+    const AttributeValue v = file.read_attribute(kVersionAttribute);
+    if (v.kind != AttributeValue::Kind::integer || v.ints.size() != 1)
+      damaged(file, cat("its attribute '", kVersionAttribute, "' is not one integer"));
+    return v.ints.front();
+  });
+  if (!version) fail(file.path(), cat("not a vibromap ", format.kind, " (no root attribute '", kVersionAttribute, "')"));
+  return *version;
+}
+
+void check_seal(const Hdf5File& file) {
+  read_attributes(file, [&] {
+    if (!file.has_attribute(kSealAttribute)) damaged(file, cat("it has no attribute '", kSealAttribute, "'"));
+    const AttributeValue seal = file.read_attribute(kSealAttribute);
+    std::string stored;
+    std::vector<std::string> uncovered;
+    if (seal.kind != AttributeValue::Kind::string || !parse_seal(seal.text, stored, uncovered))
+      damaged(file, cat("its attribute '", kSealAttribute, "' is not 'crc32 XXXXXXXX' ('", printable(seal.text), "')"));
+    const std::string record = attribute_record(file, uncovered);
+    const std::string computed = hex(crc32(record.data(), record.size()), 8);
+    if (computed != stored)
+      damaged(file, cat("its attributes fail their checksum (", kSealAttribute, " says crc32 ", stored,
+                        ", the attributes give ", computed, ")"));
+  });
 }
 
 }  // namespace
@@ -256,23 +275,18 @@ std::string attribute_record(const Hdf5File& file, const std::vector<std::string
   return out;
 }
 
-void seal_attributes(Hdf5File& file, const std::vector<std::string>& uncovered) {
+void seal_attributes(Hdf5File& file, const FileFormat& format, const std::vector<std::string>& uncovered) {
+  file.set_attribute(kVersionAttribute, format.version);
   const std::string record = attribute_record(file, uncovered);
   std::string value = cat(kCrcPrefix, hex(crc32(record.data(), record.size()), 8));
   if (!uncovered.empty()) value += cat(kUncoveredPrefix, joined(uncovered));
   file.set_attribute(kSealAttribute, value);
 }
 
-SealState verify_attributes(const Hdf5File& file) {
-  try {
-    return check_seal(file);
-  } catch (const IoError& e) {
-    const std::string_view what = e.what();
-    if (what.starts_with(cat(file.path(), ": damaged: "))) throw;
-    // HDF5 could not read them: "<path>: cannot read attribute 'x' (reason)" -> the part after the path.
-    const std::string prefix = cat(file.path(), ": ");
-    damaged(file, cat("its attributes cannot be read (", what.starts_with(prefix) ? what.substr(prefix.size()) : what, ")"));
-  }
+void verify_file(const Hdf5File& file, const FileFormat& format) {
+  if (const std::string why = endless_global_heap(file.path()); !why.empty()) damaged(file, why);
+  check_version(file.path(), format, stored_version(file, format));
+  check_seal(file);
 }
 
 }  // namespace vibromap::detail

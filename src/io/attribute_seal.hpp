@@ -23,14 +23,14 @@
 //   - a link that is neither a group nor a dataset: field(path) field("") "x" field("link");
 // where field(b) is the decimal byte length of b, ':', then b.
 //
-// Files without the attribute (written before it) are read as before: verify_attributes says so
-// (SealState::absent) and the caller notes it; unless a root attribute's name is one or two bytes
-// away from `attribute_checksum` (the seal's own name damaged), which is damage.
+// Every file carries a seal: one without it is damaged (a file made before vibromap sealed its
+// files is also of an older format version, and refused for that first: file_format.hpp).
 
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "vibromap/io/file_format.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 
 namespace vibromap::detail {
@@ -40,18 +40,18 @@ inline constexpr std::string_view kSealAttribute = "attribute_checksum";
 // The canonical record of `file`'s metadata (see above), without the root attributes `uncovered`.
 std::string attribute_record(const Hdf5File& file, const std::vector<std::string>& uncovered);
 
-// Writes the seal over every attribute written so far: call it after the last of them. Root
-// attributes in `uncovered` may change later without breaking it. Throws IoError.
-void seal_attributes(Hdf5File& file, const std::vector<std::string>& uncovered = {});
+// Writes the root attribute `version` (format.version), then the seal over every attribute
+// written so far: call it after the last of them. Root attributes in `uncovered` may change
+// later without breaking it. Throws IoError.
+void seal_attributes(Hdf5File& file, const FileFormat& format, const std::vector<std::string>& uncovered = {});
 
-enum class SealState {
-  verified,  // the seal matches
-  absent,    // no seal: a file written before vibromap sealed its files
-};
-
-// Checks the seal of `file`. Throws IoError "<path>: damaged: its attributes fail their checksum
-// (...); make it again with --overwrite" (or: cannot be read, its seal is unreadable) when the
-// attributes are damaged.
-SealState verify_attributes(const Hdf5File& file);
+// What every reader of a vibromap HDF5 file checks before it reads any value, in this order:
+// 1. the global heaps (below): one that HDF5 would read for ever is damage;
+// 2. the format version: FileVersionError unless the root attribute `version` is
+//    format.version (a file without it but with `vibromap_version` is version 0); a file with
+//    neither is IoError "<path>: not a vibromap <kind> (no root attribute 'version')";
+// 3. the seal: IoError "<path>: damaged: its attributes fail their checksum (...); make it
+//    again with --overwrite" (or: it has none, it is unreadable) when the attributes are damaged.
+void verify_file(const Hdf5File& file, const FileFormat& format);
 
 }  // namespace vibromap::detail

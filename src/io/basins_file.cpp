@@ -200,17 +200,16 @@ void write_basins_file(const std::string& path, const BasinsContent& c) {
     write_root(f, c);
     write_plane(f, c);
     write_attractors(f, c);
-    detail::seal_attributes(f);  // last: over every attribute above
+    detail::seal_attributes(f, kBasinsFormat);  // last: the format version, then the seal over every attribute
   });
 }
 
 BasinsContent read_basins_file(const std::string& path) {
   const Hdf5File f(path, FileMode::read_only);
-  const detail::SealState seal = detail::verify_attributes(f);  // damage is damage, before any value is read
+  detail::verify_file(f, kBasinsFormat);  // another version, or damage, before any value is read
   for (const char* name : {"plane", "identity", "fixed_state", "label", "done"})
     if (!f.has_attribute(name) && !f.exists(name)) throw IoError(path + ": not a basins file of vibromap (no '" + name + "')");
   BasinsContent c;
-  c.unsealed = seal == detail::SealState::absent;
   c.scene_text = f.read_string_attribute("scene");
   c.identity = f.read_string_attribute("identity");
   c.soft_kcon = f.read_double_attribute("soft_kcon");

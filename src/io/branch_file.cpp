@@ -174,7 +174,7 @@ void write_branch(const std::string& path, const BranchData& data) {
     file.set_attribute("n", data.branches.empty() ? 1 : data.branches.front().n);
     file.set_attribute("stop", data.branches.empty() ? std::string() : data.branches.front().stop);
     file.set_attribute("stops", stops);
-    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
+    detail::seal_attributes(file, kBranchFormat);  // last: the format version, then the seal over every attribute (attribute_seal.hpp)
   });
 }
 

@@ -108,8 +108,7 @@ void write_curves(const std::string& path, const CurveFileData& data) {
     file.set_attribute("param2", data.axis2.key);
     file.set_attribute("param_unit", data.axis.units == "1" ? std::string() : data.axis.units);
     file.set_attribute("param2_unit", data.axis2.units == "1" ? std::string() : data.axis2.units);
-    file.set_attribute("version", 1);
-    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
+    detail::seal_attributes(file, kCurveFormat);  // last: the format version, then the seal over every attribute (attribute_seal.hpp)
   });
 }
 

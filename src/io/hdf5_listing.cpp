@@ -106,14 +106,6 @@ std::string Dataset::element_type_text() const {
   return cat(std::string(1, byte_order), std::string(1, kind), std::to_string(size));
 }
 
-bool Dataset::allocated_early() const {
-  const std::string operation = cat("get the creation properties of ", detail::describe("dataset", name_));
-  const Handle dcpl = detail::make_handle(H5Dget_create_plist(id()), HandleKind::property_list, file_path_, operation);
-  H5D_alloc_time_t when = H5D_ALLOC_TIME_DEFAULT;
-  check(H5Pget_alloc_time(dcpl.get(), &when), file_path_, operation);
-  return when == H5D_ALLOC_TIME_EARLY;
-}
-
 bool Dataset::chunk_allocated(const Shape& offset) const {
   // The storage size looks the chunk up as a read does (H5Dget_chunk_info_by_coord does not
   // compare the whole key, and can find a chunk that reads then miss): it fails, or is 0, when

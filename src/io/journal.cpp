@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "vibromap/core/text.hpp"
+#include "vibromap/io/file_format.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/output_file.hpp"
 
@@ -17,7 +18,7 @@ namespace vibromap {
 namespace {
 
 constexpr char kMagic[4] = {'V', 'M', 'J', '1'};
-constexpr std::uint32_t kFormat = 3;  // 2: census attractor records carry the transient flag; 3: budget_fraction
+constexpr auto kFormat = static_cast<std::uint32_t>(kJournalFormat.version);  // in the header, 4 bytes
 
 std::array<std::uint32_t, 256> crc_table() {
   std::array<std::uint32_t, 256> t{};
@@ -119,7 +120,8 @@ Journal Journal::open(const std::string& path) {
   std::uint32_t format = 0, crc = 0;
   std::uint64_t length = 0;
   if (data.size() < 4 || std::memcmp(data.data(), kMagic, 4) != 0) io_fail(path, "not a vibromap journal");
-  if (!read_value(data, pos, format) || format != kFormat) io_fail(path, "a journal of another format version");
+  if (!read_value(data, pos, format)) io_fail(path, "the journal's header is damaged");
+  check_version(path, kJournalFormat, format);
   if (!read_value(data, pos, length) || length > data.size() - pos) io_fail(path, "the journal's header is damaged");
   j.identity_.assign(data.data() + pos, static_cast<std::size_t>(length));
   pos += static_cast<std::size_t>(length);

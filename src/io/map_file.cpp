@@ -136,9 +136,7 @@ MapWriter MapWriter::open_new(const std::string& path, const MapLayout& layout) 
 
 MapWriter MapWriter::resume(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit_done) {
   auto impl = open_for_writing(path);
-  detail::SealState seal = detail::SealState::verified;
-  impl->layout = detail::read_layout(impl->file, &seal);
-  impl->repair.unsealed = seal == detail::SealState::absent;
+  impl->layout = detail::read_layout(impl->file);
   const Shape shape = impl->layout.grid.shape();
   impl->chunk = detail::map_chunk_shape(shape);
   impl->chunks = detail::chunk_spans(shape, impl->chunk);

@@ -137,9 +137,10 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
       uncovered.push_back(name);
     }
   }
-  // Last of the map's attributes (MapWriter::create makes every dataset first): the seal over
-  // them all but the progress attributes, which finish() rewrites and no reader trusts.
-  seal_attributes(file, uncovered);
+  // Last of the map's attributes (MapWriter::create makes every dataset first): the format
+  // version, then the seal over them all but the progress attributes, which finish() rewrites
+  // and no reader trusts.
+  seal_attributes(file, kMapFormat, uncovered);
 }
 
 // Refuses a layout the file cannot hold, before any file is touched.
@@ -238,14 +239,13 @@ std::vector<Quantity> read_stored(const Hdf5File& file) {
 
 }  // namespace
 
-MapLayout read_layout(const Hdf5File& file, SealState* seal) {
+MapLayout read_layout(const Hdf5File& file) {
   const std::string& path = file.path();
-  const SealState state = verify_attributes(file);
-  if (seal) *seal = state;
+  verify_file(file, kMapFormat);
   MapLayout layout;
   layout.stored = read_stored(file);
   for (const char* name : {"title", "Conventions", "vibromap_version", "scene", "identity", "ranks", "cells_total",
-                           "cells_done", "complete"})
+                           "cells_done", "complete", "census_attractors", "steady", "hertz_limit", "soft_kcon"})
     require_attribute(file, path, name);
   if (!file.exists("done")) malformed(path, "no dataset '/done'");
   const Dataset done = file.open_dataset("done");
@@ -255,23 +255,20 @@ MapLayout read_layout(const Hdf5File& file, SealState* seal) {
   layout.grid = Grid(std::move(axes));
   layout.scene_text = file.read_string_attribute("scene");
   layout.identity = file.read_string_attribute("identity");
-  if (file.has_attribute("steady")) layout.steady = file.read_string_attribute("steady");
-  if (file.has_attribute("hertz_limit")) layout.hertz_limit = file.read_double_attribute("hertz_limit");
-  if (file.has_attribute("soft_kcon")) layout.soft_kcon = file.read_double_attribute("soft_kcon");
-  if (file.has_attribute("census_attractors")) {  // maps made before the census have none
-    const std::int64_t a = file.read_int_attribute("census_attractors");
-    if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");
-    layout.attractors = static_cast<std::size_t>(a);
-  }
+  layout.steady = file.read_string_attribute("steady");
+  layout.hertz_limit = file.read_double_attribute("hertz_limit");
+  layout.soft_kcon = file.read_double_attribute("soft_kcon");
+  const std::int64_t a = file.read_int_attribute("census_attractors");
+  if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");
+  layout.attractors = static_cast<std::size_t>(a);
   if (file.has_attribute("refine_levels")) {  // an adaptive map
     const std::int64_t l = file.read_int_attribute("refine_levels");
     if (l < 1 || l > 20) malformed(path, "root attribute 'refine_levels' is outside 1..20");
     layout.refine_levels = static_cast<int>(l);
-    require_attribute(file, path, "refine_on");
-    require_attribute(file, path, "refine_audit_fraction");
+    for (const char* name : {"refine_on", "refine_audit_fraction", "refine_speckle"}) require_attribute(file, path, name);
     layout.refine_on = file.read_string_attribute("refine_on");
     layout.refine_audit = file.read_double_attribute("refine_audit_fraction");
-    if (file.has_attribute("refine_speckle")) layout.refine_speckle = file.read_int_attribute("refine_speckle") != 0;
+    layout.refine_speckle = file.read_int_attribute("refine_speckle") != 0;
   }
   if (file.read_int_attribute("cells_total") != static_cast<std::int64_t>(layout.grid.size()))
     malformed(path, cat("root attribute 'cells_total' differs from the grid's ", std::to_string(layout.grid.size()),
@@ -329,11 +326,6 @@ Shape field_offset(Shape offset, const MapField& f) {
 
 bool MapDatasets::chunk_missing(int i, const CellSpan& span) {
   if (grid_shape.empty()) grid_shape = done.shape();
-  if (early.empty()) {  // a map made before every chunk was allocated up front may lack some
-    early.push_back(done.allocated_early() ? 1 : 0);
-    for (const Dataset& d : data) early.push_back(d.allocated_early() ? 1 : 0);
-  }
-  if (!early[static_cast<std::size_t>(i + 1)]) return false;
   const Shape offset = cell_offset(span.begin, grid_shape);
   if (i < 0) return !done.chunk_allocated(offset);
   const auto u = static_cast<std::size_t>(i);

@@ -8,7 +8,6 @@
 #include <string_view>
 #include <vector>
 
-#include "attribute_seal.hpp"
 #include "map_fields.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
@@ -41,10 +40,10 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks);
 
 // ---- Reading a map's layout
 // Its axes, stored quantities, scene, identity and attractor dimension; malformed() when a
-// required part is missing or inconsistent. The attributes' seal is checked first, so damage is
-// reported as damage ("<path>: damaged: ..."), never as a wrong value; `seal` (when given) says
-// whether the map had one (maps written before have none and are read as before).
-MapLayout read_layout(const Hdf5File& file, SealState* seal = nullptr);
+// required part is missing or inconsistent. The format version and the attributes' seal are
+// checked first (verify_file): a map of another version is refused as such (FileVersionError),
+// and damage is reported as damage ("<path>: damaged: ..."), never as a wrong value.
+MapLayout read_layout(const Hdf5File& file);
 
 // ---- One chunk of every dataset
 // The datasets of an open map and a buffer per dataset for one chunk of cells.
@@ -56,7 +55,6 @@ struct MapDatasets {
   std::vector<std::vector<double>> reals;        // per field, float fields
   std::vector<std::vector<std::int64_t>> ints;   // per field, integer fields
   Shape grid_shape;                              // the grid's shape, read from /done by read()
-  std::vector<char> early;                       // per dataset, done first: allocated early (read())
 
   // Opens every dataset of `layout` in `file`, checking its shape.
   void open(const Hdf5File& file, const MapLayout& layout);

@@ -275,7 +275,7 @@ void write_optimise_file(const std::string& path, const OptimiseReport& report, 
       Group g = best.create_group(padded(i, 2));
       write_best(g, report.best[i], options, variable);
     }
-    detail::seal_attributes(f);  // last: over every attribute above (attribute_seal.hpp)
+    detail::seal_attributes(f, kOptimiseFormat);  // last: the format version, then the seal over every attribute (attribute_seal.hpp)
   });
 }
 

@@ -57,7 +57,7 @@ void write_orbit_diagram(const std::string& path, const OrbitDiagramData& data) 
     detail::set_provenance(file, "vibromap orbit diagram", data.scene_text, data.axis.key);
     file.set_attribute("transient", data.options.transient);
     file.set_attribute("keep", data.options.keep);
-    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
+    detail::seal_attributes(file, kOrbitDiagramFormat);  // last: the format version, then the seal over every attribute (attribute_seal.hpp)
   });
 }
 

@@ -87,7 +87,7 @@ void write_trajectory(const std::string& path, const PointSummary& summary, cons
   write_hdf5_atomically(path, [&](Hdf5File& file) {
     write_columns(file, summary.trajectory);
     write_root_attributes(file, summary, scene_text);
-    detail::seal_attributes(file);  // last: over every attribute above (attribute_seal.hpp)
+    detail::seal_attributes(file, kTrajectoryFormat);  // last: the format version, then the seal over every attribute (attribute_seal.hpp)
   });
 }
 

@@ -10,6 +10,18 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
            OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
+# The bistable point of the paper's Table 2 (docs/model.md): (1,1) soft in about half of the basin.
+TABLE2_POINT = """
+[system]
+m2 = 310.0
+omega2 = 3.606
+
+[contact]
+E1 = 1.4e10
+E2 = 1e6
+"""
+
+
 # The paper's Table 2 (docs/model.md) solved by brute-force integration (not the default shooting):
 # cells cost ~0.02-0.05 s each, so a sweep runs long enough to be stopped or killed mid-way.
 def vibromap_stdout(*args, timeout=900):

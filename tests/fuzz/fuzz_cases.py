@@ -18,8 +18,10 @@ Classes (issue #28):
               node, a directory, NAME_MAX+1 names, empty names, missing directories, an
               existing file, links in place of the lock, journal and derived files
   signal      SIGTERM or SIGINT during a longer run: it must end within a bound
-  damage      bytes flipped in a finished map, then sweep --resume and summarize_map
+  damage      bytes flipped in a finished map, or its format version changed (another number, or
+              none), then sweep --resume and summarize_map
 """
+import ast
 import copy
 import os
 import random
@@ -104,9 +106,11 @@ ALL_COMMANDS = SCENE_COMMANDS + ("restitution", "keys")
 @dataclass
 class Setup:
     """One thing made in the case's scratch directory before the run."""
-    kind: str        # file, fifo, dir, symlink, device, sparse, copy
+    kind: str        # file, fifo, dir, symlink, device, sparse, copy, flip, version
     name: str        # path relative to the scratch directory
-    data: bytes = b""  # file: content; symlink: target; copy: a key of the shared files; sparse: size
+    # file: content; symlink: target; copy: a key of the shared files; sparse: size; flip: a repr
+    # of the flips; version: a repr of the map's new format version (None: the attribute removed)
+    data: bytes = b""
 
 
 @dataclass
@@ -952,6 +956,8 @@ class Generator:
     # damage
     def plan_damage(self, rng):
         post = rng.choice(("resume", "resume", "summarize"))
+        if rng.random() < 0.25:  # a map of another format version (None: made before files had one)
+            return f"{post}|version {rng.choice((0, 2, 3, -1, 2**40, None))!r}", []
         flips = rng.randint(1, 3)
         offsets = [(rng.random() < 0.6, rng.random(), rng.randrange(8)) for _ in range(flips)]
         return f"{post}|{offsets!r}", []
@@ -960,12 +966,17 @@ class Generator:
         post, offsets = base.split("|", 1)
         draft = Draft(command="sweep" if post == "resume" else "summarize_map", args=[], post=post)
         draft.setup.append(Setup("copy", "map.h5", b"damage-map"))
-        draft.setup.append(Setup("flip", "map.h5", offsets.encode()))
+        if offsets.startswith("version "):
+            version = ast.literal_eval(offsets[len("version "):])
+            draft.setup.append(Setup("version", "map.h5", repr(version).encode()))
+            draft.expect, draft.expect_why = (2,), "a map of another format version is refused"
+        else:
+            draft.setup.append(Setup("flip", "map.h5", offsets.encode()))
         if post == "resume":
             draft.scene = self.damage_scene
             draft.args = ["sweep", SCENE, "-o", "map.h5", "--resume", "-q", "-f", "json"]
             draft.json = True
-        draft.notes.append(f"damage: {post} after flips {offsets}")
+        draft.notes.append(f"damage: {post} after {offsets if offsets.startswith('version ') else 'flips ' + offsets}")
         return draft
 
 

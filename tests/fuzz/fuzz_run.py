@@ -49,6 +49,11 @@ from dataclasses import dataclass, field
 
 from fuzz_cases import CANARY_DIR, SCENE, STOPS_WITH_EXIT_3
 
+# The postprocess's readers and test helpers: a changed format version (stamp.set_version) and the
+# line that refuses it (vibromap_h5io.version_refusal).
+POSTPROCESS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postprocess")
+sys.path[:0] = [POSTPROCESS, os.path.join(POSTPROCESS, "tests")]
+
 EXIT_ALLOWED = (0, 2, 3, 4)
 
 
@@ -114,6 +119,9 @@ def make_setup(scratch, setup, shared):
             shutil.copyfile(shared[s.data.decode()][0], path)
         elif s.kind == "flip":
             flip_bytes(path, eval(s.data.decode()), shared["damage-map"][1])  # a repr of a list of tuples
+        elif s.kind == "version":  # the map's format version changed in place
+            from stamp import set_version
+            set_version(path, eval(s.data.decode()))
 
 
 def flip_bytes(path, flips, regions):
@@ -476,6 +484,15 @@ def check_damage(scratch, outcome, shared):
     if "Traceback" in res.stderr.decode(errors="replace"):
         problems.append(("traceback", first_lines(res.stderr.splitlines()[-1] if res.stderr else b"")))
         return
+    version = [s for s in draft.setup if s.kind == "version"]
+    if version:  # refused in the one line vibromap prints for it, naming both versions
+        from vibromap_h5io import version_refusal
+        found = eval(version[0].data.decode())
+        prog = "vibromap" if draft.post == "resume" else "summarize_map"
+        line = f"{prog}: error: {version_refusal('map.h5', 'regime map', 0 if found is None else found)}\n"
+        if res.stderr.decode(errors="replace") != line:
+            problems.append(("stderr", f"expected {line!r}, got {first_lines(res.stderr, 3)}"))
+        return
     intact = shared["damage-map"][2]
     path = os.path.join(scratch, "map.h5")
     if draft.post == "resume" and res.rc == 0:
@@ -579,7 +596,7 @@ def reproducer(outcome, case_dir, limits):
              + "; ".join(draft.notes)[:2000], 'cd "$(mktemp -d)" || exit', ]
     if SCENE in draft.args:
         lines.append(f"cp {shlex.quote(os.path.join(case_dir, 'files', SCENE))} {SCENE}")
-    lines += [line for line in setup_shell([s for s in draft.setup if s.kind != "flip"], case_dir)]
+    lines += [line for line in setup_shell([s for s in draft.setup if s.kind not in ("flip", "version")], case_dir)]
     cmd = " ".join(shlex.quote(a) for a in outcome.argv)
     if draft.signal:
         lines.append(f"{cmd} & pid=$!; sleep {draft.signal[1]}; kill -{draft.signal[0][3:]} $pid; wait $pid; echo exit $?")
@@ -610,7 +627,7 @@ def save_case(outcome, case_dir, limits, shared):
             with open(os.path.join(files, s.name), "wb") as f:
                 f.write(s.data)
     if draft.post and shared.get("damage-map"):  # the damaged map again, as the case made it
-        make_setup(files, [s for s in draft.setup if s.kind in ("copy", "flip")], shared)
+        make_setup(files, [s for s in draft.setup if s.kind in ("copy", "flip", "version")], shared)
     with open(os.path.join(case_dir, "repro.sh"), "w") as f:
         f.write(reproducer(outcome, case_dir, limits))
     with open(os.path.join(case_dir, "result.txt"), "w") as f:

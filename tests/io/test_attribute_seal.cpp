@@ -1,9 +1,11 @@
-// Tests of the attribute checksum of vibromap's HDF5 files (src/io/attribute_seal.hpp) on real
-// maps and basins files: a byte flipped inside an attribute's value (found in the file by
-// searching for the value's text: the title, the scene, the identity, an axis's long_name, a
-// dataset's flag_meanings) makes every reader refuse the file as damaged, before any identity
-// is compared; the progress attributes a finished run rewrites do not break the seal; a file
-// without a seal (older) is read as before, unless the seal's own name is what was damaged.
+// Tests of what every reader checks first in vibromap's HDF5 files (src/io/attribute_seal.hpp),
+// on real maps and basins files: the format version (io/file_format.hpp): a file of another
+// version, older or newer or without one, is refused by every reader in one line naming the file
+// and both versions, before the seal is looked at; and the attribute checksum: a byte flipped
+// inside an attribute's value (found in the file by searching for the value's text: the title,
+// the scene, the identity, an axis's long_name, a dataset's flag_meanings) makes every reader
+// refuse the file as damaged, before any identity is compared; the progress attributes a finished
+// run rewrites do not break the seal; a file without a seal is damaged.
 
 #include <gtest/gtest.h>
 
@@ -15,7 +17,9 @@
 
 #include "attribute_seal.hpp"
 #include "support/temp_dir.hpp"
+#include "support/thrown.hpp"
 #include "vibromap/io/basins_file.hpp"
+#include "vibromap/io/file_format.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
 
@@ -23,6 +27,7 @@ namespace vibromap {
 namespace {
 
 using test::TempDir;
+using test::thrown;
 
 std::string bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -43,15 +48,13 @@ std::size_t flip_inside(const std::string& path, std::string_view needle, std::s
   return where + at;
 }
 
-// The IoError message of `f`, or "" when it does not throw one.
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  return {};
+// The message of the Error each map reader throws for the map at `path` ("" for one that throws
+// none): resume, read_map, read_map_layout, scan_map.
+template <class Error>
+std::vector<std::string> map_reader_errors(const std::string& path) {
+  return {thrown<Error>([&] { MapWriter::resume(path); }), thrown<Error>([&] { read_map(path); }),
+          thrown<Error>([&] { read_map_layout(path); }),
+          thrown<Error>([&] { scan_map(path, [](std::uint64_t, const CellResult&) {}); })};
 }
 
 // 3 x 2 over E1 (log) and R1 (lin); cell i done unless i == 4; k_con = i + 1.
@@ -81,13 +84,13 @@ TEST_F(AttributeSeal, AFreshMapVerifiesAndStaysVerifiedAfterAFinishRewritesItsPr
   write_map(path, small_map());
   {
     const Hdf5File f(path);
-    EXPECT_EQ(detail::verify_attributes(f), detail::SealState::verified);
+    EXPECT_NO_THROW(detail::verify_file(f, kMapFormat));
+    EXPECT_EQ(f.read_int_attribute("version"), kMapFormat.version);
     EXPECT_EQ(f.read_string_attribute("attribute_checksum").substr(0, 6), "crc32 ");
     EXPECT_NE(f.read_string_attribute("attribute_checksum").find("; not covered: cells_done complete ranks"),
               std::string::npos);
   }
   MapWriter w = MapWriter::resume(path);
-  EXPECT_FALSE(w.repair().unsealed);
   EXPECT_EQ(w.cells_done(), 5u);
   w.finish(7);  // rewrites cells_done, complete and ranks: not covered, so the seal still holds
   EXPECT_EQ(read_map(path).ranks, 7);
@@ -105,9 +108,7 @@ TEST_F(AttributeSeal, AByteFlippedInsideAnyAttributeValueIsDamageForEveryMapRead
     write_map(path, small_map());
     flip_inside(path, needle, 2);
     const std::string want = path + ": damaged: its attributes fail their checksum (attribute_checksum says crc32 ";
-    for (const std::string& message : {error_of([&] { MapWriter::resume(path); }), error_of([&] { read_map(path); }),
-                                       error_of([&] { read_map_layout(path); }),
-                                       error_of([&] { scan_map(path, [](std::uint64_t, const CellResult&) {}); })}) {
+    for (const std::string& message : map_reader_errors<IoError>(path)) {
       EXPECT_EQ(message.substr(0, want.size()), want);
       EXPECT_NE(message.find("); make it again with --overwrite"), std::string::npos) << message;
     }
@@ -118,20 +119,20 @@ TEST_F(AttributeSeal, ADamagedSealIsDamageToo) {
   const std::string path = file("m.h5");
   write_map(path, small_map());
   flip_inside(path, "crc32 ", 7);  // the CRC's second hex digit: another digit, or not a hex digit at all
-  const std::string message = error_of([&] { MapWriter::resume(path); });
+  const std::string message = thrown<IoError>([&] { MapWriter::resume(path); });
   const std::string want = path + ": damaged: its attribute";  // "...s fail their checksum" or "... is not 'crc32 ..."
   EXPECT_EQ(message.substr(0, want.size()), want) << message;
 }
 
-TEST_F(AttributeSeal, TheSealsOwnNameDamagedIsDamageNotAnOlderMap) {
+TEST_F(AttributeSeal, AMapWithoutItsSealIsDamaged) {
   const std::string path = file("m.h5");
   write_map(path, small_map());
   // In the file: attribute names are kept in HDF5 structures with checksums of their own.
   flip_inside(path, "attribute_checksum", 5);
-  const std::string message = error_of([&] { MapWriter::resume(path); });
+  const std::string message = thrown<IoError>([&] { MapWriter::resume(path); });
   const std::string want = path + ": damaged: its attributes cannot be read (cannot look up attribute 'attribute_checksum' (";
   EXPECT_EQ(message.substr(0, want.size()), want) << message;
-  // Renamed through HDF5 (as a file without those checksums could be): one byte off is damage.
+  // Renamed or removed through HDF5 (as a file without those checksums could have it).
   write_map(path, small_map());
   {
     Hdf5File f(path, FileMode::read_write);
@@ -139,22 +140,55 @@ TEST_F(AttributeSeal, TheSealsOwnNameDamagedIsDamageNotAnOlderMap) {
     f.remove_attribute("attribute_checksum");
     f.set_attribute("attribute_checksun", seal);
   }
-  EXPECT_EQ(error_of([&] { MapWriter::resume(path); }),
-            path + ": damaged: it has no attribute 'attribute_checksum' but one named 'attribute_checksun'; make it "
-                   "again with --overwrite");
+  const std::string none = path + ": damaged: it has no attribute 'attribute_checksum'; make it again with --overwrite";
+  EXPECT_EQ(thrown<IoError>([&] { MapWriter::resume(path); }), none);
+  {
+    Hdf5File f(path, FileMode::read_write);
+    f.remove_attribute("attribute_checksun");
+  }
+  EXPECT_EQ(thrown<IoError>([&] { read_map(path); }), none);
 }
 
-TEST_F(AttributeSeal, AMapWithoutASealIsReadAsAnOlderMapAndSaysSo) {
+TEST_F(AttributeSeal, AMapOfAnotherFormatVersionIsRefusedByEveryReaderNamingBothVersions) {
+  // Changed without sealing again: the version is checked first, so it is named, not damage.
+  const std::string path = file("m.h5");
+  for (const std::int64_t version : {std::int64_t{0}, kMapFormat.version + 1, std::int64_t{-3}}) {
+    SCOPED_TRACE(version);
+    write_map(path, small_map());
+    {
+      Hdf5File f(path, FileMode::read_write);
+      f.set_attribute("version", version);
+    }
+    const std::string want = path + ": a regime map of format version " + std::to_string(version) +
+                             "; this vibromap reads version 1 only: make the file again with this vibromap";
+    for (const std::string& message : map_reader_errors<FileVersionError>(path)) EXPECT_EQ(message, want);
+  }
+  // Without the attribute (made before files were versioned): version 0.
+  write_map(path, small_map());
+  {
+    Hdf5File f(path, FileMode::read_write);
+    f.remove_attribute("version");
+  }
+  for (const std::string& message : map_reader_errors<FileVersionError>(path))
+    EXPECT_EQ(message, path + ": a regime map of format version 0; this vibromap reads version 1 only: make the "
+                              "file again with this vibromap");
+}
+
+TEST_F(AttributeSeal, AVersionThatIsNotOneIntegerIsDamageAndAFileWithoutAnyIsNotAMap) {
   const std::string path = file("m.h5");
   write_map(path, small_map());
-  {  // as in a map written before vibromap sealed its maps
+  {
     Hdf5File f(path, FileMode::read_write);
-    f.remove_attribute("attribute_checksum");
-    EXPECT_EQ(detail::verify_attributes(f), detail::SealState::absent);
+    f.set_attribute("version", "1");
   }
-  MapWriter w = MapWriter::resume(path);
-  EXPECT_TRUE(w.repair().unsealed);
-  EXPECT_EQ(w.cells_done(), 5u);
+  EXPECT_EQ(thrown<IoError>([&] { read_map(path); }),
+            path + ": damaged: its attribute 'version' is not one integer; make it again with --overwrite");
+  {
+    Hdf5File f(path, FileMode::read_write);
+    f.remove_attribute("version");
+    f.remove_attribute("vibromap_version");
+  }
+  EXPECT_EQ(thrown<IoError>([&] { read_map(path); }), path + ": not a vibromap regime map (no root attribute 'version')");
 }
 
 TEST_F(AttributeSeal, TheRecordNamesEveryAttributeAndEveryDatasetLayout) {
@@ -164,6 +198,7 @@ TEST_F(AttributeSeal, TheRecordNamesEveryAttributeAndEveryDatasetLayout) {
   const std::string record = detail::attribute_record(f, {"cells_done", "complete", "ranks"});
   // field(path) field(name) kind field(value): the format attribute_seal.hpp documents.
   EXPECT_NE(record.find("1:/5:title" "s19:vibromap regime map"), std::string::npos);
+  EXPECT_NE(record.find("1:/7:version" "i1:1"), std::string::npos);
   EXPECT_NE(record.find("3:/E15:units" "s2:Pa"), std::string::npos);
   EXPECT_NE(record.find("6:/k_con0:" "l" "15:<f8 3x2 /E1;/R1"), std::string::npos);
   EXPECT_NE(record.find("7:/regime11:flag_values" "i20:-1,0,1,2,3,4,5,6,7,8"), std::string::npos);
@@ -193,12 +228,25 @@ TEST_F(AttributeSeal, ABasinsFileIsSealedAndAFlippedAttributeByteIsDamage) {
     SCOPED_TRACE(std::string(needle));
     const std::string path = file("b.h5");
     write_basins_file(path, small_basins());
-    EXPECT_FALSE(read_basins_file(path).unsealed);
+    EXPECT_EQ(read_basins_file(path).identity, small_basins().identity);
     flip_inside(path, needle, 1);
     const std::string want = path + ": damaged: its attributes fail their checksum (attribute_checksum says crc32 ";
-    const std::string message = error_of([&] { read_basins_file(path); });
+    const std::string message = thrown<IoError>([&] { read_basins_file(path); });
     EXPECT_EQ(message.substr(0, want.size()), want);
   }
+}
+
+TEST_F(AttributeSeal, ABasinsFileCarriesItsVersionAndAnotherIsRefused) {
+  const std::string path = file("b.h5");
+  write_basins_file(path, small_basins());
+  EXPECT_EQ(Hdf5File(path).read_int_attribute("version"), kBasinsFormat.version);
+  {
+    Hdf5File f(path, FileMode::read_write);
+    f.set_attribute("version", kBasinsFormat.version + 1);
+  }
+  EXPECT_EQ(thrown<FileVersionError>([&] { read_basins_file(path); }),
+            path + ": a basins file of format version 2; this vibromap reads version 1 only: make the file again "
+                   "with this vibromap");
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "attribute_seal.hpp"
 #include "support/temp_dir.hpp"
 #include "vibromap/io/hdf5_file.hpp"
 #include "vibromap/io/map_file.hpp"
@@ -37,6 +38,22 @@ namespace fs = std::filesystem;
 using test::TempDir;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Seals a map changed in place again, as the writer seals a map it makes: the reader's own checks
+// of what was changed are what a test sees then, not the seal's (any change unsealed is damage).
+void reseal(Hdf5File& f) { detail::seal_attributes(f, kMapFormat, {"cells_done", "complete", "ranks"}); }
+
+// A map's dataset replaced by `values` of `shape`, stored as the writer stores it (one chunk,
+// allocated when made): the reader's own checks of the values are what a test sees then.
+template <class T>
+void replace_dataset(Hdf5File& f, const std::string& name, const std::vector<T>& values, const Shape& shape) {
+  f.remove(name);
+  DatasetOptions o;
+  o.chunk = shape;
+  o.fletcher32 = true;
+  o.allocate_early = true;
+  f.write_dataset(name, values, shape, o);
+}
 
 // The cell formulas (keep equal to postprocess/tests/test_map_xarray.py): cell i is done
 // unless i % 5 == 3, and each field is an exact function of i.
@@ -319,9 +336,8 @@ TEST_F(MapFile, ADamagedCensusDatasetIsNamed) {
   write_map(file("census.h5"), sample_census_map());
   {
     Hdf5File f(file("census.h5"), FileMode::read_write);
-    f.remove("attractors");
-    f.write_dataset("attractors", std::vector<int>(12, 4), {3, 4});
-    f.remove_attribute("attribute_checksum");  // as a map written before it (else: refused as damaged first)
+    replace_dataset(f, "attractors", std::vector<int>(12, 4), {3, 4});
+    reseal(f);
   }
   try {
     read_map(file("census.h5"));
@@ -341,9 +357,8 @@ TEST_F(MapFile, AListedAttractorWithoutARegimeOrFlagIsRefused) {
       Hdf5File f(file("census.h5"), FileMode::read_write);
       std::vector<std::int64_t> codes = f.open_dataset(name).read_int();
       codes[7 * 3 + 2] = -1;  // cell 7 lists 3 attractors
-      f.remove(name);
-      f.write_dataset(name, std::vector<std::int8_t>(codes.begin(), codes.end()), {3, 4, 3});
-      f.remove_attribute("attribute_checksum");
+      replace_dataset(f, name, std::vector<std::int8_t>(codes.begin(), codes.end()), {3, 4, 3});
+      reseal(f);
     }
     try {
       read_map(file("census.h5"));
@@ -614,19 +629,19 @@ TEST_F(MapFile, ReadingAMissingOrForeignFileThrowsIoErrorNamingIt) {
     Hdf5File f(other, FileMode::truncate);
     f.write_dataset("t", std::vector<double>{0.0, 1.0});
   }
-  EXPECT_EQ(read_error(other), other + ": not a valid vibromap map: no root attribute 'stored'");
+  EXPECT_EQ(read_error(other), other + ": not a vibromap regime map (no root attribute 'version')");
 }
 
-// Writes the 2-D sample map to `path`, then lets `damage` alter it in place. The attribute
-// checksum goes too (sealed = false), as in a map written before it: the reader's own checks are
-// what is tested then. With it, any such change is refused first as damage (attribute_seal.hpp).
+// Writes the 2-D sample map to `path`, then lets `damage` alter it in place and seals it again
+// (resealed = true: the reader's own checks are what is tested then). Unsealed, any such change is
+// refused first as damage (attribute_seal.hpp).
 template <class Damage>
-std::string damaged_map_error(const std::string& path, Damage damage, bool sealed = false) {
+std::string damaged_map_error(const std::string& path, Damage damage, bool resealed = true) {
   write_map(path, sample_map_2d());
   {
     Hdf5File f(path, FileMode::read_write);
     damage(f);
-    if (!sealed) f.remove_attribute("attribute_checksum");
+    if (resealed) reseal(f);
   }
   return read_error(path);
 }
@@ -636,38 +651,28 @@ TEST_F(MapFile, ReadingADamagedMapNamesTheFileAndTheDataset) {
   const std::string prefix = path + ": not a valid vibromap map: ";
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("regime"); }), prefix + "no dataset '/regime'");
   const std::string damage = path + ": damaged: its attributes fail their checksum (attribute_checksum says crc32 ";
-  EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("regime"); }, true).substr(0, damage.size()), damage);
+  EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("regime"); }, false).substr(0, damage.size()), damage);
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("k_con"); }), prefix + "no dataset '/k_con'");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("done"); }), prefix + "no dataset '/done'");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.remove("stable"); }), prefix + "no dataset '/stable'");
-  EXPECT_EQ(damaged_map_error(path,
-                              [](Hdf5File& f) {
-                                f.remove("stable");
-                                f.write_dataset("stable", std::vector<int>(12, 2), {3, 4});
-                              }),
+  const auto replaced = [](std::string name, std::vector<int> values, Shape shape) {
+    return [=](Hdf5File& f) { replace_dataset(f, name, values, shape); };
+  };
+  EXPECT_EQ(damaged_map_error(path, replaced("stable", std::vector<int>(12, 2), {3, 4})),
             prefix + "dataset '/stable' holds 2, outside -1..1");
-  EXPECT_EQ(damaged_map_error(path,
-                              [](Hdf5File& f) {
-                                f.remove("hertz_valid");
-                                f.write_dataset("hertz_valid", std::vector<int>(12, 2), {3, 4});
-                              }),
+  EXPECT_EQ(damaged_map_error(path, replaced("hertz_valid", std::vector<int>(12, 2), {3, 4})),
             prefix + "dataset '/hertz_valid' holds 2, outside 0..1");
-  EXPECT_EQ(damaged_map_error(path,
-                              [](Hdf5File& f) {
-                                f.remove("n");
-                                f.write_dataset("n", std::vector<int>(6, 1), {3, 2});
-                              }),
+  EXPECT_EQ(damaged_map_error(path, replaced("n", std::vector<int>(6, 1), {3, 2})),
             prefix + "dataset '/n' has shape 3x2, expected 3x4 (the axes' lengths)");
-  EXPECT_EQ(damaged_map_error(path,
-                              [](Hdf5File& f) {
-                                f.remove("regime");
-                                f.write_dataset("regime", std::vector<int>(12, 9), {3, 4});
-                              }),
+  EXPECT_EQ(damaged_map_error(path, replaced("regime", std::vector<int>(12, 9), {3, 4})),
             prefix + "dataset '/regime' holds 9, outside -1..8");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.set_attribute("stored", "T_con speed"); }),
             prefix + "root attribute 'stored' names an unknown quantity 'speed'");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.set_attribute("cells_total", 11); }),
             prefix + "root attribute 'cells_total' differs from the grid's 12 cells");
+  for (const char* name : {"census_attractors", "steady", "hertz_limit", "soft_kcon"})  // every map has them
+    EXPECT_EQ(damaged_map_error(path, [&](Hdf5File& f) { f.remove_attribute(name); }),
+              prefix + "no root attribute '" + name + "'");
   EXPECT_EQ(damaged_map_error(path, [](Hdf5File& f) { f.open_dataset("R1").set_attribute("scale", "cubic"); }),
             prefix + "coordinate '/R1': unknown axis scale 'cubic' (allowed: lin, log)");
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/file_format.hpp"
 #include "vibromap/io/journal.hpp"
 #include "vibromap/io/output_file.hpp"
 #include "vibromap/io/scene/scene.hpp"
@@ -175,6 +176,19 @@ TEST_F(OutputFile, AJournalIsCreatedAsANewFileAndNeverOpenedThroughALink) {
   EXPECT_EQ(again.identity(), "identity");
   ASSERT_EQ(again.records().size(), 1u);
   EXPECT_EQ(again.records()[0].item, 7u);
+}
+
+TEST_F(OutputFile, AJournalOfAnotherFormatVersionIsRefusedNamingBothVersions) {
+  const std::string p = path("o.h5.journal");
+  Journal::create(p, "identity");
+  std::string bytes = read(p);
+  ASSERT_EQ(bytes.substr(0, 4), "VMJ1");
+  ASSERT_EQ(bytes[4], static_cast<char>(kJournalFormat.version));  // the version: 4 bytes, little-endian
+  bytes[4] = 2;
+  write(p, bytes);
+  EXPECT_EQ(thrown<FileVersionError>([&] { Journal::open(p); }),
+            p + ": an optimisation journal of format version 2; this vibromap reads version 3 only: make the file "
+                "again with this vibromap");
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #pragma once
 // The one mapping from an error to the process's exit code (parallel/exit_code.hpp), shared by
 // the commands (main's one catch) and the farm (the code the other ranks end with when rank 0
-// fails): a bad scene or existing output is bad_input, a file or resource failure is io, a rank
-// that ends quietly keeps its code, a computation a stop signal cancelled is stopped, anything
-// else is internal.
+// fails): a bad scene or existing output, or a file of another format version, is bad_input, a
+// file or resource failure is io, a rank that ends quietly keeps its code, a computation a stop
+// signal cancelled is stopped, anything else is internal.
 
 #include <exception>
 

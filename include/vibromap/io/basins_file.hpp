@@ -8,7 +8,8 @@
 //       (what --resume must match: the scene's canonical values, the plane, the grid and the
 //       fixed state), plane ("x1,v1"), grid ("N0xN1"), fixed ("x2=0.05 v2=0": the variables not
 //       in the plane), fixed_state (4 float64: the state before the plane variables are set,
-//       m and m/s), complete (0 | 1), pixels, pixels_done, pixels_overlap, attractors, soft_kcon
+//       m and m/s), complete (0 | 1), pixels, pixels_done, pixels_overlap, attractors, soft_kcon,
+//       version (the basins format's, io/file_format.hpp)
 //   /P0 (N0), /P1 (N1) float64 coordinates (dimension scales), units m or m/s
 //   /label (N1, N0) int32: the pixel's attractor index; -1 unresolved (budget ran out while
 //       settling), -2 unlisted (more attractors than max_attractors), -3 overlap (x1 > x2 at
@@ -26,8 +27,9 @@
 // netCDF-4 engine (netcdf4, h5netcdf).
 // Attractors are numbered by pixel count, descending, ties by first pixel: the file does not
 // depend on the number of MPI ranks. Written atomically (write_hdf5_atomically), with the root
-// attribute attribute_checksum last: the CRC-32 of every attribute (src/io/attribute_seal.hpp),
-// verified before a resume compares identities; a file without it (older) is read as before.
+// attribute attribute_checksum last: the CRC-32 of every attribute (src/io/attribute_seal.hpp).
+// A resume checks the format version (another one is refused: FileVersionError) and the
+// checksum before it compares identities.
 
 #include <cstdint>
 #include <string>
@@ -35,6 +37,7 @@
 
 #include "vibromap/core/analysis/census/basins_plane.hpp"
 #include "vibromap/core/analysis/census/census.hpp"
+#include "vibromap/io/file_format.hpp"
 
 namespace vibromap {
 
@@ -50,12 +53,12 @@ struct BasinsContent {
   std::vector<Attractor> attractors;      // count = pixels; fraction filled by the writer's caller
   std::vector<std::int64_t> first_pixel;  // per attractor
   bool complete = false;
-  bool unsealed = false;                  // read back: the file has no attribute checksum (older)
 };
 
 // Writes `c` atomically (tmp + rename). Throws IoError naming the path.
 void write_basins_file(const std::string& path, const BasinsContent& c);
-// Reads a file written by write_basins_file. Throws IoError when it is not one.
+// Reads a file written by write_basins_file. Throws FileVersionError for a file of another
+// format version, IoError when it is not one or is damaged.
 BasinsContent read_basins_file(const std::string& path);
 
 }  // namespace vibromap

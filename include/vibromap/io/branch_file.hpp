@@ -22,7 +22,8 @@
 //   /bifurcation_type      (bifurcation) int8, flags 0 fold, 1 period_doubling, 2 neimark_sacker, 3 grazing
 //   /bifurcation_param, /bifurcation_x1, /bifurcation_x2, /bifurcation_v1, /bifurcation_v2  (bifurcation)
 // Root attributes: title, Conventions, vibromap_version, scene, key, units, n and stop (of branch 0),
-// stops (one line per branch), attribute_checksum (the CRC-32 of every attribute, written last: src/io/attribute_seal.hpp).
+// stops (one line per branch), version (kBranchFormat's, io/file_format.hpp), attribute_checksum
+// (the CRC-32 of every attribute, written last: src/io/attribute_seal.hpp).
 
 #include <string>
 #include <vector>

@@ -13,8 +13,8 @@
 //   /curve_i/codim2/codim2  1-D int32 dimension scale 0..M-1 (M may be 0)
 //   /curve_i/codim2/param, param2 (codim2) float64, kind (codim2) variable-length string
 // Root attributes: vibromap_file = "curves", title, Conventions = "CF-1.8", vibromap_version, scene
-// (its text), key and param (the first key), param2, param_unit, param2_unit, version = 1,
-// attribute_checksum (written last: src/io/attribute_seal.hpp).
+// (its text), key and param (the first key), param2, param_unit, param2_unit, version
+// (kCurveFormat's, io/file_format.hpp), attribute_checksum (written last: src/io/attribute_seal.hpp).
 
 #include <string>
 #include <vector>

@@ -222,12 +222,10 @@ class Dataset : public Hdf5Object {
   // The element type as numpy spells it ("<f8", "|i1", "|u1", "<i4", ">f8"...; "other" for a
   // type that is not an integer or a float), for comparing a file with itself (hdf5_listing.cpp).
   std::string element_type_text() const;
-  // Whether every chunk was allocated when the dataset was made (DatasetOptions::allocate_early),
-  // and whether the chunk that starts at `offset` (one index per dimension, a multiple of the
-  // chunk extent) is in the chunk index, looked up as a read looks it up (hdf5_listing.cpp). In
-  // a dataset allocated early a chunk not there means a damaged index, which HDF5 would read as
-  // fill values without any error.
-  bool allocated_early() const;
+  // Whether the chunk that starts at `offset` (one index per dimension, a multiple of the chunk
+  // extent) is in the chunk index, looked up as a read looks it up (hdf5_listing.cpp). In a
+  // dataset allocated early (DatasetOptions::allocate_early) a chunk not there means a damaged
+  // index, which HDF5 would read as fill values without any error.
   bool chunk_allocated(const Shape& offset) const;
 
  private:

@@ -3,12 +3,13 @@
 // done is never redone. The multistart campaign keeps its finished starts in one, so a killed
 // optimisation resumes where it stopped.
 //
-// Layout: a header (magic "VMJ1", format version, the run's identity text, CRC-32), then one
-// record per result: item (u64), length (u64), the result's bytes, CRC-32 of the three. Records
-// are appended through a buffer and reach the disk at sync() (write + fsync). A process killed
-// mid-write leaves at most a torn last record: open() keeps every intact record, drops a torn
-// tail and says how many bytes it dropped; a damaged record in the middle is refused (IoError),
-// since what follows it cannot be trusted.
+// Layout: a header (magic "VMJ1", format version (u32: kJournalFormat, io/file_format.hpp), the
+// run's identity text, CRC-32), then one record per result: item (u64), length (u64), the
+// result's bytes, CRC-32 of the three. Records are appended through a buffer and reach the disk
+// at sync() (write + fsync). A process killed mid-write leaves at most a torn last record: open()
+// keeps every intact record, drops a torn tail and says how many bytes it dropped; a damaged
+// record in the middle is refused (IoError), since what follows it cannot be trusted; a journal
+// of another format version is refused (FileVersionError) before its records are read.
 
 #include <cstdint>
 #include <string>
@@ -27,8 +28,9 @@ class Journal {
   // Creates `path` (a new file renamed over it: see io/output_file.hpp) with `identity` in its
   // header, synced. Throws IoError (SceneError when `path` is a link or not a regular file).
   static Journal create(const std::string& path, std::string_view identity);
-  // Opens an existing journal for appending: reads its identity and records. Throws IoError
-  // naming the path when it cannot be read or is damaged before its tail.
+  // Opens an existing journal for appending: reads its identity and records. Throws
+  // FileVersionError for a journal of another format version, IoError naming the path when it
+  // cannot be read or is damaged before its tail.
   static Journal open(const std::string& path);
 
   Journal(Journal&&) noexcept;

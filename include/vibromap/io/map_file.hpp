@@ -44,7 +44,9 @@
 // Root attributes: title, Conventions ("CF-1.8"), vibromap_version, scene (the scene text),
 // identity (what --resume compares: the canonical cell-defining values), ranks, cells_total,
 // cells_done, complete (0 | 1; both brought up to date when a run ends), stored (the quantity
-// names, space separated), and last attribute_checksum (below).
+// names, space separated), census_attractors (A, 0 without a census), steady, hertz_limit,
+// soft_kcon (MapLayout's), with sweep.refine the refine_* attributes (MapLayout, RefineFigures),
+// then version (the map format's, io/file_format.hpp) and last attribute_checksum (below).
 //
 // Attribute checksum: chunks have Fletcher32, attributes do not (a string attribute lives in
 // HDF5's global heap, which has no checksum: one flipped byte there emptied title, Conventions
@@ -53,13 +55,12 @@
 // of every attribute of the file and every dataset's type, shape and dimension scales
 // (src/io/attribute_seal.hpp documents the record), written when the map is made. Every reader
 // (resume(), read_map_layout(), scan_map(), read_map(): --resume, the optimiser's seeding map;
-// postprocess/vibromap_h5.py) checks it before reading any value and refuses a map that fails
-// it as damaged: IoError "<path>: damaged: its attributes fail their checksum (...); make it
-// again with --overwrite" (exit 4, as a damaged coordinate), never "made by another run". The
-// three progress attributes are not covered: finish() rewrites them in place, and readers take
-// the counts from /done. A map without attribute_checksum (made before it existed) is read as
-// before, and --resume says its attributes are not verified; one whose root has an attribute
-// named one or two bytes away from attribute_checksum (the seal's own name damaged) is damaged.
+// postprocess/vibromap_h5.py) checks, before reading any value, the map's format version (a map
+// of another version, older or newer, is refused: FileVersionError, exit 2) and then the seal,
+// and refuses a map that fails it as damaged: IoError "<path>: damaged: its attributes fail their
+// checksum (...); make it again with --overwrite" (exit 4, as a damaged coordinate), never "made
+// by another run"; a map without the seal is damaged too. The three progress attributes are not
+// covered: finish() rewrites them in place, and readers take the counts from /done.
 //
 // Storage, and why a run killed at any instant loses nothing that was checkpointed:
 //   - Every dataset is chunked and carries HDF5's Fletcher32 checksum filter (verified by HDF5,
@@ -89,6 +90,7 @@
 
 #include "vibromap/core/grid.hpp"
 #include "vibromap/core/quantities.hpp"
+#include "vibromap/io/file_format.hpp"
 
 namespace vibromap {
 
@@ -115,7 +117,7 @@ struct MapLayout {
   int refine_levels = 0;
   std::string refine_on = {};
   double refine_audit = 0.0;
-  bool refine_speckle = false;  // root attribute refine_speckle (absent in maps made before it: false)
+  bool refine_speckle = false;  // root attribute refine_speckle (0 | 1)
 };
 
 // What an adaptive map's run did: points solved (per level, then in all), inherited, audited
@@ -142,9 +144,6 @@ struct MapRepair {
   std::uint64_t chunks = 0;              // damaged chunks (counted once over the datasets)
   std::uint64_t cells = 0;               // cells in them that were done and will be recomputed
   std::vector<std::string> datasets;     // the datasets where damage was found
-  // The map has no attribute checksum (written before vibromap sealed its maps): its attributes
-  // could not be verified.
-  bool unsealed = false;
 };
 
 class NewFile;  // io/output_file.hpp
@@ -163,8 +162,9 @@ class MapWriter {
   static MapWriter create_in(NewFile& out, const MapLayout& layout, int ranks);
   // Opens a map to go on filling it: checks its layout, reads every chunk of every dataset to
   // verify its checksum, wipes damaged chunks (repair()), counts the cells done and calls
-  // visit_done(flat index, cell) for each (resume's counts of regimes). Throws IoError naming the path and
-  // what is wrong when it is not a map, a value is out of range or its axes are damaged.
+  // visit_done(flat index, cell) for each (resume's counts of regimes). Throws FileVersionError for a
+  // map of another format version, IoError naming the path and what is wrong when it is not a
+  // map, a value is out of range or its axes are damaged.
   static MapWriter resume(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit_done = {});
 
   MapWriter(MapWriter&&) noexcept;
@@ -221,7 +221,8 @@ struct SweepMap {
 void write_map(const std::string& path, const SweepMap& map);
 
 // The layout of the map at `path` (its axes, stored quantities, scene and identity). Throws
-// IoError naming the path when it is not a readable map.
+// FileVersionError for a map of another format version (as every reader below does), IoError
+// naming the path when it is not a readable map.
 MapLayout read_map_layout(const std::string& path);
 
 // Streams the map at `path` chunk by chunk: visit(flat index, cell) for every cell done, in flat

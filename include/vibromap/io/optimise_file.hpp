@@ -45,7 +45,7 @@
 //                    z_ratio, hertz_valid (0|1), periods, steady_residual, max_multiplier,
 //                    wall_s; dataset floquet (multiplier, part) float64 (re, im) when
 //                    computed, over the coordinates multiplier (M) int32 and part (2) int8
-//       soft_check/  with min_soft_fraction > 0 (files without it are older or had it off):
+//       soft_check/  with min_soft_fraction > 0 (none when it is 0):
 //                    the re-check census (multistart.hpp SoftCheck); attributes status, message,
 //                    initial_conditions (K), seed, soft_fraction, soft_fraction_stderr
 //                    (sqrt(p(1-p)/K)), threshold (min_soft_fraction - 3 stderr), passed (0|1),
@@ -57,7 +57,8 @@
 // Every axis of every dataset carries a dimension scale (the groups' datasets the root's
 // /variable), so xarray opens each group with either netCDF-4 engine: open_dataset(path,
 // group="/starts/000"). The groups /starts and /best hold only their NNN / NN groups.
-// Root attribute attribute_checksum (the CRC-32 of every attribute, written last: src/io/attribute_seal.hpp).
+// Root attributes version (kOptimiseFormat's, io/file_format.hpp) and attribute_checksum (the
+// CRC-32 of every attribute, written last: src/io/attribute_seal.hpp).
 // Written atomically (write_hdf5_atomically); throws IoError naming the path.
 
 #include <string>

@@ -8,8 +8,9 @@
 //   /x1, /x2, /v1, /v2   (direction, <name>, sample) float64: the states kept at each point
 //                  (m, m/s), NaN where the integration failed
 //   /status        (direction, <name>) int8: 0 ok, 2 failed
-// Root attributes: title, Conventions, vibromap_version, scene, key, transient, keep,
-// attribute_checksum (the CRC-32 of every attribute, written last: src/io/attribute_seal.hpp).
+// Root attributes: title, Conventions, vibromap_version, scene, key, transient, keep, version
+// (kOrbitDiagramFormat's, io/file_format.hpp), attribute_checksum (the CRC-32 of every
+// attribute, written last: src/io/attribute_seal.hpp).
 
 #include <string>
 #include <vector>

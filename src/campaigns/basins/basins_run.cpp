@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -69,9 +68,6 @@ BasinsContent resumed_content(const Scene& scene, const BasinsPlane& plane, cons
   const BasinsContent want = new_content(scene, plane);
   target.check_identity(have.identity, want.identity, scene.path,
                         have.labels.size() == want.labels.size() ? "" : "the grid");
-  if (have.unsealed)
-    std::cerr << "vibromap: note: " << target.path() << ": made before basins files carried an attribute checksum: its "
-              << "attributes are not verified (--overwrite makes a new file that has one)\n";
   have.scene_text = scene.text;
   return have;
 }

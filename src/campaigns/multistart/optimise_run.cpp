@@ -137,7 +137,7 @@ std::vector<Seed> seeds_from_map(const Scene& scene, const std::string& path, bo
     throw SceneError(cat(scene.path, ": [optimise] map ", path, ": ", what));
   const MapLayout layout = read_map_layout(path);
   try {
-    SeedSelector selector(layout.grid, layout.stored, scene.params, *scene.optimise, scene.options.analysis.hertz_limit);
+    SeedSelector selector(layout.grid, layout.stored, scene.params, *scene.optimise);
     scan_map(path, [&](std::uint64_t flat, const CellResult& c) { selector.offer(flat, c); });
     return selector.seeds();
   } catch (const std::invalid_argument& e) {

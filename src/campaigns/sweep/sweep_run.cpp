@@ -26,13 +26,9 @@ namespace {
 // The map's identity: what a resume must match (every cell-defining value, io/scene/identity.hpp).
 std::string map_identity(const Scene& scene) { return canonical_text(scene, IdentityScope::sweep); }
 
-// Notes on stderr when the map has no attribute checksum (made by an older vibromap) and when
-// resume() wiped damaged chunks (their cells are computed again).
+// A note on stderr when resume() wiped damaged chunks (their cells are computed again).
 void report_repair(const MapWriter& w) {
   const MapRepair& r = w.repair();
-  if (r.unsealed)
-    std::cerr << "vibromap: note: " << w.path() << ": made before maps carried an attribute checksum: its "
-              << "attributes are not verified (--overwrite makes a new map that has one)\n";
   if (r.chunks == 0) return;
   std::string datasets;
   for (const std::string& d : r.datasets) datasets += (datasets.empty() ? "" : ", ") + d;

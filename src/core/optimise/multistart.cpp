@@ -57,11 +57,6 @@ bool is_stored(const std::vector<Quantity>& stored, Quantity q) {
   return std::find(stored.begin(), stored.end(), q) != stored.end();
 }
 
-// Whether a cell's impact satisfies Hertz theory, from what the map stores.
-bool cell_hertz_valid(const CellResult& c, const std::vector<Quantity>& stored, double hertz_limit) {
-  return is_stored(stored, Quantity::hertz_valid) ? c.hertz_valid == 1 : c.z_ratio <= hertz_limit;
-}
-
 // A map cell that keeps the regime with the stability rule.
 bool cell_qualifies(const CellResult& c, const OptimiseOptions& o) {
   if (c.status != status_code(SolveStatus::ok) || !(c.T_con > 0.0)) return false;
@@ -77,22 +72,22 @@ bool cell_qualifies(const CellResult& c, const OptimiseOptions& o) {
 }  // namespace
 
 SeedSelector::SeedSelector(const Grid& grid, const std::vector<Quantity>& stored, const Parameters& base,
-                           const OptimiseOptions& o, double hertz_limit)
-    : grid_(grid), stored_(stored), base_(base), o_(o), hertz_limit_(hertz_limit), box_(o.variables),
+                           const OptimiseOptions& o)
+    : grid_(grid), stored_(stored), base_(base), o_(o), box_(o.variables),
       quantity_(ranking_quantity(o.objective)), x_(grid.axes().size()) {
   if (!is_stored(stored, quantity_))
     throw std::invalid_argument(cat("the map does not store ", to_string(quantity_), ", which ranks the cells for ",
                                     to_string(o.objective), ": add it to [sweep] store"));
-  if (o.hertz_valid && !is_stored(stored, Quantity::hertz_valid) && !is_stored(stored, Quantity::z_ratio))
-    throw std::invalid_argument("the map stores neither hertz_valid nor z_ratio, which hertz_valid = true needs: "
-                                "add one to [sweep] store");
+  if (o.hertz_valid && !is_stored(stored, Quantity::hertz_valid))
+    throw std::invalid_argument("the map does not store hertz_valid, which hertz_valid = true needs (every map a "
+                                "sweep writes stores it)");
   check_axes(grid, o);
   for (const Axis& a : grid.axes()) axis_keys_.push_back(*axis_key(a));
 }
 
 void SeedSelector::offer(std::uint64_t flat, const CellResult& c) {
   if (!cell_qualifies(c, o_)) return;
-  if (o_.hertz_valid && !cell_hertz_valid(c, stored_, hertz_limit_)) return;
+  if (o_.hertz_valid && c.hertz_valid != 1) return;
   const Parameters p = cell_parameters(axis_keys_, grid_, base_, static_cast<std::size_t>(flat), x_);
   Seed s{{}, static_cast<long>(flat), objective_sense(o_.objective) * c.value(quantity_)};
   for (const FreeVariable& v : o_.variables) s.x.push_back(v.key.value(p));
@@ -119,8 +114,8 @@ std::vector<Seed> SeedSelector::seeds() {
 
 std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& cells,
                                const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
-                               const Parameters& base, const OptimiseOptions& o, double hertz_limit) {
-  SeedSelector selector(grid, stored, base, o, hertz_limit);
+                               const Parameters& base, const OptimiseOptions& o) {
+  SeedSelector selector(grid, stored, base, o);
   for (std::size_t i = 0; i < grid.size() && i < cells.size() && i < done.size(); ++i)
     if (done[i]) selector.offer(i, cells[i]);
   return selector.seeds();

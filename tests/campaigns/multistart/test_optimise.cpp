@@ -408,10 +408,12 @@ TEST(Multistart, SeedsAreTheBestQualifyingCellsInsideTheBox) {
   EXPECT_EQ(seeds[0].x[0], 100.0);
   EXPECT_NEAR(seeds[0].x[1] / 2500.0, 1.0, kRoundTripTol);  // k2 = m2 omega2^2 from the omega2 axis
   EXPECT_THROW(select_seeds(grid, cells, done, {Quantity::F_max}, Parameters{}, o), std::invalid_argument);
-  o.hertz_valid = true;  // Hertz validity needs z_ratio (or hertz_valid) in the map
+  o.hertz_valid = true;  // Hertz validity needs hertz_valid in the map
   EXPECT_THROW(select_seeds(grid, cells, done, stored, Parameters{}, o), std::invalid_argument);
-  cells[1].z_ratio = 0.2;  // the best cell breaks Hertz theory
-  const std::vector<Seed> valid = select_seeds(grid, cells, done, {Quantity::k_con, Quantity::z_ratio}, Parameters{}, o);
+  for (CellResult& c : cells) c.hertz_valid = 1;
+  cells[1].hertz_valid = 0;  // the best cell breaks Hertz theory
+  const std::vector<Quantity> with_hertz = {Quantity::k_con, Quantity::hertz_valid};
+  const std::vector<Seed> valid = select_seeds(grid, cells, done, with_hertz, Parameters{}, o);
   ASSERT_EQ(valid.size(), 2u);
   EXPECT_EQ(valid[0].cell, 0);
   EXPECT_EQ(valid[1].cell, 5);  // k_con 6

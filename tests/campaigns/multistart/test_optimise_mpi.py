@@ -25,7 +25,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, MPIEXEC, journal_records, kill_all  # noqa: E402
+from campaign_helpers import ENV, EXE, MPIEXEC, TABLE2_POINT, journal_records, kill_all  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 PLOT = os.path.join(REPO, "postprocess", "plot_optimise.py")
@@ -252,15 +252,7 @@ def test_a_seeding_map_that_cannot_seed_is_kept_and_said_so(tmp_path):
 # Robust softness at the bistable Table 2 point ((1,1) soft in about 56 % of the basin, (3,3)
 # beyond Hertz's range): a census of 8 states per feasible point, the best point re-checked with
 # max(32, 4 x 8) = 32 other states (seed 1 + 1).
-ROBUST = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[contact]
-E1 = 1.4e10
-E2 = 1e6
-
+ROBUST = TABLE2_POINT + """
 [census]
 initial_conditions = 8
 

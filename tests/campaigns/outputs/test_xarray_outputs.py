@@ -11,8 +11,9 @@ with engine netcdf4 and with h5netcdf, and:
 - xarray lists exactly the group's datasets, each with the dimensions its scales name, of the
   sizes h5py reads, and the same values (decoding off: bytes as stored);
 - the dimensions and variables each kind documents (docs/file-formats.md) are there;
-- the file still passes its attribute checksum (postprocess/vibromap_seal.py), and a resumed
-  basins run and sweep still accept their file.
+- the file carries its kind's format version, the one the postprocess reads
+  (postprocess/vibromap_h5io.py's FORMAT_VERSIONS), and still passes its attribute checksum
+  (postprocess/vibromap_seal.py); a resumed basins run and sweep still accept their file.
 """
 import os
 import subprocess
@@ -23,11 +24,16 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE  # noqa: E402
+from campaign_helpers import ENV, EXE, TABLE2_POINT  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 sys.path.insert(0, os.path.join(REPO, "postprocess"))
-from vibromap_seal import check_seal  # noqa: E402
+from vibromap_h5io import FORMAT_VERSIONS, open_h5  # noqa: E402
+
+# The format kind (file_format.hpp) of each file written.
+KINDS = {"sweep": "regime map", "census": "regime map", "optimise_map": "regime map", "trajectory": "trajectory file",
+         "optimise_trajectory": "trajectory file", "basins": "basins file", "optimise": "optimisation file",
+         "branch": "branch file", "orbit": "orbit-diagram file", "curves": "curve file"}
 
 ENGINES = {"netcdf4": "netCDF4", "h5netcdf": "h5netcdf"}
 
@@ -59,15 +65,7 @@ store = ["k_con"]
 
 # The bistable Table 2 point, seeded from a 2-cell map, a soft-fraction re-check of the best
 # point (tests/campaigns/multistart/test_optimise_mpi.py's ROBUST, smaller).
-OPTIMISE = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[contact]
-E1 = 1.4e10
-E2 = 1e6
-
+OPTIMISE = TABLE2_POINT + """
 [census]
 initial_conditions = 4
 
@@ -269,11 +267,11 @@ def test_branch_and_orbit_diagram_have_their_dimensions(files, engine):
                                                                         "status": ("direction", "omega")}
 
 
-@pytest.mark.parametrize("kind", ["sweep", "census", "trajectory", "basins", "optimise", "optimise_map",
-                                  "optimise_trajectory", "branch", "orbit"])
-def test_every_file_passes_its_attribute_checksum(files, kind):
-    with h5py.File(files[kind], "r") as f:
-        assert check_seal(f) is True
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_every_file_carries_its_format_version_and_passes_its_attribute_checksum(files, kind):
+    with open_h5(files[kind], KINDS[kind]) as f:  # checks both, or raises
+        version = f.attrs["version"]
+    assert version.dtype == np.int64 and version == FORMAT_VERSIONS[KINDS[kind]]
 
 
 def test_basins_and_sweeps_resume_from_their_files(files, tmp_path):

@@ -36,22 +36,20 @@ struct Seed {
 // for impact `o.impact`; F_max), best first, ties by cell index. A map axis (its Axis::key, or
 // Axis::name in a map that names only that) must be a free parameter or the other form of a free
 // spring or damper (omega2 for k2, k2 for omega2): the seed takes the free values from the
-// cell (Key::value). With o.hertz_valid, only cells where Hertz
-// theory holds qualify: the map's hertz_valid when stored, else z_ratio <= hertz_limit. Throws
+// cell (Key::value). With o.hertz_valid, only cells where Hertz theory holds qualify: the map's
+// hertz_valid (every map a sweep writes stores it). Throws
 // std::invalid_argument with a one-line reason when the map lacks a quantity it needs, an axis
 // is not free, or no cell qualifies.
 std::vector<Seed> select_seeds(const Grid& grid, const std::vector<CellResult>& cells,
                                const std::vector<std::uint8_t>& done, const std::vector<Quantity>& stored,
-                               const Parameters& base, const OptimiseOptions& o,
-                               double hertz_limit = AnalysisOptions{}.hertz_limit);
+                               const Parameters& base, const OptimiseOptions& o);
 
 // select_seeds one cell at a time, for maps too big to hold: offer() every done cell in flat
 // order, then seeds(). Memory: a few times o.seeds candidates. The constructor and seeds()
 // throw as select_seeds does.
 class SeedSelector {
  public:
-  SeedSelector(const Grid& grid, const std::vector<Quantity>& stored, const Parameters& base, const OptimiseOptions& o,
-               double hertz_limit = AnalysisOptions{}.hertz_limit);
+  SeedSelector(const Grid& grid, const std::vector<Quantity>& stored, const Parameters& base, const OptimiseOptions& o);
   void offer(std::uint64_t flat, const CellResult& cell);
   std::vector<Seed> seeds();
 
@@ -61,7 +59,6 @@ class SeedSelector {
   std::vector<Quantity> stored_;
   const Parameters& base_;
   const OptimiseOptions& o_;
-  double hertz_limit_;
   Box box_;
   Quantity quantity_;
   std::vector<Key> axis_keys_;  // the key of each map axis
