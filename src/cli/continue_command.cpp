@@ -35,7 +35,7 @@ struct ContinueArgs {
   bool overwrite = false;        // replace an existing branch file
   bool points = false;           // table: every point of every branch too (json always has them)
   std::string format = "table";
-  std::vector<std::string> curves;  // --curve KIND (issue #31): curves in (param, param2)
+  std::vector<std::string> curves;  // --curve KIND: curves in (param, param2)
   std::string param2;
   double from2 = NAN, to2 = NAN;  // NaN: not given
 };

@@ -1,4 +1,4 @@
-// `vibromap keys`: the scene schema as a table, or as a reference scene.
+// `vibromap keys`: every scene key as a table, or as a reference scene.
 
 #include <memory>
 #include <ostream>

@@ -36,9 +36,9 @@ struct MapWriter::Impl {
   MapRepair repair;
   std::vector<CellSpan> unflushed;       // written since the last checkpoint, in arrival order
   // Cells written in pieces smaller than their chunk, by flat index in arrival order: set in
-  // the file a chunk at a time (flush_staged), at most kStagedCells of them held. HDF5 writing
-  // such pieces one by one, scattered over the map (an adaptive map's audit), grew rank 0's
-  // memory about 7 kB a piece (#30).
+  // the file a chunk at a time (flush_staged), at most kStagedCells of them held: HDF5 keeps
+  // memory for every small piece written into a chunk, and an adaptive map's audit scatters
+  // single cells over the whole map.
   std::vector<std::pair<std::uint64_t, CellResult>> staged;
   std::uint64_t window_begin = 0;        // pending(): the cached window of /done
   std::vector<std::uint8_t> window;

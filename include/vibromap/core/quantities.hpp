@@ -4,7 +4,7 @@
 //
 // Always kept (issues #3, #4): status, regime with n and k, stability, wall time
 // and the steady-state residual. Stored on request only: the Quantity values. A sweep whose
-// scene has [census] (issue #11) also keeps the cell's census: every attractor listed, with
+// scene has [census] also keeps the cell's census: every attractor listed, with
 // its basin fraction, and the fractions that are soft, unresolved and unlisted; its ordinary
 // fields then describe the attractor the rest state reaches.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The curve file of `vibromap continue --curve KIND ... -o` (issue #31): curves of codimension-one
+// The curve file of `vibromap continue --curve KIND ... -o`: curves of codimension-one
 // points in two parameters (core/analysis/continuation/curve_continuation.hpp), HDF5, CF/netCDF-4 compatible,
 // written whole (tmp + rename). One group per curve, in the order found:
 //   /curve_i                attributes kind ("fold", ..., "level:k_con=10"), stop, n (int)

@@ -1,5 +1,5 @@
 #pragma once
-// The orbit-diagram file (issue #12): the stroboscopic states kept at each point of a path
+// The orbit-diagram file: the stroboscopic states kept at each point of a path
 // through one scene key, up and down. One HDF5 file, written whole (tmp + rename):
 //   /<name>        1-D float64 coordinate: the key's values in increasing order (a dimension
 //                  scale named after the key within its section, with units, long_name, key)

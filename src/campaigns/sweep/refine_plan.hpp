@@ -1,5 +1,5 @@
 #pragma once
-// Internal to the sweep campaign: the plan of an adaptive map (sweep.refine = L > 0, issue #30),
+// Internal to the sweep campaign: the plan of an adaptive map (sweep.refine = L > 0),
 // on rank 0. The run is a sequence of phases (docs/design-refine.md):
 //   0        the coarse points
 //   1..L     the new points of the refined blocks of that level

@@ -91,7 +91,7 @@ std::vector<KeyRow> sweep_rows() {
                       ", scale \"lin\" or \"log\"; at most ", std::to_string(kMaxSweepAxes),
                       " axes, not both keys of a pair (k2|omega2, ...); integer keys take whole values; contact.law is a "
                       "categorical axis, { values = [\"hertz\", \"flores\", ...] }, kept in maps as the law's index")});
-  rows.push_back({"sweep.order", cat("(", join(first_axes(), ", "), ", then schema order)"), "-",
+  rows.push_back({"sweep.order", cat("(", join(first_axes(), ", "), ", then key table order)"), "-",
                   "every axis once", "axis order, the first axis slowest in the flat cell index; by any name of each axis"});
   rows.push_back({"sweep.store", store_text(SweepOptions{}.store), "-", "quantity names",
                   cat("optional per-cell quantities, any of ", join(views(quantity_names()), ", "),

@@ -164,7 +164,7 @@ void assign_override_value(toml::table& section, std::string_view key, const std
   section.insert_or_assign(key, raw);
 }
 
-// The sections with a key of this name: the schema's, then [sweep], [optimise] and [census] options.
+// The sections with a key of this name: the point keys', then [sweep], [optimise] and [census] options.
 std::vector<std::string_view> sections_with_key(std::string_view name) {
   std::vector<std::string_view> homes;
   for (const Key k : Key::all())
@@ -287,7 +287,7 @@ double read_value(Key k, const toml::node& node, const std::string& loc) {
   return 0.0;
 }
 
-// Every key in schema order ([initial] last, after D), then [sweep], [optimise] and [census].
+// Every key in key table order ([initial] last, after D), then [sweep], [optimise] and [census].
 Scene read_values(const toml::table& table, const Context& ctx) {
   Scene scene;
   for (const Key k : Key::all()) {
@@ -305,7 +305,7 @@ Scene read_values(const toml::table& table, const Context& ctx) {
   return scene;
 }
 
-// The scene as TOML, keys in schema order, preceded by its source and overrides.
+// The scene as TOML, keys in key table order, preceded by its source and overrides.
 std::string scene_text(const toml::table& table, const Context& ctx) {
   std::ostringstream os;
   os << "# scene: " << ctx.path << "\n";
@@ -409,7 +409,7 @@ void check_optimise_corners(const Scene& scene, const Context& ctx) {
 }
 
 Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
-  // The schema's checks cover validate() but for the rule that combines keys; this keeps the
+  // The key table's checks cover validate() but for the rule that combines keys; this keeps the
   // two in step if the core adds one. A grid's base point need not obey that rule itself when
   // every cell does (an axis replaces the key that broke it).
   const auto errors = validate(scene.params);

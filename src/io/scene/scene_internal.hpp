@@ -1,9 +1,10 @@
 #pragma once
-// Shared internals of the scene folder (src/io/scene/): the schema's bindings (keys.cpp),
-// the sections and their keys (sections.cpp), TOML text helpers (toml_text.cpp), the
-// reader's context and checked value reading (reader.cpp), and the [sweep] and [optimise]
-// sections' readers and documentation rows (sweep_axes.cpp, sweep_section.cpp,
-// optimise_section.cpp). Not installed; only the files of this folder include it.
+// Shared internals of the scene folder (src/io/scene/), the TOML reader of the key table
+// (core/model/keys.hpp): the sections and their keys (sections.cpp), TOML text helpers
+// (toml_text.cpp), the reader's context and checked value reading (reader.cpp), and the
+// [sweep], [optimise] and [census] sections' readers and documentation rows (sweep_axes.cpp,
+// sweep_section.cpp, sweep_refine.cpp, optimise_section.cpp, census_section.cpp). Not installed;
+// only the files of this folder include it.
 
 #include <functional>
 #include <map>
@@ -114,7 +115,7 @@ std::vector<std::string> string_list(const toml::node& node, const std::string& 
 
 inline constexpr std::string_view kAxisForms = "{ from, to, n[, scale] } or { values[, scale] }";
 
-// [sweep]'s scalar keys, documented as schema rows are, with the SweepOptions field each sets.
+// [sweep]'s scalar keys, documented as the key table's rows are, with the SweepOptions field each sets.
 struct SweepInterval {
   KeyInfo info;
   double SweepOptions::*field;

@@ -1,4 +1,4 @@
-// The refinement keys of [sweep] (issue #30): refine (levels), refine_on (what "differs"
+// The refinement keys of [sweep]: refine (levels), refine_on (what "differs"
 // means) and refine_audit (the share of inherited points solved again). Read here, listed by
 // `vibromap keys` (docs.cpp) and written into a refined map's identity (identity.cpp).
 

@@ -1,8 +1,8 @@
 // The [sweep] section of a scene: its keys are the axes (any numeric key, each an inline table;
 // sweep_axes.cpp names them) and the options order, store, checkpoint_interval and
-// progress_interval. They are not schema rows (an axis is a table, order and store are
-// arrays): read_sweep() reads them, and an axis's values are checked against the range of the
-// key's own row.
+// progress_interval (refinement: sweep_refine.cpp). They are not point keys (an axis is a table,
+// order and store are arrays): read_sweep() reads them, and an axis's values are checked against
+// the range of the key's own row.
 
 #include <algorithm>
 #include <cmath>

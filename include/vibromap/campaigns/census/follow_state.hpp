@@ -18,8 +18,7 @@ PixelResult follow_state(CensusFollower& follower, const Eigen::Vector4d& x0, lo
 // A state recurring on a non-periodic set a follower found earlier would be decided
 // "non-periodic" at once; on the Table 2 point that set is a chaotic saddle, whose long
 // transients mostly end on (3,3), and which states it captures would depend on what the rank
-// followed before (measured on a 48x48 basins plane: 112 pixels non-periodic with capture, 9
-// without; two 2-rank runs of 200x200 differed by 920 pixels). Without it a state is
+// followed before, so that two runs on the same ranks could disagree. Without it a state is
 // non-periodic only when it has not settled after analysis.max_periods, as brute force
 // decides, whatever its rank followed before; captures by periodic orbits stay (census.cpp).
 CensusOptions follower_census(CensusOptions census);

@@ -1,5 +1,5 @@
 #pragma once
-// Curves in two parameters (`vibromap continue --curve KIND --param2 Q ...`, issue #31): one
+// Curves in two parameters (`vibromap continue --curve KIND --param2 Q ...`): one
 // process, no farm.
 //   branch    the branch in P over [A, B] at the scene's Q, as `continue` follows it
 //             (continuation_run.hpp)

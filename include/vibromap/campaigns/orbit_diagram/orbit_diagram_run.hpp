@@ -1,5 +1,5 @@
 #pragma once
-// The orbit-diagram campaign (issue #12): the scene's motion followed along one key's values,
+// The orbit-diagram campaign: the scene's motion followed along one key's values,
 // up and down, each direction an item of the farm (so the two run on two ranks at once).
 //   plan   two items: 0 sweeps the axis upwards, 1 downwards
 //   solve  core/analysis/continuation/orbit_diagram.hpp along the path, from the scene's initial state at

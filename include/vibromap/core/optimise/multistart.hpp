@@ -1,9 +1,10 @@
 #pragma once
 // Multistart: seeds from the best cells of a regime map, the plan of starts (every seed with
 // every algorithm), one start end to end, and the overall best points re-solved from scratch.
-// The MPI distribution of the starts is multistart_runner.hpp's; everything here is serial
-// and deterministic, so a start's result depends only on its seed and the options, never on
-// the rank that runs it (except through LocalOptions::max_time, a wall-clock limit).
+// The MPI distribution of the starts is the multistart campaign's (campaigns/multistart/
+// optimise_run.hpp); everything here is serial and deterministic, so a start's result depends
+// only on its seed and the options, never on the rank that runs it (except through
+// LocalOptions::max_time, a wall-clock limit).
 
 #include <cstddef>
 #include <cstdint>
@@ -156,7 +157,7 @@ VerifiedPoint verify_point(const Parameters& base, const PointOptions& options, 
                            const StartRecord& start, std::size_t evaluation, int trajectory_periods,
                            const CensusOptions& census = {});
 
-// Everything `vibromap optimise` found, gathered on rank 0 (multistart_runner.hpp).
+// Everything `vibromap optimise` found, gathered on rank 0 (campaigns/multistart/optimise_run.hpp).
 struct OptimiseReport {
   std::vector<std::string> variables;     // free parameter names, in order
   std::vector<std::string> measures;      // names of Evaluation::measures

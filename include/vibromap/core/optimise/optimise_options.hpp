@@ -1,5 +1,5 @@
 #pragma once
-// What `vibromap optimise` does (issue #5): the objective, the regime kept as a constraint,
+// What `vibromap optimise` does: the objective, the regime kept as a constraint,
 // the free parameters and their box, where the starts come from, and the local algorithm
 // with its stopping rules. The [optimise] section of a scene (io/scene/) fills it; every
 // field has a valid default except the free variables, which a scene must name.
@@ -102,7 +102,7 @@ struct OptimiseOptions {
   LocalOptions local;                                  // the local algorithm's stopping rules
   int best = 3;                                        // best distinct points re-solved and reported, -
   double verify_rtol = 1e-12;                          // rtol of the re-solves of the best points, -
-  // Robust softness (issue #11): a point is feasible only when its soft attractors (census.hpp:
+  // Robust softness: a point is feasible only when its soft attractors (census.hpp:
   // stable, Hertz-valid, k_con <= soft_kcon) hold at least this basin fraction, by a census of
   // the point with the scene's [census] options. 0: off (no census is run, the optimiser is
   // exactly as without it), -

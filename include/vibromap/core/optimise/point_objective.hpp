@@ -27,7 +27,7 @@
 // violation -1 (with the stability rule still applied to periodic orbits).
 // A point is feasible when violation <= 0 and the value is finite.
 //
-// With OptimiseOptions::min_soft_fraction > 0 (robust softness, issue #11), a point that
+// With OptimiseOptions::min_soft_fraction > 0 (robust softness), a point that
 // passes every constraint above is also censused (census_point with the scene's [census]
 // options, K initial states) and must have soft_fraction >= min_soft_fraction, the total basin
 // fraction of its soft attractors (stable, Hertz-valid, k_con <= soft_kcon). Where it falls

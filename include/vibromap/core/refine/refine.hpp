@@ -1,5 +1,5 @@
 #pragma once
-// Adaptive refinement of a map (issue #30): the index arithmetic of the fine grid, the blocks
+// Adaptive refinement of a map: the index arithmetic of the fine grid, the blocks
 // of each level, which blocks are refined, the points a refined block adds, and which solved
 // point an unsolved point inherits from. Pure functions of indices and of a "two solved points
 // differ" predicate: no values, no I/O, no ranks (the farm wires them in).

@@ -1,5 +1,5 @@
 #pragma once
-// What "differs" means for adaptive refinement (issue #30, sweep.refine_on): the quantities two
+// What "differs" means for adaptive refinement (sweep.refine_on): the quantities two
 // solved cells are compared in, and the comparison.
 //
 //   A class (regime, n, k, soft, hertz_valid, attractors: the census's attractor count) is

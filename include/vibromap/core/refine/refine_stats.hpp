@@ -1,5 +1,5 @@
 #pragma once
-// The audit of an adaptive map (issue #30): which inherited points are solved again to check
+// The audit of an adaptive map: which inherited points are solved again to check
 // the inference, and what the mismatches found say about the mismatch rate of all inherited
 // points.
 //

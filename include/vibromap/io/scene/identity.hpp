@@ -17,7 +17,7 @@ enum class IdentityScope {
   optimise,  // as sweep, then every [optimise] key
 };
 
-// One line "section.key = value" per key that defines a cell's result, sorted: every schema key
+// One line "section.key = value" per key that defines a cell's result, sorted: every point key
 // with its effective value (numbers in their shortest round-trip text; a pair under the key the
 // scene holds it by, k2 or omega2; [initial] keys only where given); with a [sweep], its axes
 // ("sweep.axis.D = KEY SCALE [v, ...]", D the axis's position) and store list, never

@@ -22,7 +22,7 @@ struct SweepOptions {
   std::vector<Quantity> store = {Quantity::T_con, Quantity::k_con, Quantity::F_max, Quantity::z_max, Quantity::hertz_valid};
   double checkpoint_interval = 60.0;  // seconds between checkpoints of the map file, s
   double progress_interval = 10.0;    // seconds between progress lines when stderr is not a terminal, s
-  // Adaptive refinement (issue #30, docs/design-refine.md): levels (0: the uniform map of the
+  // Adaptive refinement (docs/design-refine.md): levels (0: the uniform map of the
   // axes given), the quantities whose difference refines a cell, and the share of inherited
   // points solved again to audit the inference.
   int refine = 0;

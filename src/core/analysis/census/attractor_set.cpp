@@ -233,9 +233,9 @@ std::optional<State> AttractorSet::shoot_from(const State& u, int n, const std::
   return newton(u, n, s, options_.integrator, newton_tol(), counters);
 }
 
-// Most searches from states not yet decided land on an orbit already known (measured on the
-// demo census map: 19,713 of 20,366 converged searches), so Newton runs first at the follow
-// tolerance, where a period costs several times less than at the scene's. A landing point
+// Most searches from states not yet decided land on an orbit already known, so Newton runs
+// first at the follow tolerance, where a period costs several times less than at the scene's.
+// A landing point
 // within kKnownCandidate of a known orbit's point is that orbit: the loose solution is
 // within its residual / (1 - |mu|) of the orbit (1e-3 scaled at |mu| = 0.99), distinct orbits
 // lie farther apart (one point of the paper's box has two (1,1) orbits 3 % apart in T_con). A wrong match could only

@@ -68,7 +68,7 @@ Eigen::Matrix<double, N, 1> arclength_tangent(Eigen::Matrix<double, N, N> A, con
   return t / t.norm();
 }
 
-// One more Newton step at the point's own parameters, from a corrected point (issue #31): the
+// One more Newton step at the point's own parameters, from a corrected point: the
 // orbit the corrector accepts has its residual F below the Newton tolerance, which leaves the
 // state off the orbit by up to |F| / |1 - mu| (lightly damped orbits: hundreds of times |F|); the
 // point's extremes (x1_max, clearance_min) measured there would carry that error. The step

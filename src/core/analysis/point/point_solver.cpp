@@ -49,8 +49,7 @@ constexpr int kFollowTries = 5;               // follow: t, 3t, 9t, 27t, 81t per
 constexpr double kTransientRtol = 1e-4;
 // The cycle of the orbit found by Newton is measured (T_con, F_max, ...) at a tenth of the
 // scene's tolerance: one cycle costs ~1.6x more, and the reported values then carry the
-// orbit's error alone rather than a second integration error of the same size on top
-// (measured on Table 1 at rtol 1e-6: T_con error 1.1e-6 at rtol, 1.0e-7 at rtol / 10).
+// orbit's error alone rather than a second integration error of the same size on top.
 constexpr double kMeasureRtolFactor = 0.1;
 constexpr double kMeasureRtolFloor = 1e-13;  // never asks dopri5 for less than this
 constexpr std::size_t kExtrapolationIterates = 7;  // samples used to extrapolate Newton's start

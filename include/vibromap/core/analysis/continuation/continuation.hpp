@@ -1,5 +1,5 @@
 #pragma once
-// Periodic-orbit continuation (issue #12): a periodic orbit of the stroboscopic map followed in
+// Periodic-orbit continuation: a periodic orbit of the stroboscopic map followed in
 // one parameter by pseudo-arclength continuation on the shooting equations
 //   G(y, lambda) = P^n(y; lambda) - y = 0,
 // with Floquet multipliers at every point and the codimension-one bifurcations detected by

@@ -1,5 +1,5 @@
 #pragma once
-// Curves of codimension-one points in two parameters (issue #31): a fold, period doubling,
+// Curves of codimension-one points in two parameters: a fold, period doubling,
 // Neimark-Sacker, grazing or level point of a periodic orbit, located on a branch in P
 // (continuation.hpp), followed in the plane (P, Q).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The brute-force bifurcation diagram (issue #12): the motion followed along a path of
+// The brute-force bifurcation diagram: the motion followed along a path of
 // parameter points, the state carried from each point to the next, and the stroboscopic states
 // kept after a transient at each. Run up and down the same path, it shows hysteresis: a branch
 // that holds beyond a fold in one direction jumps in the other.

@@ -1,5 +1,5 @@
 #pragma once
-// How far a periodic orbit reaches (issue #12): the largest displacement of each body and the
+// How far a periodic orbit reaches: the largest displacement of each body and the
 // closest approach of the bodies, x2 - x1, over one cycle. The closest approach is what grazing
 // is about: it crosses zero where an impact appears on the orbit (or vanishes); it is negative
 // (a penetration) on an orbit with impacts.
@@ -8,7 +8,7 @@
 // that is where clearance_min crosses zero, but a further impact can appear on an orbit that
 // already has one (clearance_min stays negative): graze_gap sees both.
 //
-// The extremes are located, not sampled (issue #31): each integration step is sampled on its
+// The extremes are located, not sampled: each integration step is sampled on its
 // dense output (64 points in free flight, more when the step spans more than 4 periods of the
 // free system's faster mode, so that at least 16 fall in each; 8 in a contact step), and
 // wherever the rate of a quantity (v1 for x1, v2 for x2, w = v1 - v2 for x1 - x2) changes sign
@@ -19,7 +19,7 @@
 // response's |Q1|, D + |Q2| and D - |Q2 - Q1| to ~1e-12, tests/core/test_continuation.cpp).
 // The closest approaches and peak penetrations behind graze_gap are located the same way.
 //
-// The approaches (issue #31): every local minimum of x2 - x1 over the cycle, signed, with its
+// The approaches: every local minimum of x2 - x1 over the cycle, signed, with its
 // phase: a closest approach in free flight (its gap, > 0) and each contact (minus its peak
 // penetration, < 0). One approach's signed clearance crosses zero smoothly where its impact
 // appears or vanishes (at a grazing the contact is shallow and hardly changes the motion, so its

@@ -6,7 +6,7 @@
 // For the force K z^(3/2) (1 + chi w / v_in) the result depends on chi alone: with
 // z = Z s, t = tau_c r, Z = (mu v_in^2 / K)^(2/5), tau_c = Z / v_in, the impact is
 // s'' = -s^(3/2) (1 + chi s') with s(0) = 0, s'(0) = 1, free of mu, K and v_in. So a law and a
-// target e give one number, the law's effective e (the "which law" chart of issue #13).
+// target e give one number, the law's effective e (what `vibromap restitution` tabulates).
 
 #include <vector>
 
