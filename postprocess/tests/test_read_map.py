@@ -57,7 +57,7 @@ def test_read_map_names_every_quantity_the_file_stores_even_one_it_does_not_know
                        quantities={"x1_max": x1_max, "T_con": np.full(regime.shape, 0.1)},
                        long_names={"x1_max": "largest x1 of the steady cycle", "T_con": "duration of the longest impact"})
     m = vibromap_h5.read_map(path)
-    assert m.stored == ["x1_max", "T_con"]
+    assert m.stored == ["hertz_valid", "x1_max", "T_con"]  # every map stores hertz_valid, first
     assert (m.units["x1_max"], m.long_names["x1_max"]) == ("1", "largest x1 of the steady cycle")
     assert m.long_names["T_con"] == "duration of the longest impact" and m.long_names["n"] == ""
     done = m.data["done"] != 0

@@ -534,7 +534,7 @@ TEST(SweepScene, KeysListingDocumentsTheSweepKeys) {
   EXPECT_NE(text.find("[\"T_con\", \"k_con\", \"F_max\", \"z_max\", \"hertz_valid\"]"), std::string::npos);  // store's default
   EXPECT_NE(text.find("grid axis over any real or integer key above"), std::string::npos);
   EXPECT_NE(text.find("at most 8 axes, not both keys of a pair"), std::string::npos);
-  EXPECT_NE(text.find("(E1, E2, R1, R2, m2, k2, omega2, then schema order)"), std::string::npos);  // order's default
+  EXPECT_NE(text.find("(E1, E2, R1, R2, m2, k2, omega2, then key table order)"), std::string::npos);  // order's default
 }
 
 TEST(SweepScene, HelpSummaryListsTheSweepKeys) {
