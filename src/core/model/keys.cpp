@@ -1,7 +1,8 @@
-// The key table: see include/vibromap/core/model/keys.hpp. One row per key, each with the
-// accessors that read and write its field of a point; to add a key, write its row in the
-// function of its section (add_system_keys, ...), and the scene, `vibromap keys`, the checks and
-// every command that names keys follow.
+// The key table: see include/vibromap/core/model/keys.hpp. One row per key of a point, each
+// with the accessors that read and write its field (key_accessors.hpp); to add a key, write its
+// row in the function of its section (add_system_keys, ...), and the scene, `vibromap keys`,
+// the checks and every command that names keys follow. The numeric options of the other
+// sections are option_keys.cpp's.
 
 #include "vibromap/core/model/keys.hpp"
 
@@ -13,127 +14,16 @@
 #include <type_traits>
 
 #include "vibromap/core/analysis/point/point_solver.hpp"
+#include "key_accessors.hpp"
 #include "vibromap/core/analysis/point/steady_state.hpp"
-#include "vibromap/core/refine/refine.hpp"
 #include "vibromap/core/text.hpp"
 
 namespace vibromap {
 namespace {
 
+using namespace detail;  // the accessors (key_accessors.hpp)
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// ---------------------------------------------------------------------------------------
-// Accessors: the field a key reads and writes, named by a chain of member pointers that starts
-// at a member of Parameters or of PointOptions.
-
-using Setter = void (*)(Parameters&, PointOptions&, double);
-using Getter = std::optional<double> (*)(const Parameters&, const PointOptions&);  // nullopt: not set in this form
-using Deriver = double (*)(const Parameters&);  // the value at the point, whatever the form (Parameters keys)
-
-struct Accessors {
-  Setter set;
-  Getter stored;
-  Deriver value = nullptr;  // nullptr: a key of PointOptions (no derived value)
-  long long int_max = 0;    // integer keys: the largest value the field's type holds
-  int component = -1;       // [initial] keys: the index into Parameters::initial (x1, x2, v1, v2)
-};
-
-template <class T, class C>
-C member_class(T C::*);
-
-template <auto First>
-constexpr bool kOfParameters = std::is_same_v<decltype(member_class(First)), Parameters>;
-
-// The object a chain starts from: `params` for a member of Parameters, else `options`.
-template <auto First, class P, class O>
-auto& chain_root(P& params, O& options) {
-  if constexpr (kOfParameters<First>) {
-    return params;
-  } else {
-    return options;
-  }
-}
-
-template <auto First, auto... Rest, class P, class O>
-auto& member(P& params, O& options) {
-  return ((chain_root<First>(params, options).*First).*....*Rest);
-}
-
-// A plain field (a double, an integer or a bool).
-template <auto First, auto... Rest>
-constexpr Accessors field() {
-  using T = std::remove_cvref_t<decltype(member<First, Rest...>(std::declval<Parameters&>(),
-                                                                 std::declval<PointOptions&>()))>;
-  static_assert(std::is_arithmetic_v<T>);
-  Accessors a{};
-  a.set = [](Parameters& p, PointOptions& o, double v) { member<First, Rest...>(p, o) = static_cast<T>(v); };
-  a.stored = [](const Parameters& p, const PointOptions& o) -> std::optional<double> {
-    return static_cast<double>(member<First, Rest...>(p, o));
-  };
-  if constexpr (kOfParameters<First>) {
-    a.value = [](const Parameters& p) {
-      PointOptions unused;
-      return static_cast<double>(member<First, Rest...>(p, unused));
-    };
-  }
-  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) a.int_max = std::numeric_limits<T>::max();
-  return a;
-}
-
-// The value of a spring or damper member of Parameters in form `Form`, whatever form it is
-// given in: k or omega = sqrt(k/m) of a spring, c or xi = c/(2 sqrt(m k)) of a damper.
-template <auto Member, auto Form>
-double pair_value(const Parameters& p) {
-  using T = std::remove_cvref_t<decltype(p.*Member)>;
-  constexpr bool is_spring = std::is_same_v<T, Spring>;
-  bool first = false;  // body 1's spring or damper
-  if constexpr (is_spring) {
-    first = Member == &Parameters::spring1;
-  } else {
-    first = Member == &Parameters::damper1;
-  }
-  const double m = first ? p.m1 : p.m2;
-  const double k = (first ? p.spring1 : p.spring2).stiffness(m);
-  if constexpr (is_spring) {
-    return Form == Spring::Form::stiffness ? k : std::sqrt(k / m);
-  } else {
-    const double c = (p.*Member).coefficient(m, k);
-    return Form == Damper::Form::coefficient ? c : c / (2.0 * std::sqrt(m * k));
-  }
-}
-
-// A Spring or Damper member of Parameters given in form `Form` (k or omega, c or xi).
-template <auto Member, auto Form>
-constexpr Accessors either_form() {
-  using T = std::remove_cvref_t<decltype(std::declval<Parameters&>().*Member)>;
-  Accessors a{};
-  a.set = [](Parameters& p, PointOptions&, double v) { p.*Member = T{Form, v}; };
-  a.stored = [](const Parameters& p, const PointOptions&) -> std::optional<double> {
-    const T& f = p.*Member;
-    if (f.form != Form) return std::nullopt;
-    return f.value;
-  };
-  a.value = pair_value<Member, Form>;
-  return a;
-}
-
-// Component I of the initial state; the first one set fills the others from the rest state
-// (0, D, 0, 0).
-template <int I>
-constexpr Accessors initial_component() {
-  Accessors a{};
-  a.set = [](Parameters& p, PointOptions&, double v) {
-    if (!p.initial) p.initial = p.initial_state();
-    (*p.initial)[I] = v;
-  };
-  a.stored = [](const Parameters& p, const PointOptions&) -> std::optional<double> {
-    if (!p.initial) return std::nullopt;
-    return (*p.initial)[I];
-  };
-  a.value = [](const Parameters& p) { return p.initial_state()[I]; };
-  a.component = I;
-  return a;
-}
 
 // The values a choice key offers, in the order the scene lists them (a sweep axis over
 // contact.law stores the index). Their names are the core's to_string().
@@ -142,50 +32,6 @@ constexpr std::array kSteadyValues = {SteadyMethod::follow, SteadyMethod::shooti
 constexpr std::array kLawValues = {ContactLawKind::hertz, ContactLawKind::hunt_crossley,
                                    ContactLawKind::lankarani_nikravesh, ContactLawKind::flores,
                                    ContactLawKind::gonthier};
-
-// The names of Values (static storage: KeyInfo::choices holds views of them).
-template <auto Values>
-const std::vector<std::string>& enum_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n;
-    for (const auto v : Values) n.push_back(to_string(v));
-    return n;
-  }();
-  return names;
-}
-
-template <auto Values, class E>
-std::optional<double> index_of(E e) {
-  for (std::size_t i = 0; i < Values.size(); ++i)
-    if (Values[i] == e) return static_cast<double>(i);
-  return std::nullopt;
-}
-
-// An enum field chosen by name from Values (the value is the index into Values).
-template <auto Values, auto First, auto... Rest>
-Accessors enum_field() {
-  Accessors a{};
-  a.set = [](Parameters& p, PointOptions& o, double v) {
-    member<First, Rest...>(p, o) = Values.at(static_cast<std::size_t>(v));
-  };
-  a.stored = [](const Parameters& p, const PointOptions& o) { return index_of<Values>(member<First, Rest...>(p, o)); };
-  if constexpr (kOfParameters<First>) {
-    a.value = [](const Parameters& p) {
-      PointOptions unused;
-      return index_of<Values>(member<First, Rest...>(p, unused)).value_or(-1.0);
-    };
-  }
-  return a;
-}
-
-// The damping factor given directly (Parameters::damping; unset: calibrated from the restitution).
-constexpr Accessors damping_field() {
-  Accessors a{};
-  a.set = [](Parameters& p, PointOptions&, double v) { p.damping = v; };
-  a.stored = [](const Parameters& p, const PointOptions&) -> std::optional<double> { return p.damping; };
-  a.value = [](const Parameters& p) { return p.damping_factor(); };
-  return a;
-}
 
 // ---------------------------------------------------------------------------------------
 // The rows, section by section.
@@ -392,93 +238,6 @@ bool is_model_section(std::string_view s) { return s == "system" || s == "contac
 
 }  // namespace
 
-// ---------------------------------------------------------------------------------------
-// The numeric options of [census], [optimise] and [sweep].
-
-namespace {
-
-KeyInfo option(std::string_view s, std::string_view k, KeyType type, Bounds b, std::string_view unit,
-               std::string_view meaning) {
-  return KeyInfo{s, k, type, b, {}, unit, meaning};
-}
-
-void add_census_options(std::vector<KeyInfo>& rows) {
-  constexpr std::string_view s = "census";
-  rows.push_back(option(s, "initial_conditions", KeyType::integer, B::between(1, 1e6), "-",
-                        "initial states followed, the rest state (initial condition 0) included"));
-  rows.push_back(option(s, "seed", KeyType::integer, B::between(0, 9e15), "-",
-                        "seed of the uniform draws in the box (a draw with x1 - x2 > 0 is drawn again)"));
-  rows.push_back(option(s, "max_attractors", KeyType::integer, B::between(1, 64), "-",
-                        "attractors listed, most visited first; states reaching others are counted as unlisted"));
-  rows.push_back(option(s, "recurrences", KeyType::integer, B::between(2, 1e5), "-",
-                        "stroboscopic points in a row on a known non-periodic attractor's cells: a stay on it (a "
-                        "state that stays, then leaves, flags the attractor transient)"));
-  rows.push_back(option(s, "max_transient_periods", KeyType::integer, B::between(0, 1e8), "-",
-                        "transient chaos: a state the budget leaves on a non-periodic set that states were seen "
-                        "to leave is followed on in rounds of analysis.max_periods, until at most sqrt(K)/4 "
-                        "such states (and not rest) remain, up to this many periods in all; 0: not at all"));
-  rows.push_back(option(s, "cell", KeyType::real, B::above(0), "-",
-                        "cell of the non-periodic recurrence grid, in motion scales (L, omega L)"));
-  rows.push_back(option(s, "rtol", KeyType::real, B::between(1e-14, 1e-3), "-",
-                        "tolerance initial states are followed at (orbits are refined at [solver] rtol); the "
-                        "scene's when looser"));
-}
-
-void add_optimise_options(std::vector<KeyInfo>& rows) {
-  constexpr std::string_view s = "optimise";
-  const auto real_option = [&](std::string_view k, Bounds b, std::string_view unit, std::string_view meaning) {
-    rows.push_back(option(s, k, KeyType::real, b, unit, meaning));
-  };
-  const auto integer_option = [&](std::string_view k, Bounds b, std::string_view meaning) {
-    rows.push_back(option(s, k, KeyType::integer, b, "-", meaning));
-  };
-  integer_option("impact", B::between(0, 1000), "max_T_con: which impact of the steady cycle, in time order (0: the first)");
-  integer_option("seeds", B::between(1, 1e6),
-                 "starts per algorithm: the best cells of the seeding map that keep the regime inside the box");
-  real_option("xtol_rel", B::between(0.0, 1.0, true, true), "-",
-              "stop when a step moves every scaled variable by less than this fraction of its box");
-  real_option("ftol_rel", B::between(0.0, 1.0, false, true), "-",
-              "stop when a step changes the objective by less than this, relative (0: off)");
-  integer_option("max_evaluations", B::between(1, 1e9),
-                 "point solves per start, finite-difference ones included (cache hits are free)");
-  real_option("max_time", B::at_least(0), "s", "wall time per start; 0: no limit (a limit makes results depend on the machine)");
-  real_option("initial_step", B::between(0.0, 1.0, true, false), "-",
-              "first step, a fraction of the box (NLopt initial_step, BOBYQA's rhobeg)");
-  real_option("fd_step", B::between(0.0, 0.1, true, false), "-",
-              "finite-difference step of the gradients (slsqp, mma, gradient_projection), a fraction of the box");
-  real_option("barrier", B::above(0), "-",
-              "bobyqa, sbplx: the objective given for a point outside the kept regime (plus its violation; finite, as "
-              "BOBYQA needs)");
-  integer_option("best", B::between(1, 1000),
-                 "best distinct points re-solved from scratch (integrate from rest and shooting) and reported");
-  real_option("verify_rtol", B::between(0.0, 0.1, true, true), "-", "rtol of those re-solves");
-  real_option("min_soft_fraction", B::between(0.0, 1.0), "-",
-              "robust softness, a constraint: the point's soft attractors (stable, Hertz-valid, k_con <= [census] "
-              "soft_kcon) must hold at least this basin fraction, by a census ([census] options) of each point that "
-              "passes the other constraints (0.01-1 s a point); use with hertz_valid = true (a soft attractor is "
-              "Hertz-valid); 0: off");
-  integer_option("soft_check_initial_conditions", B::between(1, 1e6),
-                 "min_soft_fraction: the best points' soft fraction is re-checked by a census of max(this, 4 [census] "
-                 "initial_conditions) other initial states; a point below min_soft_fraction - 3 standard errors fails "
-                 "the check and is reported after those that pass");
-}
-
-void add_sweep_options(std::vector<KeyInfo>& rows) {
-  constexpr std::string_view s = "sweep";
-  rows.push_back(option(s, "checkpoint_interval", KeyType::real, B::above(0), "s",
-                        "seconds between checkpoints of the map file"));
-  rows.push_back(option(s, "progress_interval", KeyType::real, B::above(0), "s",
-                        "seconds between progress lines when stderr is not a terminal"));
-  rows.push_back(option(s, "refine", KeyType::integer, B::between(0, kMaxRefineLevels), "-",
-                        "levels of adaptive refinement: each halves every lin/log axis's spacing where a cell's corners "
-                        "differ in refine_on ((n - 1) 2^L + 1 points per axis, categorical axes whole); 0: the uniform "
-                        "map of the axes given"));
-  rows.push_back(option(s, "refine_audit", KeyType::real, B::between(0, 1), "-",
-                        "share of the inherited points solved again, drawn at random, to count how often inheritance "
-                        "was wrong (with a 95 % upper bound)"));
-}
-
-}  // namespace
 
 // ---------------------------------------------------------------------------------------
 // Bounds and KeyInfo.
@@ -631,29 +390,6 @@ double Key::value(const Parameters& p) const {
   const Deriver derive = row(index_).access.value;
   if (derive == nullptr) throw std::logic_error(cat("Key::value: ", full_name(), " is not a key of Parameters"));
   return derive(p);
-}
-
-const std::vector<KeyInfo>& option_keys() {
-  static const std::vector<KeyInfo> rows = [] {
-    std::vector<KeyInfo> r;
-    add_census_options(r);
-    add_optimise_options(r);
-    add_sweep_options(r);
-    return r;
-  }();
-  return rows;
-}
-
-const KeyInfo& option_key(std::string_view full_name) {
-  for (const KeyInfo& k : option_keys())
-    if (k.full_name() == full_name) return k;
-  throw std::logic_error(cat("option_key: no option ", full_name));
-}
-
-std::string check_option(std::string_view full_name, double v) {
-  const KeyInfo& k = option_key(full_name);
-  const std::string need = k.requirement(v);
-  return need.empty() ? need : k.refusal(value_text(v), need);
 }
 
 std::vector<std::string> refusals(const Parameters& p, const PointOptions& o, std::string_view section) {
