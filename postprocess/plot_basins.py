@@ -3,7 +3,8 @@
 attractor each one settles into (a distinct colour per attractor, grey for unresolved or
 unlisted, white for overlapping bodies or pixels not computed), a legend naming each
 attractor's regime, k_con, softness and basin fraction, the rest state marked, and a title
-naming the scene's point and the fixed variables.
+naming the scene's point, the fixed variables and the basin entropy (S_b, S_bb, the log 2 test
+and the uncertainty exponent; absent from files made before vibromap computed it).
 
   postprocess/vmpy plot_basins FILE.h5 [-o FILE.png] [--dpi 150]
 
@@ -84,6 +85,19 @@ def scene_point(scene: str) -> str:
     return ", ".join(parts)
 
 
+def entropy_text(b: Basins) -> str:
+    """Two lines: 'S_b 0.0737, S_bb 0.501 (5 x 5 px boxes): S_bb <= ln 2 proves nothing' and the
+    uncertainty exponent with its boundary dimension and fitted scales; '' for an older file."""
+    e = b.entropy
+    if e is None or not np.isfinite(e.S_b):
+        return ""
+    verdict = {"fractal": "S_bb > ln 2: fractal boundary", "not_shown": "S_bb <= ln 2 proves nothing",
+               "no_boundary": "no boundary"}.get(e.log2_test, e.log2_test)
+    alpha = (f"uncertainty exponent alpha {e.alpha:.3g}, boundary dimension {e.dimension:.3g} "
+             f"(eps {e.fit_eps[0]}-{e.fit_eps[1]} px)" if np.isfinite(e.alpha) else "uncertainty exponent not fitted")
+    return f"S_b {e.S_b:.3g}, S_bb {e.S_bb:.3g} ({e.box} x {e.box} px boxes): {verdict}\n{alpha}"
+
+
 def colour_index(b: Basins) -> np.ndarray:
     """Index into the colour list: attractors 0..A-1, A undecided, A+1 blank."""
     A = len(b.attractors)
@@ -113,7 +127,8 @@ def plot(b: Basins):
     ax.set_ylabel(f"initial {b.y_name} ({b.y_units})")
     point = scene_point(b.scene)
     title = "Basins of attraction" + ("" if b.complete else " (incomplete)") + (f"\n{point}" if point else "")
-    ax.set_title(title + (f"\nfixed {b.fixed}" if b.fixed else ""), fontsize=10)
+    entropy = entropy_text(b)
+    ax.set_title(title + (f"\nfixed {b.fixed}" if b.fixed else "") + (f"\n{entropy}" if entropy else ""), fontsize=10)
     return fig
 
 

@@ -120,6 +120,10 @@ def census_lines(sweep, done) -> list[str]:
         lines.append(f"soft fraction: median {np.median(soft):.3g}, cells with some soft basin "
                      f"{int((soft > 0).sum())}, with soft fraction >= 0.9: {int((soft >= 0.9).sum())}")
         lines.append(f"unresolved initial states: {np.mean(unresolved):.3g} of all, at most {np.max(unresolved):.3g} in a cell")
+        if "basin_entropy" in sweep.data:  # not in census maps made before vibromap computed it
+            entropy = sweep.data["basin_entropy"][done]
+            lines.append(f"basin entropy -sum f ln f per cell (nats): median {np.median(entropy):.3g}, "
+                         f"largest {np.max(entropy):.3g}, cells above ln 2: {int((entropy > np.log(2.0)).sum())}")
         budget = sweep.data["budget_fraction"][done]
         lines.append(f"initial states followed to analysis.max_periods (no early decision): {np.mean(budget):.3g} "
                      f"of all, at most {np.max(budget):.3g} in a cell")

@@ -110,6 +110,24 @@ class BasinAttractor:
 
 
 @dataclasses.dataclass
+class BasinEntropy:
+    """The basin entropy of a basins file's labels (root attributes; basin_entropy.hpp, docs/model.md)."""
+
+    box: int  # side of the boxes, pixels
+    boxes: int
+    boundary_boxes: int  # boxes holding more than one outcome
+    S_b: float  # basin entropy, nats
+    S_bb: float  # boundary basin entropy, nats
+    log2_test: str  # "fractal" (S_bb > ln 2), "not_shown" (S_bb <= ln 2: proves nothing), "no_boundary"
+    uncertain: np.ndarray  # f(eps) at eps = 1, 2, 4, ... pixels
+    alpha: float  # uncertainty exponent, NaN when not fitted
+    dimension: float  # 2 - alpha
+    fit_eps: tuple  # (lo, hi) pixels of the fitted scales; (0, 0) when not fitted
+    fit_rms: float  # RMS residual of the fit in ln f
+    note: str  # why alpha was not fitted
+
+
+@dataclasses.dataclass
 class Basins:
     """A plane of initial states labelled by attractor (`vibromap basins`)."""
 
@@ -126,11 +144,31 @@ class Basins:
     complete: bool
     scene: str
     attractors: list
+    entropy: BasinEntropy | None = None  # None in a file written before vibromap computed it
 
 
 BASINS_UNRESOLVED, BASINS_UNLISTED, BASINS_OVERLAP, BASINS_NOT_COMPUTED = -1, -2, -3, -4
 # Root attributes every basins file has.
 BASINS_ATTRIBUTES = ("scene", "plane", "fixed", "fixed_state", "complete", "attractors")
+
+
+def _read_basin_entropy(f, path: str) -> BasinEntropy | None:
+    """The root attributes of the basin entropy, None when the file has none (an older file)."""
+    if "basin_entropy" not in f.attrs:
+        return None
+    a = f.attrs
+
+    def number(name, kind=float):
+        return _scalar(a[name], path, name, kind)
+
+    return BasinEntropy(
+        box=number("entropy_box", int), boxes=number("entropy_boxes", int),
+        boundary_boxes=number("entropy_boundary_boxes", int), S_b=number("basin_entropy"),
+        S_bb=number("boundary_basin_entropy"), log2_test=_text(a["log2_test"]),
+        uncertain=np.asarray(a.get("uncertainty_fraction", np.zeros(0)), dtype=float).reshape(-1),
+        alpha=number("uncertainty_exponent"), dimension=number("boundary_dimension"),
+        fit_eps=(number("uncertainty_fit_eps_lo", int), number("uncertainty_fit_eps_hi", int)),
+        fit_rms=number("uncertainty_fit_rms"), note=_text(a["uncertainty_note"]))
 
 
 def read_basins(path: str) -> Basins:
@@ -166,4 +204,5 @@ def read_basins(path: str) -> Basins:
                       label=label, fixed=_text(f.attrs["fixed"]),
                       fixed_state=np.asarray(f.attrs["fixed_state"], dtype=float),
                       complete=bool(_scalar(f.attrs["complete"], path, "complete", int)),
-                      scene=_text(f.attrs["scene"]), attractors=attractors)
+                      scene=_text(f.attrs["scene"]), attractors=attractors,
+                      entropy=_read_basin_entropy(f, path))

@@ -49,8 +49,8 @@ from vibromap_soft import (SoftInfo, add_soft_cells, computed_soft, hertz_validi
 from vibromap_slice import (FixedValue, MapSlice, MapSliceError, _nearest_index, _runs, cell_boundary, cell_edges,
                             parse_fix, slice2d)
 from vibromap_files import (BASINS_ATTRIBUTES, BASINS_NOT_COMPUTED, BASINS_OVERLAP, BASINS_UNLISTED,
-                            BASINS_UNRESOLVED, TRAJECTORY_ATTRIBUTES, TRAJECTORY_COLUMNS, BasinAttractor, Basins, Trajectory,
-                            read_basins, read_trajectory)
+                            BASINS_UNRESOLVED, TRAJECTORY_ATTRIBUTES, TRAJECTORY_COLUMNS, BasinAttractor, BasinEntropy,
+                            Basins, Trajectory, _read_basin_entropy, read_basins, read_trajectory)
 from vibromap_curves import (CURVE_FILE_KIND, CURVE_KINDS, CURVE_VALUES, _CURVE_GROUP, _check_kind, _codim2, _column,
                              _curve, read_curves)
 # fmt: on

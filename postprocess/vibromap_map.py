@@ -30,7 +30,9 @@ FORMAT_VERSIONS["regime map"], a map of another version is refused):
             regime, stable, hertz_valid, from_rest, soft, transient (int8, -1 beyond the cell's
             attractors), n, k, T_con, k_con, F_max, z_ratio, max_floquet, fraction,
             fraction_stderr, x1, x2, v1, v2 (NaN beyond the cell's attractors); the ordinary
-            datasets describe the attractor the rest state reaches, and steady_residual is NaN there
+            datasets describe the attractor the rest state reaches, and steady_residual is NaN there;
+            /basin_entropy (N-D float64, -sum f ln f over the cell's outcomes) where vibromap
+            wrote it (census maps made before it did lack it, and are read without it)
 read_map() reads it (census datasets in SweepMap.census), and refuses a map that lacks any of
 these (VibromapFileError naming what).
 """

@@ -3,7 +3,9 @@ written here in the layout of include/vibromap/io/basins_file.hpp (stamped: stam
 contents:
 
   x1 (6 points) x v1 (4 points); attractor 0 a soft (1,1) with k_con 8.96 on the left half,
-  attractor 1 a (3,3) with k_con 2.5 on the right half, one pixel unresolved, one overlapping.
+  attractor 1 a (3,3) with k_con 2.5 on the right half, one pixel unresolved, one overlapping;
+  with entropy=True, the basin entropy's root attributes as vibromap writes them (made-up
+  values: the reader's and the title's job is to carry them, basin_entropy.hpp computes them).
 """
 import os
 
@@ -21,7 +23,15 @@ SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_basins.py")
 SCENE = "[system]\nm2 = 310.0\nomega2 = 3.606\n\n[contact]\nE1 = 1.4e10\nE2 = 1.0e6\n"
 
 
-def basins_file(path):
+# Root attributes of the basin entropy (include/vibromap/io/basins_file.hpp).
+ENTROPY = {"entropy_box": np.int64(2), "entropy_boxes": np.int64(6), "entropy_boundary_boxes": np.int64(2),
+           "basin_entropy": 0.2, "boundary_basin_entropy": 0.6, "log2_test": "not_shown",
+           "uncertainty_fraction": np.array([0.3]), "uncertainty_exponent": np.nan, "boundary_dimension": np.nan,
+           "uncertainty_fit_rms": np.nan, "uncertainty_fit_eps_lo": np.int64(0), "uncertainty_fit_eps_hi": np.int64(0),
+           "uncertainty_fit_scales": np.int64(0), "uncertainty_note": "1 of the 1 scales ...; the fit needs 3"}
+
+
+def basins_file(path, entropy=False):
     x1, v1 = np.linspace(-0.05, 0.05, 6), np.linspace(-0.36, 0.36, 4)
     label = np.where(np.arange(6)[None, :] < 3, 0, 1).repeat(4, axis=0).astype(np.int32)
     label[0, 0] = -1
@@ -48,6 +58,8 @@ def basins_file(path):
         strobe[0, 0] = [0.01, 0.05, 0.1, 0.0]
         strobe[1] = [[0.02, 0.05, 0.1, 0.0]] * 3
         f["strobe"] = strobe
+        if entropy:
+            f.attrs.update(ENTROPY)
     stamp(path, "basins file")
     return path
 
@@ -58,6 +70,21 @@ def test_reader(tmp_path):
     assert b.label.shape == (4, 6)
     assert [a.regime for a in b.attractors] == ["(1,1)", "(3,3)"]
     assert b.attractors[1].strobe.shape == (3, 4)
+
+
+def test_reader_of_the_basin_entropy(tmp_path):
+    assert read_basins(basins_file(tmp_path / "old.h5")).entropy is None  # a file made before vibromap wrote it
+    e = read_basins(basins_file(tmp_path / "b.h5", entropy=True)).entropy
+    assert (e.box, e.boxes, e.boundary_boxes, e.S_b, e.S_bb, e.log2_test) == (2, 6, 2, 0.2, 0.6, "not_shown")
+    assert e.uncertain.tolist() == [0.3] and np.isnan(e.alpha) and e.fit_eps == (0, 0)
+    assert e.note.endswith("the fit needs 3")
+
+
+def test_title_gives_the_basin_entropy(tmp_path):
+    title = plot_basins.plot(read_basins(basins_file(tmp_path / "b.h5", entropy=True))).axes[0].get_title()
+    assert "S_b 0.2, S_bb 0.6 (2 x 2 px boxes): S_bb <= ln 2 proves nothing\nuncertainty exponent not fitted" in title
+    old = plot_basins.plot(read_basins(basins_file(tmp_path / "old.h5"))).axes[0].get_title()
+    assert "S_b" not in old
 
 
 def test_legend_names_regime_kcon_softness_and_fraction(tmp_path):

@@ -1,6 +1,7 @@
 // `vibromap basins`: the attractor of every initial state of a plane, on all MPI ranks, into one
 // HDF5 file (the basins campaign); its summary is io/basins_output.hpp.
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -19,7 +20,7 @@
 
 namespace vibromap::cli {
 
-// `vibromap basins SCENE --plane A,B --grid NxM [--at V=X]... [-o FILE.h5] [--resume | --overwrite]`
+// `vibromap basins SCENE --plane A,B --grid NxM [--at V=X]... [--entropy-box N] [-o FILE.h5] [--resume | --overwrite]`
 // Collective under mpirun: every rank runs it; only rank 0 prints.
 struct BasinsArgs {
   std::string scene;
@@ -32,6 +33,7 @@ struct BasinsArgs {
   bool overwrite = false;
   bool quiet = false;
   double checkpoint = 30.0;       // s between rewrites of the file
+  std::string entropy_box;        // side of the basin entropy's boxes, pixels; empty: entropy_box() picks it
   std::string format = "table";
 };
 
@@ -107,10 +109,25 @@ BasinsSpec parse_spec(const BasinsArgs& args) {
   return spec;
 }
 
+// The box side: --entropy-box, checked against the grid, or by default BasinEntropyOptions's
+// (5 pixels), cut to the grid's smaller side on a smaller grid.
+int entropy_box(const BasinsArgs& args, const BasinsSpec& spec) {
+  const int side = std::min(spec.n[0], spec.n[1]);
+  if (args.entropy_box.empty()) return std::min(BasinEntropyOptions{}.box, side);
+  const std::string& text = args.entropy_box;
+  int box = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), box);
+  if (ec != std::errc() || end != text.data() + text.size() || box < 1 || box > side)
+    throw SceneError(cat("--entropy-box ", text, ": must be a whole number of pixels from 1 to the grid's smaller side (",
+                         std::to_string(side), ")"));
+  return box;
+}
+
 }  // namespace
 
 int basins_command(const BasinsArgs& args, std::ostream& out) {
   const BasinsSpec spec = parse_spec(args);  // the same on every rank: no MPI needed to refuse it
+  const int box = entropy_box(args, spec);
   const MpiSession mpi;
   const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
   BasinsPlane plane;
@@ -126,6 +143,7 @@ int basins_command(const BasinsArgs& args, std::ostream& out) {
   config.overwrite = args.overwrite;
   config.progress = !args.quiet;
   config.checkpoint_interval = args.checkpoint;
+  config.entropy.box = box;
   const BasinsReport report = run_basins(mpi, scene, plane, config);
   if (mpi.rank() != 0) return report.farm.stop_signal ? code(ExitCode::stopped) : code(ExitCode::ok);
   if (args.format == "json") {
@@ -154,6 +172,11 @@ std::string basins_footer() {
          "regime, n, k, k_con, T_con, F_max, max_floquet, stable, soft, pixels, fraction and\n"
          "stroboscopic states. Attractors are numbered by pixel count, so the file does not depend on\n"
          "the number of ranks. postprocess/vmpy plot_basins FILE.h5 -o FILE.png draws it.\n\n"
+         "The summary and the file give the basin entropy S_b and the boundary basin entropy S_bb\n"
+         "(Daza et al. 2016: the plane cut into --entropy-box pixel boxes; unresolved and unlisted\n"
+         "pixels are outcomes of their own, overlap pixels are left out), the log 2 test (S_bb > ln 2:\n"
+         "the boundary is fractal; S_bb <= ln 2 proves nothing) and the uncertainty exponent alpha\n"
+         "(boundary dimension 2 - alpha) where at least 3 scales fit: docs/model.md.\n\n"
          "The file is rewritten atomically every --checkpoint seconds; a run stopped (SIGINT, SIGTERM,\n"
          "SIGUSR1: exit code 3) or killed leaves the file of its last checkpoint, and --resume computes\n"
          "the rest. An existing FILE.h5 is replaced only with --overwrite.";
@@ -181,6 +204,9 @@ Command declare_basins(CLI::App& app) {
       ->check(kNumber)
       ->type_name("SECONDS")
       ->capture_default_str();
+  b->add_option("--entropy-box", args->entropy_box,
+                "Side of the basin entropy's boxes, pixels (1..the grid's smaller side; default 5, or that side when smaller)")
+      ->type_name("N");
   b->add_flag("-q,--quiet", args->quiet, "No progress lines");
   add_format_option(*b, args->format, "Summary on stdout: table or json");
   return {.app = b, .footer = basins_footer(), .topic = "the basin pictures", .campaign = always_campaign,

@@ -190,6 +190,7 @@ CellResult summarize(const CensusSummary& s) {
   c.unresolved_fraction = s.unresolved / K;
   c.unlisted_fraction = s.unlisted / K;
   c.budget_fraction = s.budget_states / K;
+  c.basin_entropy = s.basin_entropy;
   c.census = s.attractors;
   bool rest_decided = false;
   for (const Attractor& a : s.attractors) {

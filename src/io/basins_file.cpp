@@ -52,6 +52,25 @@ void write_root(Hdf5File& f, const BasinsContent& c) {
   f.set_attribute("soft_kcon", c.soft_kcon);
 }
 
+// The basin entropy of the labels and the uncertainty exponent's fit, as root attributes.
+void write_entropy(Hdf5File& f, const BasinEntropySummary& e) {
+  f.set_attribute("entropy_box", static_cast<std::int64_t>(e.box));
+  f.set_attribute("entropy_boxes", static_cast<std::int64_t>(e.boxes));
+  f.set_attribute("entropy_boundary_boxes", static_cast<std::int64_t>(e.boundary_boxes));
+  f.set_attribute("basin_entropy", e.S_b);
+  f.set_attribute("boundary_basin_entropy", e.S_bb);
+  f.set_attribute("log2_test", to_string(e.verdict));
+  if (!e.uncertain.empty())  // HDF5 stores no empty array: none when min(N0, N1) < 4 or nothing is done
+    f.set_attribute("uncertainty_fraction", std::span<const double>(e.uncertain));
+  f.set_attribute("uncertainty_exponent", e.alpha);
+  f.set_attribute("boundary_dimension", e.dimension);
+  f.set_attribute("uncertainty_fit_rms", e.fit_rms);
+  f.set_attribute("uncertainty_fit_eps_lo", static_cast<std::int64_t>(e.eps_lo));
+  f.set_attribute("uncertainty_fit_eps_hi", static_cast<std::int64_t>(e.eps_hi));
+  f.set_attribute("uncertainty_fit_scales", static_cast<std::int64_t>(e.fit_scales));
+  f.set_attribute("uncertainty_note", e.ok ? e.alpha_note : e.message);
+}
+
 void write_plane(Hdf5File& f, const BasinsContent& c) {
   const BasinsPlane& p = c.plane;
   std::array<Dataset, 2> scales;
@@ -198,6 +217,7 @@ void read_attractors(const Hdf5File& f, BasinsContent& c) {
 void write_basins_file(const std::string& path, const BasinsContent& c) {
   write_hdf5_atomically(path, [&](Hdf5File& f) {
     write_root(f, c);
+    write_entropy(f, c.entropy);
     write_plane(f, c);
     write_attractors(f, c);
     detail::seal_attributes(f, kBasinsFormat);  // last: the format version, then the seal over every attribute

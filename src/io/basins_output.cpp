@@ -48,6 +48,50 @@ void write_attractor_json(JsonWriter& w, const Attractor& a) {
   write_stable_json(w.key("stable"), a.stable).end_object();
 }
 
+void write_entropy_json(JsonWriter& w, const BasinEntropySummary& e) {
+  w.begin_object()
+      .field("box", e.box)
+      .field("boxes", e.boxes)
+      .field("boundary_boxes", e.boundary_boxes)
+      .field("S_b", e.S_b)
+      .field("S_bb", e.S_bb)
+      .field("log2_test", to_string(e.verdict))
+      .field("alpha", e.alpha)
+      .field("dimension", e.dimension)
+      .field("fit_eps_lo", e.eps_lo)
+      .field("fit_eps_hi", e.eps_hi)
+      .field("fit_scales", e.fit_scales)
+      .field("fit_rms", e.fit_rms)
+      .field("note", e.ok ? e.alpha_note : e.message);
+  w.key("uncertain_fraction").begin_array();
+  for (const double f : e.uncertain) w.value(f);
+  w.end_array().end_object();
+}
+
+std::string log2_text(const BasinEntropySummary& e) {
+  switch (e.verdict) {
+    case BoundaryVerdict::no_boundary: return "no boundary box";
+    case BoundaryVerdict::fractal: return "S_bb > ln 2 = 0.6931: the boundary is fractal";
+    case BoundaryVerdict::not_shown: break;
+  }
+  return "S_bb <= ln 2 = 0.6931: proves nothing (S_bb > ln 2 would prove a fractal boundary)";
+}
+
+std::string uncertainty_text(const BasinEntropySummary& e) {
+  if (!e.ok) return "not computed: " + e.message;
+  if (e.fit_scales == 0) return "not fitted: " + e.alpha_note;
+  return cat("alpha ", printf_number(e.alpha, "%.3f"), ", boundary dimension d = 2 - alpha = ",
+             printf_number(e.dimension, "%.3f"), " (eps ", std::to_string(e.eps_lo), "..", std::to_string(e.eps_hi),
+             " pixels, ", std::to_string(e.fit_scales), " scales, rms residual ", printf_number(e.fit_rms, "%.3g"), " in ln f)");
+}
+
+void write_entropy_table(std::ostream& out, const BasinEntropySummary& e) {
+  out << "basin entropy  S_b " << printf_number(e.S_b, "%.4f") << ", S_bb " << printf_number(e.S_bb, "%.4f") << " (in "
+      << e.box << " x " << e.box << " pixel boxes; " << e.boundary_boxes << " of " << e.boxes << " on the boundary)\n"
+      << "log 2 test     " << log2_text(e) << "\n"
+      << "uncertainty    " << uncertainty_text(e) << "\n";
+}
+
 }  // namespace
 
 void write_basins_json(std::ostream& out, const FarmFigures& f, const BasinsContent& c, const BasinsCoverage& r,
@@ -70,6 +114,7 @@ void write_basins_json(std::ostream& out, const FarmFigures& f, const BasinsCont
       .field("unresolved", count_label(c, kUnresolvedLabel))
       .field("unlisted", count_label(c, kUnlistedLabel))
       .field("overlap", count_label(c, kOverlapLabel));
+  write_entropy_json(w.key("entropy"), c.entropy);
   w.key("attractors").begin_array();
   for (const Attractor& a : c.attractors) write_attractor_json(w, a);
   w.end_array().end_object();
@@ -85,7 +130,9 @@ void write_basins_table(std::ostream& out, const FarmFigures& f, const BasinsCon
       << "wall time      " << std::setprecision(4) << f.wall_s << " s, " << f.items_per_s << " pixels/s\n"
       << "unresolved     " << count_label(c, kUnresolvedLabel) << ", unlisted " << count_label(c, kUnlistedLabel)
       << ", overlap " << count_label(c, kOverlapLabel) << " pixels\n"
-      << "fractions      " << fractions_line(r, c) << "\n\n"
+      << "fractions      " << fractions_line(r, c) << "\n";
+  write_entropy_table(out, c.entropy);
+  out << "\n"
       << "  #  regime          fraction    pixels   k_con       T_con (s)   F_max (N)   max|mu|   stable  soft\n";
   for (std::size_t i = 0; i < c.attractors.size(); ++i) {
     const Attractor& a = c.attractors[i];

@@ -52,6 +52,7 @@ void write_census_json(std::ostream& os, const CensusSummary& s) {
   w.field("K", s.K);
   w.field("T", s.T);
   w.field("soft_fraction", s.soft_fraction);
+  w.field("basin_entropy", s.basin_entropy);
   w.field("unresolved", s.unresolved);
   w.field("unlisted", s.unlisted);
   w.field("decided_early", s.decided_early);
@@ -82,7 +83,8 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
   os << "scene          " << scene.path << "\n"
      << "census         " << s.K << " initial states (the rest state and " << s.K - 1 << " drawn)\n"
      << "attractors     " << s.attractors.size() << "\n"
-     << "soft fraction  " << printf_number(s.soft_fraction, "%.4f") << "  (stable, Hertz-valid, k_con <= soft_kcon)\n";
+     << "soft fraction  " << printf_number(s.soft_fraction, "%.4f") << "  (stable, Hertz-valid, k_con <= soft_kcon)\n"
+     << "basin entropy  " << printf_number(s.basin_entropy, "%.4f") << "  (-sum f ln f over the attractors, unresolved and unlisted)\n";
   if (s.unresolved > 0) os << "unresolved     " << s.unresolved << " initial states (budget ran out while settling)\n";
   if (s.unlisted > 0) os << "unlisted       " << s.unlisted << " initial states (attractors beyond max_attractors)\n";
   os << "work           " << s.periods << " forcing periods, " << s.decided_early << " states decided early, "

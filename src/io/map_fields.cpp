@@ -152,6 +152,9 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   fields.push_back(real_field<&CellResult::budget_fraction>(
       "budget_fraction",
       "fraction of initial states followed to analysis.max_periods without an early decision (as brute force)", "1"));
+  fields.push_back(real_field<&CellResult::basin_entropy>(
+      "basin_entropy",
+      "basin entropy -sum f ln f over the shares of the listed attractors, the unresolved and the unlisted states", "1"));
   const auto code = [](std::string name, std::string long_name, std::int8_t last, std::string meanings) {
     return code_field<&CellResult::regime>(std::move(name), std::move(long_name), last, std::move(meanings));
   };

@@ -41,7 +41,8 @@ struct MapField {
 MapField done_field();
 // The per-cell datasets in file order: status, regime, stable, n, k, wall_s, steady_residual,
 // then the stored quantities; with a census (attractors > 0), attractors, soft_fraction,
-// unresolved_fraction, unlisted_fraction and the attractor_* datasets (slots = attractors).
+// unresolved_fraction, unlisted_fraction, budget_fraction, basin_entropy and the attractor_*
+// datasets (slots = attractors).
 // With refine_levels > 0 (an adaptive map), then computed and level (int8, -1 where not decided).
 std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels = 0);
 std::uint64_t element_bytes(ElementType t);

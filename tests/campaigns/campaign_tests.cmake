@@ -47,6 +47,8 @@ vibromap_cli_test(basins_at_plane_variable RC 2 ARGS basins jobs/paper/table2.to
                   -o no_file.h5 ERR "--at v1=0\\.1: v1 is a plane variable; fix only the other two")
 vibromap_cli_test(basins_at_bad_value RC 2 ARGS basins jobs/paper/table2.toml --at x2=abc -o no_file.h5
                   ERR "--at x2=abc: the value must be a finite number")
+vibromap_cli_test(basins_bad_entropy_box RC 2 ARGS basins jobs/paper/table2.toml --grid 8x6 --entropy-box 7 -o no_file.h5
+                  ERR "--entropy-box 7: must be a whole number of pixels from 1 to the grid's smaller side \\(6\\)")
 vibromap_cli_test(basins_bad_census RC 2 ARGS basins jobs/paper/table2.toml --set "census.x1=[1, 0]" -o no_file.h5
                   ERR "census\\.x1=\\[1, 0\\]: \\[census\\] x1 = \\[1, 0\\]: must be an array \\[lo, hi\\]")
 

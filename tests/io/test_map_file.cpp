@@ -267,6 +267,7 @@ SweepMap sample_census_map() {
     c.unresolved_fraction = i % 2 == 0 ? 0.0 : 0.0625;
     c.unlisted_fraction = 1.0 / (n + 1.0);
     c.budget_fraction = i % 3 == 0 ? 0.0 : 0.03125 * static_cast<double>(i % 5);
+    c.basin_entropy = 0.0078125 * static_cast<double>(i % 89);
     for (std::size_t a = 0; a < i % 4; ++a) {
       Attractor r;
       const auto x = static_cast<double>(a);
@@ -302,7 +303,7 @@ TEST_F(MapFile, RoundTripsACensusMapWithItsAttractorDimension) {
     const CellResult& a = back.cells[i];
     ASSERT_EQ(a.census.size(), e.census.size());
     for (const auto member : {&CellResult::soft_fraction, &CellResult::unresolved_fraction, &CellResult::unlisted_fraction,
-                              &CellResult::budget_fraction})
+                              &CellResult::budget_fraction, &CellResult::basin_entropy})
       EXPECT_TRUE(same(a.*member, e.*member));
     for (std::size_t k = 0; k < e.census.size(); ++k) {
       const Attractor& x = e.census[k];

@@ -78,6 +78,7 @@ struct CellResult {
   double unresolved_fraction = std::numeric_limits<double>::quiet_NaN();  // census: initial states not decided
   double unlisted_fraction = std::numeric_limits<double>::quiet_NaN();    // census: beyond max_attractors
   double budget_fraction = std::numeric_limits<double>::quiet_NaN();      // census: followed to max_periods
+  double basin_entropy = std::numeric_limits<double>::quiet_NaN();        // census: -sum f ln f of its outcomes, nats
   // Adaptive maps (sweep.refine > 0; set by the sweep on rank 0, not by the solver): how the
   // point got its values (1 solved, 0 inherited, 2 audited, -1 not decided) and the level at
   // which that was decided.

@@ -9,7 +9,13 @@
 //       fixed state), plane ("x1,v1"), grid ("N0xN1"), fixed ("x2=0.05 v2=0": the variables not
 //       in the plane), fixed_state (4 float64: the state before the plane variables are set,
 //       m and m/s), complete (0 | 1), pixels, pixels_done, pixels_overlap, attractors, soft_kcon,
-//       version (the basins format's, io/file_format.hpp)
+//       version (the basins format's, io/file_format.hpp); the basin entropy of the labels
+//       (basin_entropy.hpp; over the pixels done): entropy_box, entropy_boxes,
+//       entropy_boundary_boxes (int64), basin_entropy (S_b), boundary_basin_entropy (S_bb),
+//       log2_test ("fractal", "not_shown", "no_boundary"), uncertainty_fraction (f at eps = 1, 2,
+//       4, ...; absent when no scale is computed), uncertainty_exponent, boundary_dimension, uncertainty_fit_rms (float64, NaN when
+//       not fitted), uncertainty_fit_eps_lo, uncertainty_fit_eps_hi, uncertainty_fit_scales
+//       (int64, 0 when not fitted), uncertainty_note (why not fitted; empty when fitted)
 //   /P0 (N0), /P1 (N1) float64 coordinates (dimension scales), units m or m/s
 //   /label (N1, N0) int32: the pixel's attractor index; -1 unresolved (budget ran out while
 //       settling), -2 unlisted (more attractors than max_attractors), -3 overlap (x1 > x2 at
@@ -35,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "vibromap/core/analysis/census/basin_entropy.hpp"
 #include "vibromap/core/analysis/census/basins_plane.hpp"
 #include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/io/file_format.hpp"
@@ -53,6 +60,7 @@ struct BasinsContent {
   std::vector<Attractor> attractors;      // count = pixels; fraction filled by the writer's caller
   std::vector<std::int64_t> first_pixel;  // per attractor
   bool complete = false;
+  BasinEntropySummary entropy;            // of the labels written (basin_entropy.hpp); written, not read back
 };
 
 // Writes `c` atomically (tmp + rename). Throws IoError naming the path.

@@ -7,11 +7,15 @@
 //   output, plane, pixels, pixels_resumed, pixels_computed, complete, ranks, wall_s,
 //   pixels_per_s, pixels_followed, pixels_to_follow, fractions_cover, stopped_by, unresolved,
 //   unlisted, overlap,
+//   entropy: {box, boxes, boundary_boxes, S_b, S_bb, log2_test, alpha, dimension, fit_eps_lo,
+//             fit_eps_hi, fit_scales, fit_rms, note, uncertain_fraction: [f(1), f(2), f(4), ...]}
+//             (basin_entropy.hpp; NaN as null),
 //   attractors: [{regime, n, k, k_con, T_con, F_max, max_floquet, soft, pixels, fraction,
 //                 stable}, ...].
 //
 // Table: the file, the plane, ranks, time, the pixels without an attractor, what the
-// fractions are over, and a row per attractor.
+// fractions are over, the basin entropy with its log 2 test and uncertainty exponent, and a row
+// per attractor.
 
 #include <cstdint>
 #include <iosfwd>

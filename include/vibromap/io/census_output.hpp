@@ -3,7 +3,7 @@
 // table, for people.
 //
 // JSON: one object with the keys
-//   status, message, K, T, soft_fraction, unresolved, unlisted, decided_early, periods,
+//   status, message, K, T, soft_fraction, basin_entropy, unresolved, unlisted, decided_early, periods,
 //   budget_states, budget_periods, wall_s, initial_states_per_s, ranks (MPI ranks that followed
 //   the states),
 //   attractors: [{regime, n, k, periodic, T_con, k_con, F_max, z_ratio, hertz_valid,

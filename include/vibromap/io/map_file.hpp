@@ -29,6 +29,7 @@
 //   /attractors      N-D int32: attractors the census lists in the cell (0..A)
 //   /soft_fraction, /unresolved_fraction, /unlisted_fraction, /budget_fraction (the initial
 //                    states followed to analysis.max_periods, no early decision)   N-D float64, units 1
+//   /basin_entropy   N-D float64: -sum f ln f over the cell's outcomes' shares (basin_entropy.hpp)
 //   /attractor_<q>   (N+1)-D, shape + (A,): per (cell, attractor): regime, stable, hertz_valid,
 //                    from_rest, soft, transient (int8 flags, -1 where the cell lists fewer attractors),
 //                    n, k (int32), T_con, k_con, F_max, z_ratio, max_floquet, fraction,

@@ -79,7 +79,7 @@ std::unique_ptr<detail::BasinsSink> prepare_sink(const Scene& scene, const Basin
   target.emplace(config.output,
                  OutputPolicy{.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
   return std::make_unique<detail::BasinsSink>(
-      codec, scene, follower_census(scene), config.output,
+      codec, scene, follower_census(scene), config.entropy, config.output,
       target->resuming() ? resumed_content(scene, plane, *target) : new_content(scene, plane));
 }
 

@@ -5,9 +5,9 @@
 
 namespace vibromap::detail {
 
-BasinsSink::BasinsSink(const PixelCodec& codec, const Scene& scene, CensusOptions census, std::string path,
-                       BasinsContent start)
-    : ResultSink<PixelResult>(codec), scene_(scene), census_(std::move(census)), path_(std::move(path)),
+BasinsSink::BasinsSink(const PixelCodec& codec, const Scene& scene, CensusOptions census, BasinEntropyOptions entropy,
+                       std::string path, BasinsContent start)
+    : ResultSink<PixelResult>(codec), scene_(scene), census_(std::move(census)), entropy_(entropy), path_(std::move(path)),
       content_(std::move(start)) {
   done_ = static_cast<std::uint64_t>(std::count(content_.done.begin(), content_.done.end(), 1));
 }
@@ -73,6 +73,8 @@ BasinsContent BasinsSink::numbered(bool complete) const {
     if (!c.done[i]) c.labels[i] = kNotComputedLabel;
     else if (c.labels[i] >= 0) c.labels[i] = new_index[static_cast<std::size_t>(c.labels[i])];
   }
+  c.entropy = basin_entropy(c.labels, static_cast<int>(c.plane.axes[0].size()), static_cast<int>(c.plane.axes[1].size()),
+                            entropy_);
   return c;
 }
 

@@ -18,8 +18,10 @@ namespace vibromap::detail {
 class BasinsSink : public ResultSink<PixelResult> {
  public:
   // A sink over `start` (a new run's empty content, or the content of the file resumed).
-  // `census`: the followers' options (canonical records are found with them).
-  BasinsSink(const PixelCodec& codec, const Scene& scene, CensusOptions census, std::string path, BasinsContent start);
+  // `census`: the followers' options (canonical records are found with them); `entropy`: the
+  // basin entropy's options, applied to the labels at every write.
+  BasinsSink(const PixelCodec& codec, const Scene& scene, CensusOptions census, BasinEntropyOptions entropy,
+             std::string path, BasinsContent start);
 
   std::uint64_t items() const override { return content_.labels.size(); }
   std::uint64_t items_done() const override { return done_; }
@@ -39,6 +41,7 @@ class BasinsSink : public ResultSink<PixelResult> {
 
   const Scene& scene_;
   CensusOptions census_;
+  BasinEntropyOptions entropy_;
   std::string path_;
   BasinsContent content_;  // labels index into content_.attractors (discovery order here)
   BasinsContent written_;

@@ -29,9 +29,11 @@ void visit_head(Cell& c, Visit&& visit) {
 // An integer quantity carried as an int64 of its own (hertz_valid is in the head).
 bool int64_on_wire(Quantity q) { return quantity_is_integer(q) && q != Quantity::hertz_valid; }
 
-// The census's fractions (not map quantities: a census map keeps them as datasets of their own).
+// The census's fractions and basin entropy (not map quantities: a census map keeps them as
+// datasets of their own).
 constexpr double CellResult::*kCensusReals[] = {&CellResult::soft_fraction, &CellResult::unresolved_fraction,
-                                                 &CellResult::unlisted_fraction, &CellResult::budget_fraction};
+                                                 &CellResult::unlisted_fraction, &CellResult::budget_fraction,
+                                                 &CellResult::basin_entropy};
 
 // FNV-1a (32 bits) over each quantity's name and kind ("T_con real;...hertz_valid integer;..."),
 // in the order given: what the wire layout of the quantities depends on.
@@ -48,13 +50,14 @@ std::uint32_t layout_fingerprint(std::span<const Quantity> quantities) {
 }
 
 // The fingerprint of the 15 quantities the generations 6 and 8 were set for: those give the
-// generation itself (the bytes ranks exchanged before the codec followed the table).
+// generation itself (the bytes ranks exchanged before the codec followed the table). The census
+// generation is 9 since the census carries its basin entropy (8: four census reals).
 constexpr std::uint32_t kGenerationQuantities = 0x7e7b7156;
 
 }  // namespace
 
 std::uint32_t cell_layout_version(bool census, std::span<const Quantity> quantities) {
-  return (census ? 8u : 6u) ^ layout_fingerprint(quantities) ^ kGenerationQuantities;
+  return (census ? 9u : 6u) ^ layout_fingerprint(quantities) ^ kGenerationQuantities;
 }
 
 // Ranks built apart compare it (parallel/farm.hpp): the layout follows the table, so does this.

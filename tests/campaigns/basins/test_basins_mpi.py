@@ -7,7 +7,10 @@
   reach the file's attractor of the pixel (same_attractor);
 - a run killed with SIGKILL (every rank) leaves the file of its last checkpoint, and --resume
   finishes it into the same file as an uninterrupted run;
-- an existing file is refused without --resume or --overwrite.
+- an existing file is refused without --resume or --overwrite;
+- the basin entropy attributes (S_b, S_bb, the log 2 test, f(eps)) equal those recomputed here
+  from /label with numpy, in the default 5 x 5 boxes and in 3 x 3 boxes after a --resume of the
+  complete file with --entropy-box 3, and the JSON summary gives the same.
 
 And `run --census` under mpiexec (the point census campaign, the same followers and codec):
 - on 2 and 3 ranks every initial state's label equals the one-process census's (which equals
@@ -113,6 +116,71 @@ def test_labels_equal_brute_force(reference):
     assert len(rows) == 10
     agree = [r for r in rows if r[3] == "1"]
     assert len(agree) == 10, proc.stdout
+
+
+def entropy_of_labels(label, box):
+    """(S_b, S_bb, boxes, boundary boxes) of a (N1, N0) label array, as docs/model.md defines them:
+    full box x box boxes from pixel (0, 0); outcomes every label >= -2; -3 and -4 left out."""
+    n1, n0 = label.shape
+    entropies, kinds = [], []
+    for by in range(0, n1 - box + 1, box):
+        for bx in range(0, n0 - box + 1, box):
+            cell = label[by:by + box, bx:bx + box].ravel()
+            cell = cell[cell >= -2]
+            if cell.size == 0:
+                continue
+            p = np.unique(cell, return_counts=True)[1] / cell.size
+            entropies.append(float(-(p * np.log(p)).sum()))
+            kinds.append(len(p))
+    entropies, kinds = np.array(entropies), np.array(kinds)
+    boundary = kinds > 1
+    s_bb = entropies[boundary].mean() if boundary.any() else 0.0
+    return entropies.mean(), s_bb, len(entropies), int(boundary.sum())
+
+
+def uncertain_fraction(label, eps):
+    """f(eps): the share of outcome pixels with another outcome within eps pixels (square, clipped)."""
+    n1, n0 = label.shape
+    counted = uncertain = 0
+    for j in range(n1):
+        for i in range(n0):
+            if label[j, i] < -2:
+                continue
+            counted += 1
+            near = label[max(j - eps, 0):j + eps + 1, max(i - eps, 0):i + eps + 1].ravel()
+            near = near[near >= -2]
+            uncertain += bool((near != label[j, i]).any())
+    return uncertain / counted
+
+
+def assert_entropy_of_labels(path, box, summary=None):
+    with h5py.File(path, "r") as f:
+        label = f["label"][()].astype(int)
+        attrs = dict(f.attrs)
+    s_b, s_bb, boxes, boundary = entropy_of_labels(label, box)
+    assert int(attrs["entropy_box"]) == box
+    assert int(attrs["entropy_boxes"]) == boxes and int(attrs["entropy_boundary_boxes"]) == boundary
+    assert abs(float(attrs["basin_entropy"]) - s_b) < 1e-12
+    assert abs(float(attrs["boundary_basin_entropy"]) - s_bb) < 1e-12
+    verdict = "no_boundary" if boundary == 0 else ("fractal" if s_bb > np.log(2.0) else "not_shown")
+    assert attrs["log2_test"] == verdict
+    f_eps = [uncertain_fraction(label, eps) for eps in (1, 2, 4)]  # eps <= 24 / 4
+    np.testing.assert_allclose(attrs["uncertainty_fraction"], f_eps, rtol=0, atol=1e-15)
+    if summary is not None:
+        e = summary["entropy"]
+        assert e["box"] == box and e["boxes"] == boxes and e["boundary_boxes"] == boundary
+        assert abs(e["S_b"] - s_b) < 1e-12 and abs(e["S_bb"] - s_bb) < 1e-12 and e["log2_test"] == verdict
+    return s_b, s_bb
+
+
+def test_basin_entropy_of_the_labels(reference, tmp_path):
+    two, summary = reference
+    s_b, s_bb = assert_entropy_of_labels(two, 5, summary)
+    assert 0.0 < s_b < s_bb  # two basins meet in the plane: some boxes, not all, on their boundary
+    again = tmp_path / "again.h5"
+    again.write_bytes(two.read_bytes())
+    proc = basins(2, again, "--resume", "--entropy-box", "3")
+    assert_entropy_of_labels(again, 3, json.loads(proc.stdout))
 
 
 def wait_for_a_checkpoint(proc, out, timeout=120):

@@ -215,7 +215,8 @@ void expect_same_cell(const CellResult& a, const CellResult& b) {
   }
   for (const double CellResult::*m :
        {&CellResult::wall_s, &CellResult::steady_residual, &CellResult::soft_fraction,
-        &CellResult::unresolved_fraction, &CellResult::unlisted_fraction, &CellResult::budget_fraction})
+        &CellResult::unresolved_fraction, &CellResult::unlisted_fraction, &CellResult::budget_fraction,
+        &CellResult::basin_entropy})
     EXPECT_TRUE(same_bits(a.*m, b.*m));
   ASSERT_EQ(a.census.size(), b.census.size());
   for (std::size_t i = 0; i < a.census.size(); ++i) expect_same_attractor(a.census[i], b.census[i]);
@@ -229,8 +230,8 @@ std::size_t cell_bytes() {
   return 5 + 2 * 4 + (integers - 1) * 8 + (2 + all.size() - integers) * 8 + 1;
 }
 const std::size_t kCellBytes = cell_bytes();
-// The census: 4 fractions, a uint32 count, then each attractor (attractor_codec.hpp).
-constexpr std::size_t kCensusBytes = 4 * 8 + 4;
+// The census: 4 fractions and the basin entropy, a uint32 count, then each attractor (attractor_codec.hpp).
+constexpr std::size_t kCensusBytes = 5 * 8 + 4;
 
 }  // namespace
 
@@ -259,15 +260,15 @@ TEST(ResultCodecs, SweepCellCarriesEveryQuantityOfTheTable) {
   }
 }
 
-// The layout's version: 6 and 8 for the 15 quantities the generations were set for (the bytes of
-// the header ranks exchanged before the codec followed the table), another number for a quantity
-// more or fewer, or two swapped.
+// The layout's version: 6 and 9 (the census's, 8 before it carried its basin entropy) for the 15
+// quantities the generations were set for (the bytes of the header ranks exchanged before the
+// codec followed the table), another number for a quantity more or fewer, or two swapped.
 TEST(ResultCodecs, SweepCellVersionFollowsTheQuantities) {
   const std::vector<Quantity>& all = all_quantities();
   ASSERT_GE(all.size(), 15u);
   const std::vector<Quantity> generation(all.begin(), all.begin() + 15);
   EXPECT_EQ(cell_layout_version(false, generation), 6u);
-  EXPECT_EQ(cell_layout_version(true, generation), 8u);
+  EXPECT_EQ(cell_layout_version(true, generation), 9u);
   const std::vector<Quantity> fewer(all.begin(), all.begin() + 14);
   std::vector<Quantity> more = generation, moved = generation;
   more.push_back(Quantity::T_con);
@@ -275,7 +276,7 @@ TEST(ResultCodecs, SweepCellVersionFollowsTheQuantities) {
   for (const auto& other : {fewer, more, moved})
     for (const bool census : {false, true}) {
       EXPECT_NE(cell_layout_version(census, other), 6u);
-      EXPECT_NE(cell_layout_version(census, other), 8u);
+      EXPECT_NE(cell_layout_version(census, other), 9u);
     }
   EXPECT_EQ(CellCodec(false).version(), cell_layout_version(false, all));
   EXPECT_EQ(CellCodec(true).version(), cell_layout_version(true, all));
@@ -289,6 +290,7 @@ TEST(ResultCodecs, SweepCellWithACensus) {
   c.unresolved_fraction = 0.0;
   c.unlisted_fraction = kNaN;
   c.budget_fraction = 1.0 / 7.0;
+  c.basin_entropy = std::log(3.0);
   c.census = {full_attractor(0), full_attractor(1), full_attractor(2)};  // 2, 1 and 0 stroboscopic states
   const std::vector<char> bytes = encode(codec, c);
   EXPECT_EQ(bytes.size(), kCellBytes + kCensusBytes + 3 * kAttractorBytes + 3 * kStateBytes);

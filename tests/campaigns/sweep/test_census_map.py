@@ -4,7 +4,8 @@ attractor with its basin fraction, on MPI ranks, with checkpoint and resume.
 - the census map does not depend on the number of ranks (1, 2), wall_s aside;
 - each cell's census equals `vibromap run --census` at that cell's point (same numbers);
 - per cell, the listed fractions, the unresolved and the unlisted fractions sum to 1, and
-  soft_fraction is the sum of the soft attractors' fractions;
+  soft_fraction is the sum of the soft attractors' fractions, and basin_entropy is
+  -sum f ln f over those shares (recomputed here), as `run --census` prints it;
 - budget_fraction is the share of states `run --census` reports followed to the budget's end,
   and the report's census_budget_states their count over the map (after a resume too);
 - a census sweep killed with SIGKILL resumes to the same map as an uninterrupted run.
@@ -66,6 +67,10 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
                                    rtol=0, atol=1e-12)
         np.testing.assert_allclose(np.where(soft == 1, fraction, 0.0).sum(axis=2), f["soft_fraction"][()],
                                    rtol=0, atol=1e-12)
+        shares = np.concatenate([np.nan_to_num(fraction), f["unresolved_fraction"][()][..., None],
+                                 f["unlisted_fraction"][()][..., None]], axis=2)
+        entropy = -np.where(shares > 0, shares * np.log(np.where(shares > 0, shares, 1.0)), 0.0).sum(axis=2)
+        np.testing.assert_allclose(f["basin_entropy"][()], entropy, rtol=0, atol=1e-12)
         # The ordinary datasets describe the attractor rest reaches.
         from_rest = f["attractor_from_rest"][()]
         for i, j in np.ndindex(3, 3):
@@ -76,7 +81,7 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
         assert (count >= 2).any()
         i, j = np.argwhere(count >= 2)[0]
         e1, e2 = f["E1"][i], f["E2"][j]
-        cell = {name: f[name][i, j] for name in ("attractors", "soft_fraction", "budget_fraction")}
+        cell = {name: f[name][i, j] for name in ("attractors", "soft_fraction", "budget_fraction", "basin_entropy")}
         budget = f["budget_fraction"][()]
         assert ((budget >= 0) & (budget <= 1)).all()
         assert report["census_budget_states"] == round(8 * budget.sum())
@@ -87,6 +92,7 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
     assert run.returncode == 0, run.stderr
     point = json.loads(run.stdout)
     assert point["budget_states"] / point["K"] == cell["budget_fraction"]
+    assert point["basin_entropy"] == cell["basin_entropy"] > 0.0  # a cell of two attractors or more
     attractors = point["attractors"]
     assert len(attractors) == cell["attractors"]
     for a, got in enumerate(attractors):

@@ -15,7 +15,8 @@
 //          rewrites the whole file atomically at each checkpoint
 // At the end, rank 0 re-derives each attractor's record from its first pixel with a fresh
 // follower (so that the record does not depend on which rank found the attractor first) and
-// numbers the attractors by pixel count: the file does not depend on the number of ranks.
+// numbers the attractors by pixel count: the file does not depend on the number of ranks. Every
+// write adds the basin entropy of the labels written (basin_entropy.hpp, over the pixels done).
 
 #include <array>
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "vibromap/core/analysis/census/basin_entropy.hpp"
 #include "vibromap/core/analysis/census/basins_plane.hpp"
 #include "vibromap/io/basins_file.hpp"
 #include "vibromap/io/basins_output.hpp"
@@ -49,6 +51,7 @@ struct BasinsRunConfig {
   bool overwrite = false;            // replace an existing file instead of refusing
   bool progress = true;              // progress lines on rank 0's stderr
   double checkpoint_interval = 30.0; // s between rewrites of the file
+  BasinEntropyOptions entropy;       // the basin entropy of the labels, computed at every write (not in the identity)
 };
 
 struct BasinsReport {

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "attractor_set.hpp"
+#include "vibromap/core/analysis/census/basin_entropy.hpp"
 #include "vibromap/core/analysis/point/steady_state.hpp"
 
 namespace vibromap {
@@ -484,6 +485,11 @@ void list_attractors(CensusSummary& s, const std::vector<Attractor>& found, std:
   s.soft_fraction = 0.0;
   for (const Attractor& a : s.attractors)
     if (a.soft) s.soft_fraction += a.fraction;
+  std::vector<double> shares;  // the outcomes' shares: each listed attractor, unresolved, unlisted
+  for (const Attractor& a : s.attractors) shares.push_back(a.fraction);
+  shares.push_back(static_cast<double>(s.unresolved) / s.K);
+  shares.push_back(static_cast<double>(s.unlisted) / s.K);
+  s.basin_entropy = s.K > 0 ? fraction_entropy(shares) : 0.0;
 }
 
 std::size_t match_attractor(const Parameters& p, const PointOptions& options, std::vector<Attractor>& list,

@@ -110,6 +110,8 @@ struct CensusSummary {
   int unresolved = 0;                  // initial states labelled kUnresolvedLabel
   int unlisted = 0;                    // initial states labelled kUnlistedLabel
   double soft_fraction = 0.0;          // sum of the fractions of soft attractors (is_soft, regime.hpp)
+  double basin_entropy = 0.0;          // -sum f ln f over the outcomes' shares (listed attractors, unresolved,
+                                       // unlisted), nats: basin_entropy.hpp's S_b with the box as one box
   int decided_early = 0;               // initial states decided by capture or recurrence
   std::vector<Eigen::Vector4d> initial_conditions;  // with CensusOptions::labels
   std::vector<int> labels;                          // with CensusOptions::labels: index into attractors
@@ -214,7 +216,7 @@ Attractor canonical_record(const Parameters& p, const PointOptions& options, con
 // `found`, or kUnresolvedLabel / kUnlistedLabel; labels[0] is the rest state's): attractors by
 // how many states reach them (first found on ties), at most max_attractors, the one rest reaches
 // always among them, with count, fraction, stderr and from_rest; `labels` renumbered to the
-// list. Sets s.attractors, s.unresolved, s.unlisted and s.soft_fraction from s.K.
+// list. Sets s.attractors, s.unresolved, s.unlisted, s.soft_fraction and s.basin_entropy from s.K.
 void list_attractors(CensusSummary& s, const std::vector<Attractor>& found, std::vector<int>& labels,
                      int max_attractors);
 
