@@ -170,13 +170,13 @@ def draw_shock(fig, ax, sl, x_edges, y_edges):
         lo, hi = float(values.min()), float(values.max())
         if hi <= lo:
             lo, hi = lo / 1.5, hi * 1.5
-        mesh = ax.pcolormesh(x_edges, y_edges, values, cmap=plt.get_cmap("magma"),
+        mesh = ax.pcolormesh(x_edges, y_edges, values, cmap=plt.get_cmap("viridis"),
                              norm=matplotlib.colors.LogNorm(vmin=lo, vmax=hi), shading="flat")
         fig.colorbar(mesh, ax=ax, pad=0.02).set_label(
             "minimal critical shock of the soft attractor (motion scales L, omega L)", fontsize=9)
-    title = f"shock that knocks the soft attractor out (census); soft in {maps.cells_text(int(has_soft.sum()))}"
+    title = f"soft attractor's critical shock: soft in {maps.cells_text(int(has_soft.sum()))}"
     if found.any():
-        title += f", shock {float(shock[found].min()):.3g} .. {float(shock[found].max()):.3g}"
+        title += f", {float(shock[found].min()):.3g} .. {float(shock[found].max()):.3g}"
     return title, handles
 
 

@@ -15,6 +15,18 @@ constexpr double Attractor::*kReals[] = {
 constexpr bool Attractor::*kFlags[] = {&Attractor::hertz_valid, &Attractor::from_rest, &Attractor::soft,
                                        &Attractor::transient};
 
+// A regime as kind, n, k (int32); `what` names the record in the refusal of an unknown kind.
+Regime decode_regime(ByteReader& in, const char* what) {
+  const auto kind = in.get<std::int32_t>();
+  if (kind < 0 || kind > static_cast<std::int32_t>(RegimeKind::failed))
+    throw WireError(std::string(what) + " unknown regime kind " + std::to_string(kind));
+  Regime r;
+  r.kind = static_cast<RegimeKind>(kind);
+  r.n = in.get<std::int32_t>();
+  r.k = in.get<std::int32_t>();
+  return r;
+}
+
 void encode_shock(const CriticalShock& c, ByteWriter& out) {
   out.put(static_cast<std::int32_t>(c.status));
   for (const double v : {c.size, c.random_size, c.wall_s}) out.put(v);
@@ -37,12 +49,7 @@ CriticalShock decode_shock(ByteReader& in) {
     for (int i = 0; i < 4; ++i) (*x)[i] = in.get<double>();
   c.strobe_index = in.get<std::int32_t>();
   c.to = in.get<std::int32_t>();
-  const auto kind = in.get<std::int32_t>();
-  if (kind < 0 || kind > static_cast<std::int32_t>(RegimeKind::failed))
-    throw WireError("a shock leading to an unknown regime kind " + std::to_string(kind));
-  c.to_regime.kind = static_cast<RegimeKind>(kind);
-  c.to_regime.n = in.get<std::int32_t>();
-  c.to_regime.k = in.get<std::int32_t>();
+  c.to_regime = decode_regime(in, "a shock leading to");
   c.unresolved = in.get<std::int32_t>();
   c.verified = in.get<std::uint8_t>() != 0;
   c.follows = static_cast<long>(in.get<std::int64_t>());
@@ -71,12 +78,7 @@ void AttractorCodec::encode(const Attractor& a, ByteWriter& out) const {
 Attractor AttractorCodec::decode(ByteReader& in) const {
   Attractor a;
   a.periodic = in.get<std::uint8_t>() != 0;
-  const auto kind = in.get<std::int32_t>();
-  if (kind < 0 || kind > static_cast<std::int32_t>(RegimeKind::failed))
-    throw WireError("an attractor of unknown regime kind " + std::to_string(kind));
-  a.regime.kind = static_cast<RegimeKind>(kind);
-  a.regime.n = in.get<std::int32_t>();
-  a.regime.k = in.get<std::int32_t>();
+  a.regime = decode_regime(in, "an attractor of");
   for (const auto member : kReals) a.*member = in.get<double>();
   for (const auto member : kFlags) a.*member = in.get<std::uint8_t>() != 0;
   a.stable = in.get<std::int32_t>();
