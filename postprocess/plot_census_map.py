@@ -9,6 +9,11 @@ basin fractions of one chosen cell.
   --show soft         soft_fraction per cell: the total basin fraction of the attractors that
                       are soft (periodic with impacts, stable, Hertz-valid, k_con <= the map's
                       soft_kcon) (0..1)
+  --show shock        per cell the minimal critical shock of its soft attractor (the soft one with
+                      the largest basin fraction), in motion scales, on a log colour scale: how hard
+                      a kick knocks the soft impact out; cells without a soft attractor grey, soft
+                      attractors with no shock up to census.shock_max_radius dark (the map needs
+                      census.shock = true)
 A map made with analysis.steady = "shooting" says so in every picture's title.
   --show cell --at E1=1.4e10 E2=1e6
                       the basin fractions of the grid cell nearest those values, one bar per
@@ -56,7 +61,8 @@ COLOR_NOT_COMPUTED = "#dedede"
 COLOR_SOFT = "#1a9850"
 COLOR_OTHER = "#4575b4"
 COLOR_UNDECIDED = "#9e9e9e"
-SUFFIX = {"attractors": "_attractors", "soft": "_soft", "cell": "_cell"}
+COLOR_NO_SHOCK = "#252525"
+SUFFIX = {"attractors": "_attractors", "soft": "_soft", "shock": "_shock", "cell": "_cell"}
 
 
 def parse_args(argv: list[str] | None):
@@ -64,12 +70,13 @@ def parse_args(argv: list[str] | None):
         prog=PROG,
         description=(
             "Plot a census map of vibromap (a sweep whose scene had [census]): the number of attractors "
-            "per cell (--show attractors), the soft basin fraction per cell (--show soft), or the basin "
+            "per cell (--show attractors), the soft basin fraction per cell (--show soft), the soft "
+            "attractor's minimal critical shock per cell (--show shock), or the basin "
             "fractions of one cell (--show cell --at NAME=VALUE ...)."
         ),
         suffix="_attractors",
     )
-    parser.add_argument("--show", choices=("attractors", "soft", "cell"), default="attractors",
+    parser.add_argument("--show", choices=("attractors", "soft", "shock", "cell"), default="attractors",
                         help="what to draw (default: attractors)")
     parser.add_argument("--at", metavar="NAME=VALUE", nargs="+", action="extend", default=[],
                         help="--show cell: the cell nearest these axis values (SI units; default: the middle of every axis)")
@@ -125,6 +132,54 @@ def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
     return text
 
 
+def require_shock(sweep: SweepMap) -> None:
+    if "shock" not in sweep.census:
+        raise VibromapFileError(
+            f"{sweep.path}: no shock datasets (attractor_shock); make the census map with census.shock = true"
+        )
+
+
+def add_soft_shock(sweep: SweepMap) -> None:
+    """Adds to the map's per-cell data "soft_shock", the shock of each cell's soft attractor with
+    the largest basin fraction (NaN where none was found), and "has_soft" (1 where the cell has a
+    soft attractor), so that a slice carries them."""
+    soft = np.asarray(sweep.census["soft"]) == 1
+    fraction = np.where(soft, np.asarray(sweep.census["fraction"], dtype=float), -1.0)
+    chosen = np.argmax(fraction, axis=-1)
+    has_soft = soft.any(axis=-1) & (np.asarray(sweep.data["done"]) != 0)
+    shock = np.take_along_axis(np.asarray(sweep.census["shock"], dtype=float), chosen[..., None], axis=-1)[..., 0]
+    sweep.data["soft_shock"] = np.where(has_soft, shock, np.nan)
+    sweep.data["has_soft"] = has_soft.astype(np.int8)
+
+
+def draw_shock(fig, ax, sl, x_edges, y_edges):
+    shock = np.asarray(sl.data["soft_shock"], dtype=float)
+    has_soft = np.asarray(sl.data["has_soft"]) == 1
+    found = has_soft & np.isfinite(shock) & (shock > 0)
+    status = np.full(shock.shape, 0.0)  # 0 grey: no soft attractor (or not computed); 1 dark: no shock found
+    status[has_soft & ~found] = 1.0
+    ax.pcolormesh(x_edges, y_edges, status, cmap=matplotlib.colors.ListedColormap([COLOR_NOT_COMPUTED, COLOR_NO_SHOCK]),
+                  vmin=0.0, vmax=1.0, shading="flat")
+    handles = [Patch(facecolor=COLOR_NOT_COMPUTED, edgecolor="0.4", linewidth=0.5,
+                     label=f"no soft attractor: {maps.cells_text(int((~has_soft).sum()))}")]
+    if (has_soft & ~found).any():
+        handles.append(Patch(facecolor=COLOR_NO_SHOCK, edgecolor="0.4", linewidth=0.5,
+                             label=f"soft, no shock found: {maps.cells_text(int((has_soft & ~found).sum()))}"))
+    if found.any():
+        values = np.ma.masked_array(shock, mask=~found)
+        lo, hi = float(values.min()), float(values.max())
+        if hi <= lo:
+            lo, hi = lo / 1.5, hi * 1.5
+        mesh = ax.pcolormesh(x_edges, y_edges, values, cmap=plt.get_cmap("viridis"),
+                             norm=matplotlib.colors.LogNorm(vmin=lo, vmax=hi), shading="flat")
+        fig.colorbar(mesh, ax=ax, pad=0.02).set_label(
+            "minimal critical shock of the soft attractor (motion scales L, omega L)", fontsize=9)
+    title = f"soft attractor's critical shock: soft in {maps.cells_text(int(has_soft.sum()))}"
+    if found.any():
+        title += f", {float(shock[found].min()):.3g} .. {float(shock[found].max()):.3g}"
+    return title, handles
+
+
 def plot_map(sweep: SweepMap, sl, show: str, curves=()):
     done = np.asarray(sl.data["done"]) != 0
     fig, ax = plt.subplots(figsize=FIGSIZE_IN if sl.y is not None else maps.STRIP_FIGSIZE_IN, constrained_layout=True)
@@ -144,6 +199,8 @@ def plot_map(sweep: SweepMap, sl, show: str, curves=()):
                 handles.append(Patch(facecolor=colors[value + 1], edgecolor="0.4", linewidth=0.5,
                                      label=f"{what}: {maps.cells_text(cells)}"))
         title = "attractors per cell (census)"
+    elif show == "shock":
+        title, handles = draw_shock(fig, ax, sl, x_edges, y_edges)
     else:
         soft = np.ma.masked_array(np.asarray(sl.data["soft_fraction"], dtype=float), mask=~done)
         cmap = plt.get_cmap("viridis").copy()
@@ -214,6 +271,9 @@ def main(argv: list[str] | None = None) -> int:
     def figure():
         sweep = read_map(args.map)
         require_census(sweep)
+        if args.show == "shock":
+            require_shock(sweep)
+            add_soft_shock(sweep)
         if args.show == "cell":
             return plot_cell(sweep, cell_index(sweep, args.at_values))
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)

@@ -39,6 +39,7 @@ struct RunArgs {
   bool overwrite = false;         // replace an existing trajectory file
   bool census = false;            // look for every attractor ([census]) instead of the one from rest
   bool labels = false;            // with census: also print each initial state and its attractor
+  bool shock = false;             // with census: also each attractor's minimal critical shock (census.shock)
 };
 
 // Solves the scene's point and prints its summary to `out`; writes the trajectory file when
@@ -101,6 +102,7 @@ int census_command(const RunArgs& args, std::ostream& out) {
   const Scene scene = mpi ? load_scene_everywhere(*mpi, args.scene, args.sets) : load_scene(args.scene, args.sets);
   CensusOptions census = scene.census.value_or(CensusOptions{});
   census.labels = args.labels;
+  census.shock = census.shock || args.shock;
   CensusSummary summary;
   if (mpi && mpi->size() > 1) {
     if (mpi->rank() == 0 && census.decide_by_recurrence)
@@ -135,6 +137,7 @@ int census_command(const RunArgs& args, std::ostream& out) {
 
 int run_command(const RunArgs& args, std::ostream& out) {
   if (args.labels && !args.census) throw SceneError(args.scene + ": --labels needs --census");
+  if (args.shock && !args.census) throw SceneError(args.scene + ": --shock needs --census");
   if (args.census) return census_command(args, out);
   // One point: under an MPI launcher only the first rank solves and prints it.
   if (launcher_rank() != 0) return code(ExitCode::ok);
@@ -199,6 +202,8 @@ Command declare_run(CLI::App& app) {
   run->add_flag("--overwrite", args->overwrite, "Replace an existing trajectory file");
   run->add_flag("--census", args->census, "Find every attractor of the point with its basin fraction ([census])");
   run->add_flag("--labels", args->labels, "With --census: also print each initial state and its attractor's index");
+  run->add_flag("--shock", args->shock,
+                "With --census: also each attractor's minimal critical shock (census.shock; docs/model.md)");
   return {.app = run, .footer = run_footer(), .topic = "a run", .campaign = census_under_launcher,
           .run = [args](std::ostream& out) { return run_command(*args, out); }};
 }

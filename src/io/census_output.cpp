@@ -1,5 +1,6 @@
 #include "vibromap/io/census_output.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <ostream>
@@ -12,6 +13,26 @@
 namespace vibromap {
 
 namespace {
+
+// The shock record of an attractor (critical_shock.hpp).
+void write_shock(JsonWriter& w, const CriticalShock& c) {
+  w.begin_object();
+  w.field("status", to_string(c.status));
+  w.field("size", c.size);
+  w.key("dx");
+  write_state_json(w, c.dx);
+  w.key("x_star");
+  write_state_json(w, c.x_star);
+  w.field("strobe_index", c.strobe_index);
+  w.field("to", c.to);
+  w.field("to_regime", c.to_regime.label());
+  w.field("verified", c.verified);
+  w.field("random_size", c.random_size);
+  w.field("follows", c.follows);
+  w.field("unresolved", c.unresolved);
+  w.field("wall_s", c.wall_s);
+  w.end_object();
+}
 
 void write_attractor(JsonWriter& w, const Attractor& a) {
   w.begin_object();
@@ -39,7 +60,50 @@ void write_attractor(JsonWriter& w, const Attractor& a) {
   w.key("strobe").begin_array();
   for (const Eigen::Vector4d& x : a.strobe) write_state_json(w, x);
   w.end_array();
+  if (a.shock.status != ShockStatus::not_computed) {
+    w.key("shock");
+    write_shock(w, a.shock);
+  }
   w.end_object();
+}
+
+// The shock column: size, and where it leads ("-> #1"; "-> (2,2)" for an attractor the census
+// does not list).
+std::string shock_cell(const CriticalShock& c) {
+  if (c.status != ShockStatus::found) return to_string(c.status);
+  const std::string to = c.to >= 0 ? cat("#", std::to_string(c.to)) : c.to_regime.label();
+  return cat(printf_number(c.size, "%.4g"), " -> ", to);
+}
+
+std::string state_text(const Eigen::Vector4d& x) {
+  return cat("(", printf_number(x[0], "%.6g"), ", ", printf_number(x[1], "%.6g"), ", ", printf_number(x[2], "%.6g"),
+             ", ", printf_number(x[3], "%.6g"), ")");
+}
+
+// Below the table: each shock found, with its vector, the state it moves and the work.
+void write_shock_lines(std::ostream& os, const CensusSummary& s) {
+  os << "\nminimal critical shock (motion scales L, omega L; dx in m, m, m/s, m/s):\n";
+  for (std::size_t i = 0; i < s.attractors.size(); ++i) {
+    const CriticalShock& c = s.attractors[i].shock;
+    os << "  #" << i << " " << s.attractors[i].regime.label() << ": ";
+    if (c.status != ShockStatus::found) {
+      os << to_string(c.status) << " (" << c.follows << " follows, " << printf_number(c.wall_s, "%.2f") << " s)\n";
+      continue;
+    }
+    os << printf_number(c.size, "%.5g") << " (random directions alone " << printf_number(c.random_size, "%.5g")
+       << ") at strobe state " << c.strobe_index << "\n"
+       << "     x* = " << state_text(c.x_star) << "\n"
+       << "     dx = " << state_text(c.dx) << "\n"
+       << "     leads to " << (c.to >= 0 ? cat("#", std::to_string(c.to), " ") : std::string("an unlisted "))
+       << c.to_regime.label() << (c.verified ? " (verified by a fresh follow)" : " (NOT verified by a fresh follow)")
+       << "; " << c.follows << " follows (" << c.unresolved << " unresolved), " << printf_number(c.wall_s, "%.2f")
+       << " s\n";
+  }
+}
+
+bool any_shock(const CensusSummary& s) {
+  return std::any_of(s.attractors.begin(), s.attractors.end(),
+                     [](const Attractor& a) { return a.shock.status != ShockStatus::not_computed; });
 }
 
 }  // namespace
@@ -97,15 +161,18 @@ void write_census_table(std::ostream& os, const CensusSummary& s, const Scene& s
     os << "transient      " << s.transient_periods << " periods past analysis.max_periods followed states on leaking "
        << "non-periodic sets; " << s.transient_states << " still on one at the end\n";
   os << "\n";
-  os << "  #  regime          fraction  +-stderr   k_con       T_con (s)   F_max (N)   z/R*      max|mu|   rest  soft\n";
+  const bool shocks = any_shock(s);
+  os << "  #  regime          fraction  +-stderr   k_con       T_con (s)   F_max (N)   z/R*      max|mu|   rest  soft"
+     << (shocks ? "  shock" : "") << "\n";
   int i = 0;
   for (const Attractor& a : s.attractors) {
     char line[256];
-    std::snprintf(line, sizeof line, "%3d  %-14s  %8.4f  %8.4f  %10.4g  %10.4g  %10.4g  %8.2e  %7.4f   %-4s  %s\n", i++,
+    std::snprintf(line, sizeof line, "%3d  %-14s  %8.4f  %8.4f  %10.4g  %10.4g  %10.4g  %8.2e  %7.4f   %-4s  %s", i++,
                   a.regime.label().c_str(), a.fraction, a.fraction_stderr, a.k_con, a.T_con, a.F_max, a.z_ratio,
-                  a.max_floquet, a.from_rest ? "yes" : "", a.soft ? "yes" : "");
-    os << line;
+                  a.max_floquet, a.from_rest ? "yes" : "", shocks ? (a.soft ? "yes " : "    ") : (a.soft ? "yes" : ""));
+    os << line << (shocks ? cat("  ", shock_cell(a.shock)) : std::string()) << "\n";
   }
+  if (shocks) write_shock_lines(os, s);
   const int recurrences = scene.census ? scene.census->recurrences : CensusOptions{}.recurrences;
   i = 0;
   for (const Attractor& a : s.attractors) {

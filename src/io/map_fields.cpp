@@ -6,6 +6,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "vibromap/core/text.hpp"
+
 namespace vibromap::detail {
 namespace {
 
@@ -206,6 +208,63 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   fields.push_back(attractor_strobe<3>(real("attractor_v2", "v2 of the attractor's first stroboscopic state", "m/s"), slots));
 }
 
+// An int32 field of the census's attractors with its own fill and range (the shock's indices).
+MapField index_field(std::string name, std::string long_name, std::int64_t lo, std::int64_t hi) {
+  MapField f;
+  f.name = std::move(name);
+  f.file_type = ElementType::int32;
+  f.integer = true;
+  f.fill = -1.0;
+  f.fill_attribute = false;
+  f.long_name = std::move(long_name);
+  f.units = std::string(1, '1');
+  f.lo = lo;
+  f.hi = hi;
+  return f;
+}
+
+// The minimal critical shock's datasets (map_file.hpp), with census.shock.
+void add_shock_fields(std::vector<MapField>& fields, std::size_t slots) {
+  using A = Attractor;
+  const auto real = [](std::string name, std::string long_name, std::string units) {
+    return real_field<&CellResult::T_con>(std::move(name), std::move(long_name), std::move(units));
+  };
+  fields.push_back(attractor_field(
+      code_field<&CellResult::regime>("attractor_shock_status", "outcome of the attractor's minimal critical shock search",
+                                      static_cast<std::int8_t>(ShockStatus::failed),
+                                      "not_listed not_computed found none not_periodic failed"),
+      slots, [](const A& a) { return static_cast<int>(a.shock.status); },
+      [](A& a, std::int64_t v) { a.shock.status = static_cast<ShockStatus>(listed_code(v)); }));
+  fields.push_back(attractor_field(
+      real("attractor_shock",
+           "minimal critical shock: the least perturbation of a period-start state, in motion scales (L, omega L), "
+           "that leads to another attractor (NaN where none was found)",
+           "1"),
+      slots, [](const A& a) { return a.shock.size; }, [](A& a, double v) { a.shock.size = v; }));
+  fields.push_back(attractor_field(
+      index_field("attractor_shock_to",
+                  "index of the attractor the shock leads to (-2: one the cell does not list; -1: none)", -2,
+                  static_cast<std::int64_t>(slots) - 1),
+      slots, [](const A& a) { return a.shock.to; }, [](A& a, std::int64_t v) { a.shock.to = static_cast<int>(v); }));
+  fields.push_back(attractor_field(
+      code_field<&CellResult::regime>("attractor_shock_to_regime", "regime of the attractor the shock leads to",
+                                      regime_code(RegimeKind::failed), flag_meanings(RegimeKind::failed, &regime_code)),
+      slots, [](const A& a) { return regime_code(a.shock.to_regime.kind); },
+      [](A& a, std::int64_t v) { a.shock.to_regime.kind = static_cast<RegimeKind>(listed_code(v)); }));
+  fields.push_back(attractor_field(
+      index_field("attractor_shock_strobe", "which stroboscopic state of the attractor the shock perturbs (-1: none)",
+                  -1, std::numeric_limits<std::int32_t>::max()),
+      slots, [](const A& a) { return a.shock.strobe_index; },
+      [](A& a, std::int64_t v) { a.shock.strobe_index = static_cast<int>(v); }));
+  const char* names[4] = {"attractor_shock_dx1", "attractor_shock_dx2", "attractor_shock_dv1", "attractor_shock_dv2"};
+  const char* what[4] = {"x1", "x2", "v1", "v2"};
+  for (int i = 0; i < 4; ++i)
+    fields.push_back(attractor_field(
+        real(names[i], cat("component ", what[i], " of the minimal critical shock's perturbation (NaN where none)"),
+             i < 2 ? "m" : "m/s"),
+        slots, [i](const A& a) { return a.shock.dx[i]; }, [i](A& a, double v) { a.shock.dx[i] = v; }));
+}
+
 MapField quantity_field(Quantity q) {
   MapField f;
   f.name = to_string(q);
@@ -243,7 +302,8 @@ MapField done_field() {
   return f;
 }
 
-std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels) {
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels,
+                                 bool shock) {
   std::vector<MapField> fields;
   fields.push_back(code_field<&CellResult::status>("status", "outcome of the point solver",
                                                    status_code(SolveStatus::invalid_input),
@@ -267,6 +327,7 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_
       real_field<&CellResult::steady_residual>("steady_residual", "relative residual of the steady-state test", "1"));
   for (const Quantity q : stored) fields.push_back(quantity_field(q));
   if (attractors > 0) add_census_fields(fields, attractors);
+  if (attractors > 0 && shock) add_shock_fields(fields, attractors);
   if (refine_levels > 0) {
     fields.push_back(code_field<&CellResult::computed>(
         "computed", "how the point got its values: solved, inherited from the nearest solved corner of its block, or "

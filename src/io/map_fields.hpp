@@ -44,7 +44,8 @@ MapField done_field();
 // unresolved_fraction, unlisted_fraction, budget_fraction, basin_entropy and the attractor_*
 // datasets (slots = attractors).
 // With refine_levels > 0 (an adaptive map), then computed and level (int8, -1 where not decided).
-std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels = 0);
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels = 0,
+                                 bool shock = false);
 std::uint64_t element_bytes(ElementType t);
 
 // The chunks of an N-D map dataset of `shape`: trailing axes whole while they fit in

@@ -231,6 +231,23 @@ vibromap_cli_test(run_census_bad_box RC 2 ARGS run jobs/paper/table1.toml --cens
                   ERR "census\\.x1=\\[1, 0\\]: \\[census\\] x1 = \\[1, 0\\]: must be an array \\[lo, hi\\]")
 vibromap_cli_test(run_census_unknown_key RC 2 ARGS run jobs/paper/table1.toml --census --set census.initial_states=4
                   ERR "unknown key 'initial_states' in \\[census\\]. keys of \\[census\\]: initial_conditions")
+# The minimal critical shock's keys: a bad value in one line, exit 2; --shock needs --census.
+vibromap_cli_test(run_shock_needs_census RC 2 ARGS run jobs/paper/table1.toml --shock ERR "--shock needs --census")
+vibromap_cli_test(run_census_shock_on_bad RC 2 ARGS run jobs/paper/table1.toml --census --shock
+                  --set "census.shock_on=[\"v1\", \"v3\"]"
+                  ERR "\\[census\\] shock_on = .*: must be a non-empty array of distinct names among \"x1\", \"x2\", \"v1\", \"v2\"")
+vibromap_cli_test(run_census_shock_on_empty RC 2 ARGS run jobs/paper/table1.toml --census --set "census.shock_on=[]"
+                  ERR "\\[census\\] shock_on = \\[\\]: must be a non-empty array")
+vibromap_cli_test(run_census_shock_tolerance_bad RC 2 ARGS run jobs/paper/table1.toml --census --set census.shock_tolerance=0.5
+                  ERR "\\[census\\] shock_tolerance = 0\\.5: must be in \\[1e-08, 0\\.1\\]")
+vibromap_cli_test(run_census_shock_directions_bad RC 2 ARGS run jobs/paper/table1.toml --census --set census.shock_directions=0
+                  ERR "\\[census\\] shock_directions = 0: must be an integer in \\[1, 1e\\+06\\]")
+vibromap_cli_test(run_census_shock_max_radius_bad RC 2 ARGS run jobs/paper/table1.toml --census --set census.shock_max_radius=-1
+                  ERR "\\[census\\] shock_max_radius = -1: must be in \\(0, 1000\\]")
+# Table 1 has one attractor: no other to knock it into, so its shock is none (up to the largest radius).
+vibromap_cli_test(run_census_shock_monostable RC 0 ARGS run jobs/paper/table1.toml --census --shock
+                  --set census.initial_conditions=2 --set census.shock_directions=2 --set census.shock_max_radius=0.5
+                  OUT "soft +shock\n.*\\(1,1\\) .* none\n")
 
 # `vibromap orbit-diagram` (issue #12): the path up and back down, the state carried; a clear
 # line for a bad key, range or option.

@@ -39,6 +39,14 @@
 //                    attractors (core/analysis/census/census.hpp's Attractor): read back, an attractor
 //                    has one stroboscopic state (or none, all NaN) and its other fields at their
 //                    defaults; a listed attractor whose regime or flag holds -1 is malformed.
+//   With census.shock (root attribute census_shock = 1), per (cell, attractor) the minimal critical
+//   shock (core/analysis/census/critical_shock.hpp): /attractor_shock (float64, motion scales; NaN
+//   where none was found, not listed or not looked for), /attractor_shock_status (int8: -1 not
+//   listed, then ShockStatus order: not_computed found none not_periodic failed),
+//   /attractor_shock_to (int32: index of the attractor it leads to; -2 one the cell does not list,
+//   -1 none), /attractor_shock_to_regime (int8, regime codes), /attractor_shock_strobe (int32: which
+//   stroboscopic state was perturbed, -1 none), /attractor_shock_dx1, _dx2 (m), _dv1, _dv2 (m/s)
+//   (float64, NaN where none).
 //   The ordinary datasets then describe the attractor the rest state reaches.
 // Float datasets hold NaN (their _FillValue) where done == 0; integer ones hold 0, and
 // regime/status/stable -1. So a NaN alone does not say whether a cell was reached: /done does.
@@ -119,6 +127,9 @@ struct MapLayout {
   std::string refine_on = {};
   double refine_audit = 0.0;
   bool refine_speckle = false;  // root attribute refine_speckle (0 | 1)
+  // Census maps with census.shock: the /attractor_shock* datasets, root attribute census_shock = 1
+  // (absent without them).
+  bool census_shock = false;
 };
 
 // What an adaptive map's run did: points solved (per level, then in all), inherited, audited

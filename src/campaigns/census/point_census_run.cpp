@@ -9,6 +9,7 @@
 #include "vibromap/campaigns/census/follow_state.hpp"
 #include "vibromap/campaigns/exit_status.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
+#include "vibromap/core/analysis/census/critical_shock.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/parallel/campaign.hpp"
 
@@ -104,6 +105,7 @@ CensusSummary CensusSink::summary(const std::vector<Eigen::Vector4d>& ics, const
     s.initial_conditions = ics;
     s.labels = labels;
   }
+  add_critical_shocks(scene_.params, scene_.options, followers, s);  // rank 0 alone, after the census
   return s;
 }
 

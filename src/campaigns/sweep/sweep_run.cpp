@@ -67,6 +67,7 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
                  OutputPolicy{.overwrite = config.overwrite, .resumable = true, .resume = config.resume});
   const std::size_t attractors = scene.census ? static_cast<std::size_t>(scene.census->max_attractors) : 0;
   MapLayout layout{map_grid(*scene.sweep), scene.sweep->store, scene.text, map_identity(scene), attractors};
+  layout.census_shock = scene.census && scene.census->shock;
   const AnalysisOptions& analysis = scene.options.analysis;
   layout.steady = to_string(analysis.steady);
   layout.hertz_limit = analysis.hertz_limit;

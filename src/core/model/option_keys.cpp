@@ -39,6 +39,14 @@ void add_census_options(std::vector<KeyInfo>& rows) {
   rows.push_back(option(s, "rtol", KeyType::real, B::between(1e-14, 1e-3), "-",
                         "tolerance initial states are followed at (orbits are refined at [solver] rtol); the "
                         "scene's when looser"));
+  rows.push_back(option(s, "shock_directions", KeyType::integer, B::between(1, 1e6), "-",
+                        "shock: random directions whose rays are scanned and bisected before the compass search"));
+  rows.push_back(option(s, "shock_tolerance", KeyType::real, B::between(1e-8, 0.1), "-",
+                        "shock: relative tolerance on the shock's size (each ray's bisection; the compass search "
+                        "stops when its turn falls below this many rad)"));
+  rows.push_back(option(s, "shock_max_radius", KeyType::real, B::between(0.0, 1e3, true, false), "-",
+                        "shock: largest shock looked for, in motion scales (L, omega L); a ray that leads nowhere "
+                        "else up to it gives none (2: the default box's half-diagonal)"));
 }
 
 void add_optimise_options(std::vector<KeyInfo>& rows) {

@@ -1,6 +1,7 @@
 // The [census] section of a scene: the options of CensusOptions, each a row like [optimise]'s.
 // The box sides x1, x2, v1, v2 are arrays [lo, hi]; the others are numbers.
 
+#include <algorithm>
 #include <cmath>
 
 #include "option_fields.hpp"
@@ -39,6 +40,30 @@ CensusRow census_row(std::string_view key, KeyType type, Bounds bounds, std::str
   return {{kCensus, key, type, bounds, {}, unit, meaning, {}, std::move(default_text), true}, access.read, access.text, {}};
 }
 
+constexpr const char* kCoordinates[4] = {"x1", "x2", "v1", "v2"};
+constexpr std::string_view kShockOnForm = "a non-empty array of distinct names among \"x1\", \"x2\", \"v1\", \"v2\"";
+
+void read_shock_on(C& o, const KeyInfo&, const toml::node& node, const std::string& loc) {
+  const toml::array* a = node.as_array();
+  std::array<bool, 4> on = {false, false, false, false};
+  bool ok = a != nullptr && !a->empty();
+  for (std::size_t i = 0; ok && i < a->size(); ++i) {
+    const std::optional<std::string_view> name = a->get(i)->value<std::string_view>();
+    const auto* at = name ? std::find(std::begin(kCoordinates), std::end(kCoordinates), *name) : std::end(kCoordinates);
+    ok = at != std::end(kCoordinates) && !on[static_cast<std::size_t>(at - std::begin(kCoordinates))];
+    if (ok) on[static_cast<std::size_t>(at - std::begin(kCoordinates))] = true;
+  }
+  if (!ok) fail(cat(loc, ": must be ", kShockOnForm));
+  o.shock_on = on;
+}
+
+std::string shock_on_text(const C& o, const KeyInfo&) {
+  std::string text;
+  for (std::size_t i = 0; i < 4; ++i)
+    if (o.shock_on[i]) text += cat(text.empty() ? "[" : ", ", "\"", kCoordinates[i], "\"");
+  return text + "]";
+}
+
 // A numeric option: its row is the key table's (option_keys(), core/model/keys.hpp).
 CensusRow numeric_row(std::string_view key, std::string default_text, RowAccess<C> access) {
   KeyInfo info = option_key(cat(kCensus, ".", key));
@@ -55,6 +80,30 @@ CensusRow side_row(std::string_view key, std::string_view meaning) {
   r.allowed_text = "[lo, hi], lo <= hi, hi - lo finite";
   r.info.default_given = false;
   return r;
+}
+
+// The minimal critical shock's rows (core/analysis/census/critical_shock.hpp).
+void add_shock_rows(std::vector<CensusRow>& rows) {
+  const C d;
+  rows.push_back(census_row("shock", KeyType::boolean, Bounds::finite(), "-",
+                            "also find each listed periodic attractor's minimal critical shock: the smallest "
+                            "perturbation of one of its period-start states, in motion scales, that sends the motion "
+                            "to another attractor (run --census --shock; a census map's /attractor_shock)",
+                            d.shock ? "true" : "false", bool_field<C, &C::shock>()));
+  CensusRow on = census_row("shock_on", KeyType::choice, Bounds::finite(), "-",
+                            "shock: the coordinates the shock moves (the others stay 0); [\"v1\", \"v2\"]: a "
+                            "velocity kick, the impulse a blow gives",
+                            shock_on_text(d, {}), {read_shock_on, shock_on_text});
+  on.allowed_text = "distinct names among \"x1\", \"x2\", \"v1\", \"v2\", at least one";
+  rows.push_back(on);
+  rows.push_back(numeric_row("shock_directions", std::to_string(d.shock_directions),
+                             integer_field<C, &C::shock_directions>()));
+  rows.push_back(numeric_row("shock_tolerance", float_text(d.shock_tolerance), real_field<C, &C::shock_tolerance>()));
+  rows.push_back(numeric_row("shock_max_radius", float_text(d.shock_max_radius), real_field<C, &C::shock_max_radius>()));
+  rows.push_back(census_row("shock_optimise", KeyType::boolean, Bounds::finite(), "-",
+                            "shock: refine the best random direction by the compass search on the sphere; false: the "
+                            "random directions alone (for checks)",
+                            d.shock_optimise ? "true" : "false", bool_field<C, &C::shock_optimise>()));
 }
 
 std::vector<CensusRow> make_rows() {
@@ -83,6 +132,7 @@ std::vector<CensusRow> make_rows() {
                             "decide states early (capture, Newton searches, recurrence when asked); false: brute force, every "
                             "state integrated to its steady state at [solver] rtol (for checks)",
                             d.early_stop ? "true" : "false", bool_field<C, &C::early_stop>()));
+  add_shock_rows(rows);
   return rows;
 }
 
@@ -111,8 +161,13 @@ std::optional<CensusOptions> read_census(const toml::table& table, const Context
   return o;
 }
 
+// The shock's keys change no cell unless census.shock is on: without it they are left out, so that
+// a map's identity is the one it had before they existed.
 std::vector<std::string> census_lines(const CensusOptions& o) {
-  return row_lines(kCensus, o, census_rows());
+  std::vector<std::string> lines = row_lines(kCensus, o, census_rows());
+  if (!o.shock)
+    std::erase_if(lines, [](const std::string& line) { return line.starts_with(cat(kCensus, ".shock")); });
+  return lines;
 }
 
 }  // namespace vibromap::detail

@@ -97,6 +97,20 @@ Attractor full_attractor(int i) {
   a.escape_exposure = 4000000000L + i;
   a.escapes = 3 * i;
   a.transient = i == 1;
+  if (i != 2) {
+    a.shock.status = i == 0 ? ShockStatus::found : ShockStatus::none;
+    a.shock.size = 0.125 + i;
+    a.shock.random_size = 1.0 / 3.0;
+    a.shock.wall_s = 2.5;
+    a.shock.dx = Eigen::Vector4d(1e-3, -0.0, kNaN, 7.0);
+    a.shock.x_star = Eigen::Vector4d(-1.0, 2.0, 3e-300, kInf);
+    a.shock.strobe_index = 2;
+    a.shock.to = kShockToUnlisted;
+    a.shock.to_regime = Regime{RegimeKind::periodic, 3, 3};
+    a.shock.unresolved = 5;
+    a.shock.verified = true;
+    a.shock.follows = 5000000000L;
+  }
   return a;
 }
 
@@ -116,11 +130,24 @@ void expect_same_attractor(const Attractor& x, const Attractor& y) {
   ASSERT_EQ(x.strobe.size(), y.strobe.size());
   for (std::size_t k = 0; k < x.strobe.size(); ++k)
     for (int i = 0; i < 4; ++i) EXPECT_TRUE(same_bits(x.strobe[k][i], y.strobe[k][i]));
+  const CriticalShock &a = x.shock, &b = y.shock;
+  EXPECT_EQ(a.status, b.status);
+  for (const double CriticalShock::*m : {&CriticalShock::size, &CriticalShock::random_size, &CriticalShock::wall_s})
+    EXPECT_TRUE(same_bits(a.*m, b.*m));
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(same_bits(a.dx[i], b.dx[i]) && same_bits(a.x_star[i], b.x_star[i]));
+  EXPECT_EQ(a.strobe_index, b.strobe_index);
+  EXPECT_EQ(a.to, b.to);
+  EXPECT_EQ(a.to_regime, b.to_regime);
+  EXPECT_EQ(a.unresolved, b.unresolved);
+  EXPECT_EQ(a.verified, b.verified);
+  EXPECT_EQ(a.follows, b.follows);
 }
 
 // Layout (attractor_codec.hpp): periodic, kind, n, k (int32), 11 doubles, 4 flags, stable and
-// count (int32), escape_exposure (int64), escapes (int32), the count of states (uint64), states.
-constexpr std::size_t kAttractorBytes = 1 + 3 * 4 + 11 * 8 + 4 + 2 * 4 + 8 + 4 + 8;
+// count (int32), escape_exposure (int64), escapes (int32), the count of states (uint64), states,
+// the shock: status (int32), 3 doubles, dx and x_star (8 doubles), 6 int32, verified, follows (int64).
+constexpr std::size_t kShockBytes = 4 + 3 * 8 + 8 * 8 + 6 * 4 + 1 + 8;
+constexpr std::size_t kAttractorBytes = 1 + 3 * 4 + 11 * 8 + 4 + 2 * 4 + 8 + 4 + 8 + kShockBytes;
 constexpr std::size_t kStateBytes = 4 * 8;
 
 }  // namespace

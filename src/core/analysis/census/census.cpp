@@ -8,6 +8,7 @@
 
 #include "attractor_set.hpp"
 #include "vibromap/core/analysis/census/basin_entropy.hpp"
+#include "vibromap/core/analysis/census/critical_shock.hpp"
 #include "vibromap/core/analysis/point/steady_state.hpp"
 
 namespace vibromap {
@@ -20,7 +21,9 @@ std::string validate(const CensusOptions& o) {
       {"census.initial_conditions", o.initial_conditions}, {"census.seed", static_cast<double>(o.seed)},
       {"census.max_attractors", o.max_attractors},           {"census.recurrences", o.recurrences},
       {"census.max_transient_periods", static_cast<double>(o.max_transient_periods)},
-      {"census.cell", o.cell},                               {"census.rtol", o.rtol}};
+      {"census.cell", o.cell},                               {"census.rtol", o.rtol},
+      {"census.shock_directions", o.shock_directions},       {"census.shock_tolerance", o.shock_tolerance},
+      {"census.shock_max_radius", o.shock_max_radius}};
   for (const auto& [name, v] : numbers)
     if (std::string r = check_option(name, v); !r.empty()) return r;
   const std::pair<const char*, const std::optional<std::array<double, 2>>*> sides[] = {
@@ -28,6 +31,8 @@ std::string validate(const CensusOptions& o) {
   for (const auto& [name, side] : sides)
     if (*side && !((**side)[0] <= (**side)[1] && std::isfinite((**side)[1] - (**side)[0])))
       return std::string(name) + " must be [lo, hi] with finite lo <= hi and a finite hi - lo";
+  if (std::none_of(o.shock_on.begin(), o.shock_on.end(), [](bool on) { return on; }))
+    return "shock_on must name at least one of \"x1\", \"x2\", \"v1\", \"v2\"";
   return {};
 }
 
@@ -442,6 +447,7 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
     s.labels = labels;
   }
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  add_critical_shocks(p, options, census, s);  // each shock reports its own time
   return s;
 }
 

@@ -58,6 +58,13 @@ struct CensusOptions {
   bool early_stop = true;       // false: follow every initial state to its steady state at the scene's
                                 // tolerance, with no capture, recurrence or Newton search (brute force, for checks)
   bool labels = false;          // keep each initial state and its attractor index in the summary
+  // The minimal critical shock of each attractor (critical_shock.hpp), when `shock`.
+  bool shock = false;           // look for each listed attractor's minimal critical shock
+  std::array<bool, 4> shock_on = {true, true, true, true};  // coordinates the shock moves: x1, x2, v1, v2
+  int shock_directions = 32;    // random directions of the search's first step, -
+  double shock_tolerance = 1e-3;  // relative tolerance on the shock's size, -
+  double shock_max_radius = 2.0;  // largest shock looked for, in motion scales (2: the default box's half-diagonal), -
+  bool shock_optimise = true;   // false: the random directions alone, no compass search (for checks)
 };
 
 std::string validate(const CensusOptions& o);
@@ -66,6 +73,37 @@ std::string validate(const CensusOptions& o);
 std::array<std::array<double, 2>, 4> census_box(const Parameters& p, const CensusOptions& o);
 // The K initial states (physical), the rest state first.
 std::vector<Eigen::Vector4d> census_initial_conditions(const Parameters& p, const CensusOptions& o);
+
+// What a shock search found (critical_shock.hpp).
+enum class ShockStatus {
+  not_computed,  // census.shock off, or not looked for
+  found,         // a perturbation of `size` leads elsewhere
+  none,          // no perturbation up to census.shock_max_radius leads elsewhere
+  not_periodic,  // a non-periodic attractor: no period-start states to perturb
+  failed,        // the attractor's own state was not decided as itself
+};
+std::string to_string(ShockStatus s);
+
+// Index a shock leads to when that attractor is not in the census's list.
+constexpr int kShockToUnlisted = -2;
+
+// The minimal critical shock of one attractor (docs/model.md): x_star + dx leads to attractor
+// `to` of the census's list.
+struct CriticalShock {
+  ShockStatus status = ShockStatus::not_computed;
+  double size = std::numeric_limits<double>::quiet_NaN();  // |dx| in motion scales (L, omega L), -
+  Eigen::Vector4d dx = Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN());  // m, m, m/s, m/s
+  Eigen::Vector4d x_star = Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN());  // the state perturbed
+  int strobe_index = -1;        // which of the attractor's stroboscopic states is x_star
+  int to = -1;                  // index into the census's attractors of where x_star + dx leads (verified by a
+                                // fresh follower); kShockToUnlisted: an attractor the census does not list; -1: none
+  Regime to_regime;             // that attractor's regime (unresolved when the verification did not decide)
+  bool verified = false;        // the fresh follow of x_star + dx ends on a decided attractor other than this one
+  double random_size = std::numeric_limits<double>::quiet_NaN();  // the best of the random directions alone, -
+  long follows = 0;             // states followed by the search (the verification included)
+  int unresolved = 0;           // of those, undecided (counted as not leading elsewhere)
+  double wall_s = 0.0;
+};
 
 struct Attractor {
   bool periodic = true;         // false: a non-periodic (or chatter) attractor, told by recurrence
@@ -94,6 +132,7 @@ struct Attractor {
                                 // later for another attractor. A chaotic saddle (transient chaos): its
                                 // fraction is the share still on it at the budget's end, and falls as
                                 // analysis.max_periods grows
+  CriticalShock shock;          // with census.shock (critical_shock.hpp)
 };
 
 // Labels of initial states that reach no listed attractor.
