@@ -43,7 +43,11 @@ MapField done_field();
 // then the stored quantities; with a census (attractors > 0), attractors, soft_fraction,
 // unresolved_fraction, unlisted_fraction and the attractor_* datasets (slots = attractors).
 // With refine_levels > 0 (an adaptive map), then computed and level (int8, -1 where not decided).
-std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels = 0);
+// With fragility > 0, then fragile (int8, -1 where not assessed).
+std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels = 0,
+                                 bool fragility = false);
+// The datasets of a map of `layout`.
+std::vector<MapField> map_fields(const MapLayout& layout);
 std::uint64_t element_bytes(ElementType t);
 
 // The chunks of an N-D map dataset of `shape`: trailing axes whole while they fit in

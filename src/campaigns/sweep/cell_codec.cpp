@@ -8,7 +8,7 @@
 
 namespace vibromap::detail {
 
-// Wire order: the int8 flags status, regime, hertz_valid, stable and soft; n and k (int32); the
+// Wire order: the int8 flags status, regime, hertz_valid, stable, soft and fragile; n and k (int32); the
 // integer quantities but hertz_valid (int64); wall_s and steady_residual; the float quantities
 // (double); then one byte, 1 when the census follows. Quantities go in the table's order.
 // hertz_valid, a flag every map keeps, rides as one byte with the other flags.
@@ -22,6 +22,7 @@ void visit_head(Cell& c, Visit&& visit) {
   visit(c.hertz_valid);
   visit(c.stable);
   visit(c.soft);
+  visit(c.fragile);
   visit(c.n);
   visit(c.k);
 }
