@@ -48,14 +48,15 @@ std::uint32_t layout_fingerprint(std::span<const Quantity> quantities) {
   return h;
 }
 
-// The fingerprint of the 15 quantities the generations 6 and 8 were set for: those give the
-// generation itself (the bytes ranks exchanged before the codec followed the table).
+// The fingerprint of the 15 quantities the generations were set for: those give the generation
+// itself. Generations 6 and 8: the bytes ranks exchanged before the codec followed the table;
+// 10 and 12: the head with the fragile flag.
 constexpr std::uint32_t kGenerationQuantities = 0x7e7b7156;
 
 }  // namespace
 
 std::uint32_t cell_layout_version(bool census, std::span<const Quantity> quantities) {
-  return (census ? 8u : 6u) ^ layout_fingerprint(quantities) ^ kGenerationQuantities;
+  return (census ? 12u : 10u) ^ layout_fingerprint(quantities) ^ kGenerationQuantities;
 }
 
 // Ranks built apart compare it (parallel/farm.hpp): the layout follows the table, so does this.
