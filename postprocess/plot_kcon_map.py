@@ -12,7 +12,9 @@ unresolved or failed (dark grey), any other without a finite k_con (tan), and no
 default) are greyed and hatched: their k_con comes from a force law that does not hold there.
 A red line outlines the soft region by the one definition (periodic with impacts, stable,
 Hertz-valid, k_con <= the map's soft_kcon): the map's /soft, or for another --threshold computed
-from regime, stable, hertz_valid and k_con; an invalid cell is never inside it. Other axes are held fixed as in plot_regime_map (--fix); the title names their values
+from regime, stable, hertz_valid and k_con; an invalid cell is never inside it. A map made with
+analysis.fragility cross-hatches its fragile cells in red (a perturbation of the initial state
+ends on another attractor), as plot_regime_map does. Other axes are held fixed as in plot_regime_map (--fix); the title names their values
 and, for a map made by shooting, that each cell is some stable orbit, not necessarily the motion
 from rest. The map must have stored k_con ([sweep] store = ["k_con", ...]).
 
@@ -211,6 +213,7 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     for mask, color, what in counts:
         if mask.any():
             handles.append(maps.cell_patch(color, f"{what}: {maps.cells_text(int(mask.sum()))}"))
+    handles += maps.draw_fragile(ax, sl, x_edges, y_edges)
     handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
     maps.legend_row(fig, ax_legend, handles)
     return fig

@@ -7,7 +7,9 @@ time; (1,1) is the paper's T-periodic one-blow motion), then chatter, no-contact
 permanent-contact, quasi-periodic, chaotic, non-periodic, unresolved, failed, and
 not-computed for cells a partial run has not reached yet. Cells whose periodic orbit was found
 unstable (its largest Floquet multiplier outside the unit circle; the map's stable == 0) are
-hatched, with their count in the legend. Cells are drawn on their true edges
+hatched, with their count in the legend; so are, cross-hatched in red, the cells a map made with
+analysis.fragility marks fragile (a perturbation of the initial state ends on another attractor:
+the label is not an answer). Cells are drawn on their true edges
 (in log space for a log axis, which is shown as log). A map with more than two axes is cut at
 one grid value of every other axis (--fix, default the middle of the axis); the title names
 those values, and, for a map made with analysis.steady = "shooting", that each cell is some
@@ -84,6 +86,11 @@ PERIODIC_COLORS = (
 OTHER_COLORS = ("#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173")  # labels of unknown codes
 UNSTABLE_HATCH = "////"  # over the regime colour of cells whose periodic orbit is unstable
 UNSTABLE_HATCH_COLOR = "0.15"
+# Over the cells a map made with analysis.fragility marks fragile (a perturbation of the initial
+# state ends on another attractor): their label is not an answer.
+FRAGILE_HATCH = "xxx"
+FRAGILE_HATCH_COLOR = "#d62728"
+FRAGILE_GID = "fragile"
 # Curves of `vibromap continue --curve` drawn over a map (--curves F.h5): a colour and line style
 # per kind (plot_branch's colours for the bifurcations), level curves dashed, each level in a
 # colour of its own; codimension-two points as markers, one marker per kind of point.
@@ -257,6 +264,25 @@ def unstable_cells(sl: MapSlice) -> np.ndarray:
     return (np.asarray(sl.data["stable"]) == STABLE_NO) & (np.asarray(sl.data["done"]) != 0)
 
 
+def fragile_cells(sl: MapSlice) -> np.ndarray | None:
+    """(ny, nx) mask of the cells done marked fragile; None for a map made without analysis.fragility."""
+    if "fragile" not in sl.data:
+        return None
+    return (np.asarray(sl.data["fragile"]) == 1) & (np.asarray(sl.data["done"]) != 0)
+
+
+def draw_fragile(ax, sl: MapSlice, x_edges, y_edges) -> list:
+    """Cross-hatches the fragile cells of a map made with analysis.fragility in red over their own
+    colour; the legend entry (also for none: the map was assessed), or nothing for a map made without."""
+    fragile = fragile_cells(sl)
+    if fragile is None:
+        return []
+    if fragile.any():
+        hatch_cells(ax, x_edges, y_edges, fragile, FRAGILE_HATCH, FRAGILE_HATCH_COLOR, gid=FRAGILE_GID)
+    return [cell_patch("white", f"fragile (a perturbation ends elsewhere): {cells_text(int(fragile.sum()))}",
+                       FRAGILE_HATCH, FRAGILE_HATCH_COLOR)]
+
+
 def mask_rectangles(mask) -> list[tuple[int, int, int, int]]:
     """The cells of a (ny, nx) mask as few rectangles (j0, j1, i0, i1), rows j0..j1 - 1 and
     columns i0..i1 - 1: each row's runs of cells, a run merged with the same run of the rows
@@ -416,6 +442,7 @@ def plot(sweep: SweepMap, sl: MapSlice, curves=()):
     if unstable.any():
         hatch_cells(ax, x_edges, y_edges, unstable)
         handles.append(cell_patch("white", f"unstable orbit: {cells_text(int(unstable.sum()))}", UNSTABLE_HATCH))
+    handles += draw_fragile(ax, sl, x_edges, y_edges)
     handles += draw_curves(ax, sl, list(curves), x_edges, y_edges)
     ax.legend(handles=handles, title="regime", loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     return fig

@@ -14,6 +14,8 @@ and its cell count in the legend:
   unstable orbit        periodic with impacts, unstable; "stability unknown" where not computed
   no impact             no contact or permanent contact
   not periodic          chatter, quasi-periodic, chaotic, non-periodic, unresolved, failed
+A map made with analysis.fragility cross-hatches its fragile cells in red (a perturbation of the
+initial state ends on another attractor), as plot_regime_map does.
 The title states the definition and, for a map made by shooting, that each cell is some stable
 orbit, not necessarily the motion from rest. Axes and --fix work as in plot_regime_map.
 
@@ -177,6 +179,7 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     if invalid.any():
         maps.hatch_cells(ax, x_edges, y_edges, invalid, INVALID_HATCH, INVALID_HATCH_COLOR, gid="hertz-invalid")
     ax.set_title(maps.slice_title("where the motion is soft", sweep, sl) + "\n" + caption(info), fontsize=10)
+    handles += maps.draw_fragile(ax, sl, x_edges, y_edges)
     handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
     maps.legend_row(fig, ax_legend, handles)
     return fig

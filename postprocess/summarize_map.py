@@ -46,6 +46,7 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
     lines.append("stability: " + ", ".join(f"{sweep.stable_meanings.get(int(c), c)} {int((stable == c).sum())}"
                                            for c in sorted(set(stable.tolist()))))
     lines.extend(soft_lines(sweep, done))
+    lines.extend(fragile_lines(sweep, done))
     lines.extend(refine_lines(sweep))
     wall = sweep.data["wall_s"]
     lines.append(f"wall time per cell: median {np.median(wall[done]):.3g} s, max {wall[done].max():.3g} s, "
@@ -68,6 +69,20 @@ def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
             bad += n
     lines.append("finite: every float quantity of every computed cell" if bad == 0 else f"{bad} non-finite values")
     return lines, bad
+
+
+def fragile_lines(sweep, done) -> list[str]:
+    """A map made with analysis.fragility: the cells whose answer a perturbation of the initial
+    state changes, and their labels; nothing for a map made without."""
+    fragile = sweep.fragile_cells()
+    if fragile is None:
+        return []
+    assessed = done & (np.asarray(sweep.data["fragile"]) >= 0)
+    marked = fragile & done
+    labels = regime_counts(sweep.labels()[marked])
+    return [f"fragile: {int(marked.sum())} of {int(assessed.sum())} cells assessed (perturbations of size "
+            f"{sweep.fragility:.3g} motion scales of the initial state end on another attractor; their labels: "
+            + (", ".join(f"{k} {v}" for k, v in labels.items()) or "none") + ")"]
 
 
 def refine_lines(sweep) -> list[str]:

@@ -23,7 +23,9 @@ FORMAT_VERSIONS["regime map"], a map of another version is refused):
             motion; "integrate": brute-force integration), hertz_limit, soft_kcon, version,
             attribute_checksum; an adaptive map (sweep.refine) adds refine_levels, refine_on,
             refine_audit_fraction, refine_speckle and its figures, and the datasets computed and
-            level
+            level; a map made with analysis.fragility > 0 adds the root attribute fragility (the
+            perturbations' size, motion scales) and /fragile (int8: 1 where a perturbation of the
+            initial state ends on another attractor, 0 where none does, -1 not assessed)
   census map (a sweep whose scene had [census]): /attractors (N-D int32), /soft_fraction,
             /unresolved_fraction, /unlisted_fraction, /budget_fraction (N-D float64), and per
             (cell, attractor) /attractor_<q> of shape + (A,) over the coordinate /attractor:
@@ -151,6 +153,19 @@ class SweepMap:
         not necessarily the motion from rest, so a soft cell may not be reached from it."""
         return f"answer: {STEADY_ANSWERS['shooting']}" if self.steady == "shooting" else ""
 
+    @property
+    def fragility(self) -> float:
+        """The size of the perturbations the map's cells were assessed with (analysis.fragility,
+        motion scales); 0 when the map was made without."""
+        return float(self.attrs.get("fragility", 0.0))
+
+    def fragile_cells(self) -> np.ndarray | None:
+        """True where the cell is fragile (a perturbation of its initial state ends on another
+        attractor: its label is not an answer); None for a map made without analysis.fragility."""
+        if "fragile" not in self.data:
+            return None
+        return np.asarray(self.data["fragile"]) == 1
+
     def refine_note(self) -> str:
         """The two lines every picture of an adaptive map (sweep.refine > 0) carries ("" for any other
         map): how many points were solved, on which quantities, and that the others are inherited,
@@ -236,6 +251,8 @@ def _check_layout(f: h5py.File, path: str) -> None:
     required = list(MAP_REQUIRED) + _text(f.attrs["stored"]).split()
     if int(np.asarray(f.attrs["census_attractors"]).reshape(())) > 0:
         required += list(CENSUS_CELL) + [f"attractor_{name}" for name in CENSUS_ATTRACTOR]
+    if "fragility" in f.attrs:
+        required.append("fragile")
     if "refine_levels" in f.attrs:
         required += list(REFINE_DATASETS)
         for name in REFINE_ATTRIBUTES:

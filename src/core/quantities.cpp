@@ -151,6 +151,7 @@ CellResult summarize(const PointSummary& s) {
   c.hertz_valid = s.hertz_valid ? 1 : 0;
   c.stable = static_cast<std::int8_t>(s.stable);
   c.soft = s.soft ? 1 : 0;
+  if (s.fragility.size > 0.0) c.fragile = s.fragility.fragile ? 1 : 0;
   if (!s.floquet.empty()) c.max_multiplier = std::abs(s.floquet.front());
   c.lyapunov = s.lyapunov;
   c.periods = s.periods;

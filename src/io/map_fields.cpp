@@ -302,8 +302,12 @@ MapField done_field() {
   return f;
 }
 
+std::vector<MapField> map_fields(const MapLayout& layout) {
+  return map_fields(layout.stored, layout.attractors, layout.refine_levels, layout.census_shock, layout.fragility > 0.0);
+}
+
 std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels,
-                                 bool shock) {
+                                 bool shock, bool fragility) {
   std::vector<MapField> fields;
   fields.push_back(code_field<&CellResult::status>("status", "outcome of the point solver",
                                                    status_code(SolveStatus::invalid_input),
@@ -339,6 +343,12 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_
         static_cast<std::int8_t>(refine_levels), ""));
     fields.back().flag_values.clear();
   }
+  if (fragility)
+    fields.push_back(code_field<&CellResult::fragile>(
+        "fragile",
+        "1 where a perturbation of the initial state (analysis.fragility, motion scales) ends on another attractor "
+        "than the initial state: the cell's answer is not robust",
+        1, "not_assessed no yes"));
   return fields;
 }
 

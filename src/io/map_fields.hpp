@@ -44,8 +44,12 @@ MapField done_field();
 // unresolved_fraction, unlisted_fraction, budget_fraction, basin_entropy and the attractor_*
 // datasets (slots = attractors).
 // With refine_levels > 0 (an adaptive map), then computed and level (int8, -1 where not decided).
+// With shock (census.shock), the shock fields per (cell, attractor); with fragility, then fragile
+// (int8, -1 where not assessed).
 std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_t attractors, int refine_levels = 0,
-                                 bool shock = false);
+                                 bool shock = false, bool fragility = false);
+// The datasets of a map of `layout`.
+std::vector<MapField> map_fields(const MapLayout& layout);
 std::uint64_t element_bytes(ElementType t);
 
 // The chunks of an N-D map dataset of `shape`: trailing axes whole while they fit in

@@ -61,7 +61,7 @@ const MapRepair& MapWriter::repair() const { return impl_->repair; }
 
 std::uint64_t MapWriter::file_bytes(const MapLayout& layout) {
   std::uint64_t per_cell = 1;  // done
-  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors, layout.refine_levels, layout.census_shock))
+  for (const detail::MapField& f : detail::map_fields(layout))
     per_cell += detail::element_bytes(f.file_type) * f.width();
   // HDF5 stores every chunk whole, the ones that overhang the grid's edge included.
   const Shape shape = layout.grid.shape();
@@ -92,7 +92,7 @@ void make_skeleton(NewFile& out, const MapLayout& layout, int ranks) {
   std::vector<Dataset> scales = detail::write_axes(file, layout.grid);
   if (layout.attractors > 0) scales.push_back(detail::write_attractor_scale(file, layout.attractors));
   detail::make_field(file, detail::done_field(), shape, chunk, scales);
-  for (const detail::MapField& f : detail::map_fields(layout.stored, layout.attractors, layout.refine_levels, layout.census_shock))
+  for (const detail::MapField& f : detail::map_fields(layout))
     detail::make_field(file, f, shape, chunk, scales);
   detail::write_root_attributes(file, layout, ranks);
   scales.clear();

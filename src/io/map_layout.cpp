@@ -120,6 +120,7 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
   file.set_attribute("hertz_limit", layout.hertz_limit);
   file.set_attribute("soft_kcon", layout.soft_kcon);
   if (layout.census_shock) file.set_attribute("census_shock", 1);
+  if (layout.fragility > 0.0) file.set_attribute("fragility", layout.fragility);
   std::vector<std::string> uncovered = {"cells_done", "complete", "ranks"};
   if (layout.refine_levels > 0) {
     file.set_attribute("refine_levels", layout.refine_levels);
@@ -259,6 +260,7 @@ MapLayout read_layout(const Hdf5File& file) {
   layout.steady = file.read_string_attribute("steady");
   layout.hertz_limit = file.read_double_attribute("hertz_limit");
   layout.soft_kcon = file.read_double_attribute("soft_kcon");
+  if (file.has_attribute("fragility")) layout.fragility = file.read_double_attribute("fragility");
   const std::int64_t a = file.read_int_attribute("census_attractors");
   if (a < 0 || a > 64) malformed(path, "root attribute 'census_attractors' is outside 0..64");
   layout.attractors = static_cast<std::size_t>(a);
@@ -296,7 +298,7 @@ Dataset open_field(const Hdf5File& file, std::string_view name, const Shape& sha
 // ---- One chunk of every dataset ----------------------------------------------------------------
 
 void MapDatasets::open(const Hdf5File& file, const MapLayout& layout) {
-  fields = map_fields(layout.stored, layout.attractors, layout.refine_levels, layout.census_shock);
+  fields = map_fields(layout);
   const Shape shape = layout.grid.shape();
   done = open_field(file, "done", shape);
   for (const MapField& f : fields) data.push_back(open_field(file, f.name, with_slots(shape, f)));

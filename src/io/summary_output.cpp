@@ -103,6 +103,8 @@ std::string soft_note(const PointSummary& s, const AnalysisOptions& a) {
   return "k_con " + printf_number(s.k_con, "%.4g") + " > " + printf_number(a.soft_kcon);
 }
 
+void write_fragile_row(std::ostream& os, const Fragility& f);
+
 void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) {
   const std::string nk = s.regime.n > 0 ? "repeats after " + std::to_string(s.regime.n) + " T with " +
                                               std::to_string(s.regime.k) + " impact(s)"
@@ -117,6 +119,7 @@ void write_results(std::ostream& os, const PointSummary& s, const Scene& scene) 
   row(os, "z_ratio", printf_number(s.z_ratio), "-",
       "z_max/R*: Hertz theory " + std::string(s.hertz_valid ? "valid" : "NOT valid") + " (limit " + limit + ")");
   row(os, "soft", s.soft ? "yes" : "no", "", soft_note(s, scene.options.analysis));
+  write_fragile_row(os, s.fragility);
   row(os, "steady_residual", printf_number(s.steady_residual, "%.3g"), "-",
       s.steady_method != SteadyMethod::integrate ? "scaled Newton residual |P^n(y) - y|"
                                                 : "scaled |y(jT) - y((j-n)T)| at the end");
@@ -164,6 +167,54 @@ void write_impacts(std::ostream& os, const PointSummary& s) {
   write_dissipation(os, s);
 }
 
+// analysis.fragility: whether the answer is fragile, and where each perturbed state ended.
+std::string end_text(const SteadyEnd& e) {
+  return e.regime.label() + (e.same ? ", the same attractor" : ", another attractor");
+}
+
+void write_fragile_row(std::ostream& os, const Fragility& f) {
+  if (f.size <= 0.0) return;
+  row(os, "fragile", f.fragile ? "yes" : "no", "",
+      std::to_string(f.perturbed.size()) + " perturbations of size " + printf_number(f.size, "%.3g") +
+          " (motion scales) of the initial state: " + (f.fragile ? "some end elsewhere" : "all end on its attractor"));
+}
+
+void write_fragility(std::ostream& os, const Fragility& f) {
+  if (f.size <= 0.0) return;
+  static constexpr Column columns[] = {{"#", 3}, {"x1 (m)", 16}, {"x2 (m)", 16}, {"v1 (m/s)", 16}, {"v2 (m/s)", 16},
+                                       {"reaches", 30}};
+  os << "\n  perturbed initial states (" << f.perturbed.size() << ", " << f.periods
+     << " forcing periods; the point's own answer is the initial state's):\n"
+     << table_head(columns) << "\n";
+  for (std::size_t i = 0; i < f.perturbed.size(); ++i) {
+    const SteadyEnd& e = f.perturbed[i];
+    const std::vector<std::string> cells = {std::to_string(i + 1), printf_number(e.x0[0], "%.10g"),
+                                            printf_number(e.x0[1], "%.10g"), printf_number(e.x0[2], "%.10g"),
+                                            printf_number(e.x0[3], "%.10g"), end_text(e)};
+    os << table_line(columns, cells) << "\n";
+  }
+}
+
+void write_end_json(JsonWriter& w, const SteadyEnd& e) {
+  w.begin_object().field("regime", e.regime.label()).field("regime_kind", to_string(e.regime.kind));
+  w.field("n", e.regime.n).field("k", e.regime.k).field("same", e.same);
+  write_state_json(w.key("initial_state"), e.x0);
+  w.key("strobe").begin_array();
+  for (const Eigen::Vector4d& x : e.strobe) write_state_json(w, x);
+  w.end_array().end_object();
+}
+
+// "fragility": {size, fragile, periods, own: end, perturbed: [end, ...]}; only when assessed.
+void write_fragility_json(JsonWriter& w, const Fragility& f) {
+  if (f.size <= 0.0) return;
+  w.field("fragile", f.fragile).key("fragility").begin_object();
+  w.field("size", f.size).field("periods", f.periods).field("rhs_evals", f.counters.rhs_evals);
+  write_end_json(w.key("own"), f.own);
+  w.key("perturbed").begin_array();
+  for (const SteadyEnd& e : f.perturbed) write_end_json(w, e);
+  w.end_array().end_object();
+}
+
 // floquet: [{re, im, abs}, ...]; stable: true, false or null (unknown); lyapunov: 1/s or null.
 void write_stability_json(JsonWriter& w, const PointSummary& s) {
   w.key("floquet").begin_array();
@@ -207,7 +258,9 @@ void write_summary_json(std::ostream& os, const PointSummary& s) {
       .field("newton_iterations", s.newton_iterations);
   write_stability_json(w, s);
   w.field("wall_s", s.wall_s);
-  write_state_json(w.key("final_state"), s.final_state).end_object();
+  write_state_json(w.key("final_state"), s.final_state);
+  write_fragility_json(w, s.fragility);
+  w.end_object();
 }
 
 void write_summary_table(std::ostream& os, const PointSummary& s, const Scene& scene) {
@@ -215,6 +268,7 @@ void write_summary_table(std::ostream& os, const PointSummary& s, const Scene& s
   write_results(os, s, scene);
   write_floquet(os, s);
   write_impacts(os, s);
+  write_fragility(os, s.fragility);
 }
 
 }  // namespace vibromap

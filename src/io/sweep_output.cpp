@@ -94,6 +94,7 @@ void write_sweep_json(std::ostream& out, const FarmFigures& f, const SweepTotals
         .field("initial_conditions_per_s", state_rate(f, t))
         .field("census_budget_states", t.census_budget_states);
   w.field("soft_cells", t.soft).field("impacting_cells", t.impacting).field("hertz_invalid_cells", t.hertz_invalid);
+  if (t.fragility_assessed > 0) w.field("fragile_cells", t.fragile).field("fragility_assessed_cells", t.fragility_assessed);
   if (t.refine_levels > 0) write_refine_json(w, f, t);
   w.key("regimes").begin_object();
   for (const auto& [label, count] : t.regimes) w.field(label, count);
@@ -114,6 +115,9 @@ void write_sweep_table(std::ostream& out, const FarmFigures& f, const SweepTotal
         << " initial states followed to analysis.max_periods (no early decision: brute force follows them as far)\n";
   out << "soft           " << t.soft << " cells (periodic with impacts, stable, Hertz-valid, k_con <= analysis.soft_kcon); "
       << t.hertz_invalid << " of " << t.impacting << " cells with impacts beyond the Hertz limit\n";
+  if (t.fragility_assessed > 0)
+    out << "fragile        " << t.fragile << " of " << t.fragility_assessed
+        << " cells assessed (a perturbation of the initial state ends on another attractor: the label is not an answer)\n";
   if (t.refine_levels > 0) write_refine_line(out, f, t);
   out << "regimes       ";
   for (const auto& [label, count] : t.regimes) out << " " << label << " " << count;

@@ -383,6 +383,8 @@ vibromap_cli_test(continue_span_overflows RC 2 ARGS continue jobs/paper/table1.t
                   ERR "--from -1e\\+308 --to 1e\\+308: the span B - A must be finite")
 vibromap_cli_test(step_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set solver.max_steps=1e11
                   ERR "--set solver\\.max_steps=1e11: \\[solver\\] max_steps = 1e\\+11: must be an integer in \\[1, 1e\\+10\\]")
+vibromap_cli_test(fragility_bounds RC 2 ARGS run jobs/paper/table1.toml --set analysis.fragility=0.5
+                  ERR "--set analysis\\.fragility=0\\.5: \\[analysis\\] fragility = 0\\.5: must be in \\[0, 0\\.1\\]")
 vibromap_cli_test(period_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set analysis.max_periods=9e18
                   ERR "--set analysis\\.max_periods=9e18: \\[analysis\\] max_periods = 9e\\+18: must be an integer in \\[1, 1e\\+08\\]")
 # A forcing phase of 1e308 rad swallowed omega t (a constant force, and impacts without end that

@@ -63,6 +63,8 @@ struct CellResult {
   std::int8_t hertz_valid = 0;
   std::int8_t stable = -1;  // 1 stable, 0 unstable, -1 unknown (not computed or not periodic)
   std::int8_t soft = kNotComputed;  // 1 soft (is_soft, regime.hpp), 0 not, -1 not computed
+  std::int8_t fragile = kNotComputed;  // analysis.fragility: 1 a perturbation of the initial state ends on
+                                       // another attractor, 0 none does, -1 not assessed (off, census, not done)
   std::int32_t n = 0, k = 0;
   std::int64_t periods = 0, rhs_evals = 0, clipped_impacts = 0;
   double wall_s = 0.0, steady_residual = 0.0;

@@ -119,6 +119,9 @@ struct MapLayout {
   std::string steady = {};
   double hertz_limit = 0.05;
   double soft_kcon = 10.0;
+  // analysis.fragility (> 0: the map has the dataset fragile and the root attribute fragility;
+  // 0: neither, as before the option existed).
+  double fragility = 0.0;
   // Adaptive maps (sweep.refine > 0; docs/design-refine.md): the grid above is the fine grid,
   // the map has the datasets computed and level, and root attributes refine_levels, refine_on
   // (the quantities, space separated), refine_audit_fraction, and the figures RefineFigures

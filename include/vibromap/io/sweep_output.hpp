@@ -34,6 +34,8 @@ struct SweepTotals {
   long soft = 0;                         // cells whose motion is soft (is_soft)
   long impacting = 0;                    // cells whose motion has impacts
   long hertz_invalid = 0;                // of those, cells beyond the Hertz limit
+  long fragile = 0;                      // cells marked fragile (analysis.fragility)
+  long fragility_assessed = 0;           // cells whose fragility was assessed (0: the option was off)
   // An adaptive map (sweep.refine > 0): levels, and what the run did over the whole map
   // (solved per level, inherited, audited, mismatches and their 95 % bound).
   int refine_levels = 0;

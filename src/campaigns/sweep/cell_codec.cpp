@@ -8,7 +8,7 @@
 
 namespace vibromap::detail {
 
-// Wire order: the int8 flags status, regime, hertz_valid, stable and soft; n and k (int32); the
+// Wire order: the int8 flags status, regime, hertz_valid, stable, soft and fragile; n and k (int32); the
 // integer quantities but hertz_valid (int64); wall_s and steady_residual; the float quantities
 // (double); then one byte, 1 when the census follows. Quantities go in the table's order.
 // hertz_valid, a flag every map keeps, rides as one byte with the other flags.
@@ -22,6 +22,7 @@ void visit_head(Cell& c, Visit&& visit) {
   visit(c.hertz_valid);
   visit(c.stable);
   visit(c.soft);
+  visit(c.fragile);
   visit(c.n);
   visit(c.k);
 }
@@ -49,15 +50,15 @@ std::uint32_t layout_fingerprint(std::span<const Quantity> quantities) {
   return h;
 }
 
-// The fingerprint of the 15 quantities the generations 6 and 8 were set for: those give the
-// generation itself (the bytes ranks exchanged before the codec followed the table). The census
-// generation is 9 since the census carries its basin entropy (8: four census reals).
+// The fingerprint of the 15 quantities the generations were set for: those give the generation
+// itself. Generations 6 and 8: the bytes ranks exchanged before the codec followed the table;
+// 10 and 13: the head with the fragile flag (13: the census with its basin entropy).
 constexpr std::uint32_t kGenerationQuantities = 0x7e7b7156;
 
 }  // namespace
 
 std::uint32_t cell_layout_version(bool census, std::span<const Quantity> quantities) {
-  return (census ? 9u : 6u) ^ layout_fingerprint(quantities) ^ kGenerationQuantities;
+  return (census ? 13u : 10u) ^ layout_fingerprint(quantities) ^ kGenerationQuantities;
 }
 
 // Ranks built apart compare it (parallel/farm.hpp): the layout follows the table, so does this.

@@ -11,6 +11,8 @@ std::string regime_label(const CellResult& c) { return Regime{static_cast<Regime
 void MapTally::add(const CellResult& c) {
   ++regimes[regime_label(c)];
   soft += c.soft == 1 ? 1 : 0;
+  fragile += c.fragile == 1 ? 1 : 0;
+  fragility_assessed += c.fragile >= 0 ? 1 : 0;
   if (c.k > 0 || c.T_con > 0.0) {
     ++impacting;
     hertz_invalid += c.hertz_valid ? 0 : 1;

@@ -19,6 +19,8 @@ struct MapTally {
   long soft = 0;                        // cells whose motion is soft (is_soft)
   long impacting = 0;                   // cells with impacts in their motion (k > 0 or T_con > 0)
   long hertz_invalid = 0;               // of those, cells beyond the Hertz limit
+  long fragile = 0;                     // cells marked fragile (analysis.fragility)
+  long fragility_assessed = 0;          // cells whose fragility was assessed
   void add(const CellResult& c);
 };
 

@@ -50,6 +50,16 @@ void check_same_run(const OutputTarget& target, const MapWriter& w, const MapLay
                         same_grid ? "" : "the map's own grid or stored quantities");
 }
 
+// analysis.fragility of a map's cells: the scene's, or the largest of an axis over it (0: off).
+// A census map leaves it out: its census already lists what the states around rest reach.
+double fragility_of(const Scene& scene) {
+  double size = scene.options.analysis.fragility;
+  for (const Axis& a : scene.sweep->axes)
+    if (a.key == "analysis.fragility")
+      for (const double v : a.values) size = std::max(size, v);
+  return size;
+}
+
 // The map's grid: the axes given, or with sweep.refine = L their fine points.
 Grid map_grid(const SweepOptions& sweep) {
   if (sweep.refine == 0) return Grid(sweep.axes);
@@ -72,6 +82,7 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   layout.steady = to_string(analysis.steady);
   layout.hertz_limit = analysis.hertz_limit;
   layout.soft_kcon = analysis.soft_kcon;
+  if (!scene.census) layout.fragility = fragility_of(scene);
   const SweepOptions& sweep = *scene.sweep;
   std::optional<detail::RefinePlan> plan;
   if (sweep.refine > 0) {
@@ -211,6 +222,8 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
     totals.soft = sink->tally().soft;
     totals.impacting = sink->tally().impacting;
     totals.hertz_invalid = sink->tally().hertz_invalid;
+    totals.fragile = sink->tally().fragile;
+    totals.fragility_assessed = sink->tally().fragility_assessed;
   }
   if (scene.census) totals.census_initial_conditions = scene.census->initial_conditions;
   return report;

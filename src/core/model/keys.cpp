@@ -200,6 +200,18 @@ void add_analysis_keys(std::vector<Row>& rows) {
                          field<an, &A::trajectory_periods>()));
   rows.push_back(integer(s, "trajectory_samples", B::at_least(10), "uniform samples per forcing period in a kept trajectory",
                          field<an, &A::trajectory_samples>()));
+  // At most a tenth of the motion's scale: a perturbation, not another initial state (a census
+  // box is one scale wide). Left out of a run's identity while off, so maps made before the key
+  // existed resume.
+  rows.push_back(real(s, "fragility", B::between(0.0, kMaxFragility), "-",
+                      "size of the perturbations of the initial state also followed to their steady state (motion "
+                      "scales: dx/L, dv/(omega L)); the point is fragile when one ends on another attractor; 0: off",
+                      field<an, &A::fragility>()));
+  rows.back().info.identity_at_default = false;
+  rows.push_back(integer(s, "fragility_states", B::between(1, kMaxFragilityStates),
+                         "perturbed initial states followed when fragility > 0 (fixed directions +-h_i)",
+                         field<an, &A::fragility_states>()));
+  rows.back().info.identity_at_default = false;
 }
 
 void add_initial_keys(std::vector<Row>& rows) {

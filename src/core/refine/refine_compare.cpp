@@ -90,6 +90,7 @@ bool values_differ(double a, double b, bool is_class, double rel) {
 }
 
 bool cells_differ(const CellResult& a, const CellResult& b, const std::vector<RefineOn>& on) {
+  if (a.fragile == 1 || b.fragile == 1) return true;
   for (const RefineOn& q : on)
     if (values_differ(refine_value(a, q.field), refine_value(b, q.field), refine_field_is_class(q.field), q.rel))
       return true;

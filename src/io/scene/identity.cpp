@@ -28,8 +28,9 @@ void add_point_lines(const Scene& scene, std::vector<std::string>& lines) {
   for (const Key k : Key::all()) {
     const int component = k.component();
     if (component >= 0 && !scene.initial_given.at(static_cast<std::size_t>(component))) continue;
-    if (const std::optional<double> v = k.stored(scene.params, scene.options))
-      lines.push_back(cat(k.full_name(), " = ", canonical_value(k.info(), *v)));
+    const std::optional<double> v = k.stored(scene.params, scene.options);
+    if (!v || (!k.info().identity_at_default && v == k.stored(Parameters{}, PointOptions{}))) continue;
+    lines.push_back(cat(k.full_name(), " = ", canonical_value(k.info(), *v)));
   }
 }
 

@@ -205,6 +205,7 @@ CellResult sample_cell() {
   c.hertz_valid = 1;
   c.stable = 0;
   c.soft = -1;
+  c.fragile = 1;
   c.n = 3;
   c.k = -7;
   c.periods = std::numeric_limits<std::int64_t>::max();
@@ -232,6 +233,7 @@ void expect_same_cell(const CellResult& a, const CellResult& b) {
   EXPECT_EQ(a.hertz_valid, b.hertz_valid);
   EXPECT_EQ(a.stable, b.stable);
   EXPECT_EQ(a.soft, b.soft);
+  EXPECT_EQ(a.fragile, b.fragile);
   EXPECT_EQ(a.n, b.n);
   EXPECT_EQ(a.k, b.k);
   for (const Quantity q : all_quantities()) {
@@ -249,12 +251,12 @@ void expect_same_cell(const CellResult& a, const CellResult& b) {
   for (std::size_t i = 0; i < a.census.size(); ++i) expect_same_attractor(a.census[i], b.census[i]);
 }
 
-// Layout: 5 int8 flags (hertz_valid one of them), n and k (int32), an int64 per other integer
+// Layout: 6 int8 flags (hertz_valid and fragile among them), n and k (int32), an int64 per other integer
 // quantity, wall_s, steady_residual and a double per float quantity, the census byte.
 std::size_t cell_bytes() {
   const auto& all = all_quantities();
   const auto integers = static_cast<std::size_t>(std::count_if(all.begin(), all.end(), quantity_is_integer));
-  return 5 + 2 * 4 + (integers - 1) * 8 + (2 + all.size() - integers) * 8 + 1;
+  return 6 + 2 * 4 + (integers - 1) * 8 + (2 + all.size() - integers) * 8 + 1;
 }
 const std::size_t kCellBytes = cell_bytes();
 // The census: 4 fractions and the basin entropy, a uint32 count, then each attractor (attractor_codec.hpp).
@@ -287,23 +289,23 @@ TEST(ResultCodecs, SweepCellCarriesEveryQuantityOfTheTable) {
   }
 }
 
-// The layout's version: 6 and 9 (the census's, 8 before it carried its basin entropy) for the 15
-// quantities the generations were set for (the bytes of the header ranks exchanged before the
-// codec followed the table), another number for a quantity more or fewer, or two swapped.
+// The layout's version: 10 and 13 for the 15 quantities the generations were set for (the head
+// with the fragile flag; the census's with its basin entropy), another number for a quantity
+// more or fewer, or two swapped.
 TEST(ResultCodecs, SweepCellVersionFollowsTheQuantities) {
   const std::vector<Quantity>& all = all_quantities();
   ASSERT_GE(all.size(), 15u);
   const std::vector<Quantity> generation(all.begin(), all.begin() + 15);
-  EXPECT_EQ(cell_layout_version(false, generation), 6u);
-  EXPECT_EQ(cell_layout_version(true, generation), 9u);
+  EXPECT_EQ(cell_layout_version(false, generation), 10u);
+  EXPECT_EQ(cell_layout_version(true, generation), 13u);
   const std::vector<Quantity> fewer(all.begin(), all.begin() + 14);
   std::vector<Quantity> more = generation, moved = generation;
   more.push_back(Quantity::T_con);
   std::swap(moved[0], moved[1]);
   for (const auto& other : {fewer, more, moved})
     for (const bool census : {false, true}) {
-      EXPECT_NE(cell_layout_version(census, other), 6u);
-      EXPECT_NE(cell_layout_version(census, other), 9u);
+      EXPECT_NE(cell_layout_version(census, other), 10u);
+      EXPECT_NE(cell_layout_version(census, other), 13u);
     }
   EXPECT_EQ(CellCodec(false).version(), cell_layout_version(false, all));
   EXPECT_EQ(CellCodec(true).version(), cell_layout_version(true, all));

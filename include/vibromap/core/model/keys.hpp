@@ -67,6 +67,8 @@ struct KeyInfo {
                                           // partner or unset ("m1*omega1^2")
   bool default_given = true;              // default_text is a value (not a derivation)
   bool frequency_rule = false;            // read by frequency_ratio_error (forcing against the natural frequencies)
+  bool identity_at_default = true;        // false: a run's identity leaves the key out while it holds its default
+                                          // (an option added after maps were made: they keep their identity)
 
   std::string full_name() const;    // "system.m1"
   std::string allowed() const;      // "> 0", "an integer in [1, 64]", "one of \"hybrid\", \"dopri5\", \"rk4\"", "true or false"

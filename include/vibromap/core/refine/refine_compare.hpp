@@ -10,7 +10,10 @@
 //   Either kind: NaN against a number differs; two NaN are alike (both say "none"); an
 //   infinity differs from everything but the same infinity.
 // Two cells differ when any quantity of the list differs. The default list is regime, n, k
-// and soft (the soft flag of regime.hpp's is_soft), as the issue asks.
+// and soft (the soft flag of regime.hpp's is_soft), as the issue asks. A fragile cell
+// (analysis.fragility: a perturbation of its initial state ends elsewhere) differs from every
+// cell: its answer changes under perturbation, so a block with a fragile corner is refined and
+// no point inherits a fragile answer.
 
 #include <string>
 #include <string_view>

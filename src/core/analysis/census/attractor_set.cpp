@@ -22,10 +22,6 @@ void set_longest(Attractor& a, It first, It last) {
   a.impulse = longest->impulse;
 }
 
-// Two orbits are one attractor when their cycles agree to this scaled distance (or 1000 Newton
-// tolerances, when larger): Newton solutions from different starts differ by about
-// tol / (1 - |mu|), distinct orbits by far more (two (1,1) orbits 3 % apart in T_con at one point of the paper's box).
-constexpr double kSameOrbit = 1e-6;
 constexpr double kShorterPeriod = 100.0;   // P^d(y) = y within this many Newton tolerances
 // The capture test (captured()): it applies from this scaled offset down, where the
 // linearisation may describe the map, and asks the linear prediction to hold to this fraction.
@@ -71,10 +67,6 @@ AttractorSet::AttractorSet(const Parameters& p, const PointOptions& options, con
     : p_(p), options_(options), census_(census), model_(p), scale_(model_),
       unit_(scale_.length(), scale_.length(), scale_.speed(), scale_.speed()), follow_(options) {
   if (census.early_stop) follow_.integrator.rtol = std::max(census.rtol, options.integrator.rtol);
-}
-
-double same_orbit_tolerance(const PointOptions& options) {
-  return std::max(kSameOrbit, 1000.0 * newton_tolerance(options));
 }
 
 double AttractorSet::newton_tol() const {
@@ -197,15 +189,7 @@ void Recurrent::add(const Cell& c) {
 }
 
 bool AttractorSet::same_orbit(const Orbit& o, const std::vector<State>& points) const {
-  if (static_cast<int>(points.size()) != o.n) return false;
-  const double tol = same_orbit_tolerance(options_);
-  for (int shift = 0; shift < o.n; ++shift) {
-    bool all = true;
-    for (int k = 0; k < o.n && all; ++k)
-      all = scale_.distance(o.points[static_cast<std::size_t>((k + shift) % o.n)], points[static_cast<std::size_t>(k)]) <= tol;
-    if (all) return true;
-  }
-  return false;
+  return static_cast<int>(o.points.size()) == o.n && same_cycle(model_, o.points, points, same_orbit_tolerance(options_));
 }
 
 // Newton for period n at the section phase s, from u (a period start), integrated at `io` to

@@ -33,9 +33,6 @@ struct Orbit {
   double level = 0.0;             // V(d) = d^T S d below which a state is captured (0: none verified)
 };
 
-// Two cycles of one period are the same orbit when their scaled points agree to this (see
-// attractor_set.cpp: Newton solutions from different starts differ by far less).
-double same_orbit_tolerance(const PointOptions& options);
 
 // SplitMix64 (Steele, Lea, Flood 2014): uniform doubles in [0, 1), the same on every machine
 // and compiler.

@@ -557,18 +557,11 @@ const IntegrationCounters& CensusFollower::counters() const { return impl_->coun
 bool same_attractor(const Parameters& p, const PointOptions& options, const Attractor& a, const Attractor& b) {
   if (a.periodic != b.periodic) return false;
   if (!a.periodic) return a.regime.kind == b.regime.kind;
-  const std::size_t n = a.strobe.size();
-  if (n == 0 || b.strobe.size() != n) return false;
-  const Model model(p);
-  const StateScale scale(model);
-  const double tol = census_detail::same_orbit_tolerance(options);
-  for (std::size_t shift = 0; shift < n; ++shift) {
-    bool all = true;
-    for (std::size_t k = 0; k < n && all; ++k)
-      all = scale.distance(Model::to_internal(a.strobe[(k + shift) % n]), Model::to_internal(b.strobe[k])) <= tol;
-    if (all) return true;
-  }
-  return false;
+  if (a.strobe.empty()) return false;
+  std::vector<State> x, y;
+  for (const Eigen::Vector4d& s : a.strobe) x.push_back(Model::to_internal(s));
+  for (const Eigen::Vector4d& s : b.strobe) y.push_back(Model::to_internal(s));
+  return same_cycle(Model(p), x, y, same_orbit_tolerance(options));
 }
 
 }  // namespace vibromap

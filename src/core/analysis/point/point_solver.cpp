@@ -569,6 +569,7 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
   s.counters = integrator->counters();
   s.counters += r.shooting;
   s.final_state = Model::to_physical(r.u);
+  if (options.analysis.fragility > 0.0) s.fragility = assess_fragility(p, options, s);
   s.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vibromap/core/analysis/point/fragility.hpp"
 #include "vibromap/core/analysis/point/impact.hpp"
 #include "vibromap/core/analysis/point/regime.hpp"
 #include "vibromap/core/integrate/integrator.hpp"
@@ -55,6 +56,9 @@ struct AnalysisOptions {
                                // k_con <= this (is_soft, regime.hpp), -
   int trajectory_periods = 0;  // after steady state, integrate and keep this many periods (0: none), -
   int trajectory_samples = 2000;  // uniform samples per forcing period in a kept trajectory, -
+  double fragility = 0.0;      // size of the perturbations of the initial state also followed to their steady
+                               // state, in motion scales (fragility.hpp); 0: off, -
+  int fragility_states = 4;    // perturbed initial states followed when fragility > 0 (fixed directions), -
 };
 
 // The largest budgets AnalysisOptions takes (each of these periods costs tens of steps at least).
@@ -108,6 +112,7 @@ struct PointSummary {
   double wall_s = 0.0;          // solve time, s
   Eigen::Vector4d final_state = Eigen::Vector4d::Zero();  // (x1, x2, v1, v2) at the last period end
   std::vector<TrajectorySample> trajectory;  // only when trajectory_periods > 0
+  Fragility fragility;          // analysis.fragility > 0: what perturbations of the initial state reach
 };
 
 struct PointOptions {
@@ -116,6 +121,11 @@ struct PointOptions {
 };
 
 PointSummary solve_point(const Parameters& p, const PointOptions& options);
+
+// What perturbations of p's initial state reach, against `own` (solve_point's answer for p):
+// fragility.hpp. Not assessed (size 0) when analysis.fragility is 0 or own is invalid input.
+// solve_point calls it when analysis.fragility > 0.
+Fragility assess_fragility(const Parameters& p, const PointOptions& options, const PointSummary& own);
 
 // The tolerances solve_point works to when the scene leaves them automatic (0): the
 // steady-state test's (100 rtol; rk4 1e-9) and Newton's (10 rtol).
