@@ -39,6 +39,9 @@ void add_census_options(std::vector<KeyInfo>& rows) {
   rows.push_back(option(s, "rtol", KeyType::real, B::between(1e-14, 1e-3), "-",
                         "tolerance initial states are followed at (orbits are refined at [solver] rtol); the "
                         "scene's when looser"));
+  rows.push_back(option(s, "family_distance", KeyType::real, B::between(0.0, 10.0, true, false), "-",
+                        "census maps: attractors of neighbouring cells whose period-start states lie closer than "
+                        "this (symmetric Hausdorff distance, motion scales L, omega L) are one family"));
 }
 
 void add_optimise_options(std::vector<KeyInfo>& rows) {

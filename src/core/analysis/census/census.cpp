@@ -19,7 +19,8 @@ std::string validate(const CensusOptions& o) {
       {"census.initial_conditions", o.initial_conditions}, {"census.seed", static_cast<double>(o.seed)},
       {"census.max_attractors", o.max_attractors},           {"census.recurrences", o.recurrences},
       {"census.max_transient_periods", static_cast<double>(o.max_transient_periods)},
-      {"census.cell", o.cell},                               {"census.rtol", o.rtol}};
+      {"census.cell", o.cell},                               {"census.rtol", o.rtol},
+      {"census.family_distance", o.family_distance}};
   for (const auto& [name, v] : numbers)
     if (std::string r = check_option(name, v); !r.empty()) return r;
   const std::pair<const char*, const std::optional<std::array<double, 2>>*> sides[] = {

@@ -58,6 +58,10 @@ struct CensusOptions {
   bool early_stop = true;       // false: follow every initial state to its steady state at the scene's
                                 // tolerance, with no capture, recurrence or Newton search (brute force, for checks)
   bool labels = false;          // keep each initial state and its attractor index in the summary
+  // Census maps (a sweep with [census]): attractors of neighbouring cells whose stroboscopic sets
+  // lie closer than this (symmetric Hausdorff distance in motion scales) are one family
+  // (core/analysis/census/families.hpp), -
+  double family_distance = 3.0;
 };
 
 std::string validate(const CensusOptions& o);
