@@ -39,18 +39,18 @@ try:
 
     matplotlib.use("Agg")  # files only: no display needed on a cluster node
     import matplotlib.colors
+    import matplotlib.lines
     import matplotlib.pyplot as plt
     import numpy as np
     from matplotlib.patches import Patch
 
-    import matplotlib.lines
-
-    from vibromap_map import FAMILY_LABEL_CHANGE, census_regimes
     from vibromap_h5 import (
+        FAMILY_LABEL_CHANGE,
         REGIME_PERIODIC,
         MapSliceError,
         SweepMap,
         VibromapFileError,
+        census_regimes,
         parse_fix,
         read_map,
         write_plot,
@@ -225,6 +225,32 @@ def plot_family(sweep: SweepMap, sl, chosen: int, fig, ax, x_edges, y_edges) -> 
     handles += mark_changes(ax, sl, np.asarray(sl.data["_family_change"]) & done, x_edges, y_edges)
     where = int((done & ~absent).sum())
     return f"family {chosen} ({family_regimes(sweep, chosen)}): in {maps.cells_text(where)}", handles
+
+
+def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
+    """e.g. "(1,1) k_con 8.87 soft" or "non-periodic k_con 40.6 transient".
+
+    "transient": states were seen to leave the non-periodic set (transient chaos).
+    """
+    c = sweep.census
+    regime = int(c["regime"][index + (a,)])
+    if regime == REGIME_PERIODIC:
+        text = f"({int(c['n'][index + (a,)])},{int(c['k'][index + (a,)])})"
+    else:
+        text = sweep.regime_meanings.get(regime, str(regime)).replace("_", "-")
+    k_con = float(c["k_con"][index + (a,)])
+    if np.isfinite(k_con) and k_con > 0:
+        text += f" k_con {k_con:.3g}"
+    stable = int(c["stable"][index + (a,)])
+    if stable == 0:
+        text += " unstable"
+    if int(c["soft"][index + (a,)]) == 1:
+        text += " soft"
+    if int(c["transient"][index + (a,)]) == 1:
+        text += " transient"
+    if int(c["from_rest"][index + (a,)]) == 1:
+        text += " (from rest)"
+    return text
 
 
 def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = None):

@@ -26,9 +26,8 @@ PROG = "summarize_map"
 try:
     import numpy as np
 
-    from vibromap_map import FAMILY_LABEL_CHANGE, census_regimes
-    from vibromap_h5 import (FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError, add_soft_cells, impact_cells,
-                             read_map, regime_counts)  # fmt: skip
+    from vibromap_h5 import (FAMILY_LABEL_CHANGE, FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError,
+                             add_soft_cells, census_regimes, impact_cells, read_map, regime_counts)  # fmt: skip
 except ImportError as exc:
     missing_module(PROG, exc)
 
