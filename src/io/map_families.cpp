@@ -120,18 +120,19 @@ void write_table(Hdf5File& file, const std::vector<FamilyRecord>& families, doub
   if (families.empty()) return;
   DatasetOptions o;
   o.fletcher32 = true;
+  std::vector<int> ids(families.size());  // the table's coordinate (netCDF readers need one per axis)
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
+  Dataset id = g.write_dataset("id", std::span<const int>(ids), {}, o);
+  id.make_dimension_scale("family");
   const auto column = [&](const char* name, auto value) {
     using T = decltype(value(families.front()));
     std::vector<T> v;
     for (const FamilyRecord& r : families) v.push_back(value(r));
-    g.write_dataset(name, std::span<const T>(v), {}, o);
+    g.write_dataset(name, std::span<const T>(v), {}, o).attach_dimension_scale(id, 0);
   };
-  std::vector<int> ids(families.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
-  g.write_dataset("id", std::span<const int>(ids), {}, o);
   std::vector<std::string> regimes;
   for (const FamilyRecord& r : families) regimes.push_back(family_regimes_text(r));
-  g.write_strings("regimes", regimes);
+  g.write_strings("regimes", regimes).attach_dimension_scale(id, 0);
   column("cells", [](const FamilyRecord& r) { return std::int64_t{r.cells}; });
   column("soft_cells", [](const FamilyRecord& r) { return std::int64_t{r.soft_cells}; });
   column("edge_cells", [](const FamilyRecord& r) { return std::int64_t{r.edge_cells}; });
