@@ -18,6 +18,13 @@ A map made with analysis.steady = "shooting" says so in every picture's title.
   --show cell --at E1=1.4e10 E2=1e6
                       the basin fractions of the grid cell nearest those values, one bar per
                       attractor with its standard error, named by regime and k_con
+  --show families     per cell the family of the attractor rest reaches (/family), the ten
+                      largest families each a colour, the others grey; a dot marks cells where
+                      that family changes its label (its regime differs from a matched neighbour's)
+  --show family [--family ID]
+                      the basin fraction of one family per cell (pale where the cell lacks it; the
+                      cells where it changes label dotted); default: the family with the most
+                      soft cells
 
 Exit status: 0 on success, 2 for a bad argument, an unreadable file or a map without a
 census (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
@@ -37,15 +44,18 @@ try:
 
     matplotlib.use("Agg")  # files only: no display needed on a cluster node
     import matplotlib.colors
+    import matplotlib.lines
     import matplotlib.pyplot as plt
     import numpy as np
     from matplotlib.patches import Patch
 
     from vibromap_h5 import (
+        FAMILY_LABEL_CHANGE,
         REGIME_PERIODIC,
         MapSliceError,
         SweepMap,
         VibromapFileError,
+        census_regimes,
         parse_fix,
         read_map,
         write_plot,
@@ -62,7 +72,12 @@ COLOR_SOFT = "#1a9850"
 COLOR_OTHER = "#4575b4"
 COLOR_UNDECIDED = "#9e9e9e"
 COLOR_NO_SHOCK = "#252525"
-SUFFIX = {"attractors": "_attractors", "soft": "_soft", "shock": "_shock", "cell": "_cell"}
+SUFFIX = {"attractors": "_attractors", "soft": "_soft", "shock": "_shock", "cell": "_cell", "families": "_families",
+          "family": "_family"}
+FAMILY_COLORS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf",
+                 "#393b79"]
+COLOR_OTHER_FAMILY = "#a0a0a0"
+COLOR_ABSENT = "#fbe3d6"
 
 
 def parse_args(argv: list[str] | None):
@@ -76,8 +91,10 @@ def parse_args(argv: list[str] | None):
         ),
         suffix="_attractors",
     )
-    parser.add_argument("--show", choices=("attractors", "soft", "shock", "cell"), default="attractors",
+    parser.add_argument("--show", choices=("attractors", "soft", "shock", "cell", "families", "family"), default="attractors",
                         help="what to draw (default: attractors)")
+    parser.add_argument("--family", type=int, metavar="ID",
+                        help="--show family: the family's id (default: the family with the most soft cells)")
     parser.add_argument("--at", metavar="NAME=VALUE", nargs="+", action="extend", default=[],
                         help="--show cell: the cell nearest these axis values (SI units; default: the middle of every axis)")
     args = parser.parse_args(argv)
@@ -104,6 +121,118 @@ def require_census(sweep: SweepMap) -> None:
         raise VibromapFileError(
             f"{sweep.path}: not a census map (no attractor datasets); sweep a scene with a [census] section"
         )
+
+
+def require_families(sweep: SweepMap) -> np.ndarray:
+    """The map's /family; refused when the family pass has not run (an unfinished map)."""
+    family = sweep.census.get("family")
+    if family is None or not (family >= 0).any():
+        raise VibromapFileError(f"{sweep.path}: no families (the map is not finished, or made before families)")
+    return family
+
+
+def family_sizes(family: np.ndarray) -> np.ndarray:
+    """Cells (entries) per family id."""
+    return np.bincount(family[family >= 0].ravel(), minlength=int(family.max()) + 1)
+
+
+def rest_family(sweep: SweepMap) -> tuple[np.ndarray, np.ndarray]:
+    """Per cell the family of the attractor rest reaches (-1: none), and whether it changes
+    label there."""
+    family = require_families(sweep)
+    from_rest = sweep.census["from_rest"] == 1
+    flags = sweep.census["family_flags"]
+    has = from_rest.any(axis=-1)
+    at = np.argmax(from_rest, axis=-1)[..., None]
+    fam = np.where(has, np.take_along_axis(family, at, -1)[..., 0], -1)
+    change = has & ((np.take_along_axis(flags, at, -1)[..., 0] & FAMILY_LABEL_CHANGE) != 0)
+    return fam, change
+
+
+def default_family(sweep: SweepMap) -> int:
+    """The family with the most soft entries (the most entries on ties; the largest family when
+    none is soft)."""
+    family = require_families(sweep)
+    soft = np.bincount(family[(family >= 0) & (sweep.census["soft"] == 1)].ravel(), minlength=int(family.max()) + 1)
+    sizes = family_sizes(family)
+    return int(np.lexsort((-np.arange(len(sizes)), sizes, soft))[-1])
+
+
+def family_fraction(sweep: SweepMap, chosen: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per cell the basin fraction of family `chosen` (NaN where the cell lacks it), and whether it
+    changes label there."""
+    family = require_families(sweep)
+    if not 0 <= chosen <= int(family.max()):
+        raise MapSliceError(f"{sweep.path}: no family {chosen} (ids 0..{int(family.max())})")
+    mine = family == chosen
+    fraction = np.where(mine, np.nan_to_num(sweep.census["fraction"]), 0.0).sum(axis=-1)
+    fraction[~mine.any(axis=-1)] = np.nan
+    change = (mine & ((sweep.census["family_flags"] & FAMILY_LABEL_CHANGE) != 0)).any(axis=-1)
+    return fraction, change
+
+
+def family_regimes(sweep: SweepMap, chosen: int) -> str:
+    """The regimes family `chosen` has, e.g. "(1,1) no-contact"."""
+    return census_regimes(sweep, sweep.census["family"] == chosen)
+
+
+def mark_changes(ax, sl, change, x_edges, y_edges) -> list:
+    """A dot at the centre of each cell of the slice where `change` holds."""
+    if not change.any():
+        return []
+    xc = 0.5 * (np.asarray(x_edges)[1:] + np.asarray(x_edges)[:-1])
+    yc = 0.5 * (np.asarray(y_edges)[1:] + np.asarray(y_edges)[:-1])
+    rows, cols = np.nonzero(change)
+    ax.plot(xc[cols], yc[rows], "o", color="black", markersize=3, linestyle="none")
+    return [matplotlib.lines.Line2D([], [], marker="o", color="black", markersize=3, linestyle="none",
+                                    label=f"label changes within the family: {maps.cells_text(int(change.sum()))}")]
+
+
+def plot_families(sweep: SweepMap, sl, fig, ax, x_edges, y_edges) -> tuple[str, list]:
+    done = np.asarray(sl.data["done"]) != 0
+    fam = np.asarray(sl.data["_rest_family"])
+    sizes = family_sizes(sweep.census["family"])
+    top = [int(f) for f in np.argsort(-sizes, kind="stable")[: len(FAMILY_COLORS)] if sizes[f] > 0]
+    code = np.full(fam.shape, len(top) + 1)  # other families
+    code[~done | (fam < 0)] = 0
+    for i, f in enumerate(top):
+        code[fam == f] = i + 1
+    colors = [COLOR_NOT_COMPUTED] + FAMILY_COLORS[: len(top)] + [COLOR_OTHER_FAMILY]
+    cmap = matplotlib.colors.ListedColormap(colors)
+    norm = matplotlib.colors.BoundaryNorm(np.arange(len(colors) + 1) - 0.5, len(colors))
+    ax.pcolormesh(x_edges, y_edges, code, cmap=cmap, norm=norm, shading="flat")
+    handles = []
+    for i, f in enumerate(top):
+        cells = int((code == i + 1).sum())
+        if cells:
+            handles.append(Patch(facecolor=colors[i + 1], edgecolor="0.4", linewidth=0.5,
+                                 label=f"family {f} {family_regimes(sweep, f)}: {maps.cells_text(cells)}"))
+    for value, what in ((len(top) + 1, "other families"), (0, "no attractor from rest, or not computed")):
+        cells = int((code == value).sum())
+        if cells:
+            handles.append(Patch(facecolor=colors[value], edgecolor="0.4", linewidth=0.5,
+                                 label=f"{what}: {maps.cells_text(cells)}"))
+    handles += mark_changes(ax, sl, np.asarray(sl.data["_rest_change"]) & done, x_edges, y_edges)
+    return f"family of rest's attractor ({len(sizes)} families in the map)", handles
+
+
+def plot_family(sweep: SweepMap, sl, chosen: int, fig, ax, x_edges, y_edges) -> tuple[str, list]:
+    done = np.asarray(sl.data["done"]) != 0
+    values = np.asarray(sl.data["_family_fraction"], dtype=float)
+    absent = done & np.isnan(values)
+    fraction = np.ma.masked_array(values, mask=~done | absent)
+    cmap = plt.get_cmap("viridis").copy()
+    cmap.set_bad((0.0, 0.0, 0.0, 0.0))  # the layer below shows: not computed, or the family not there
+    below = np.ma.masked_array(np.where(absent, 1, 0), mask=done & ~absent)
+    ax.pcolormesh(x_edges, y_edges, below, cmap=matplotlib.colors.ListedColormap([COLOR_NOT_COMPUTED, COLOR_ABSENT]),
+                  vmin=0, vmax=1, shading="flat")
+    mesh = ax.pcolormesh(x_edges, y_edges, fraction, cmap=cmap, vmin=0.0, vmax=1.0, shading="flat")
+    fig.colorbar(mesh, ax=ax, pad=0.02).set_label(f"basin fraction of family {chosen}", fontsize=9)
+    handles = [Patch(facecolor=COLOR_ABSENT, edgecolor="0.4", linewidth=0.5,
+                     label=f"family not there: {maps.cells_text(int(absent.sum()))}")]
+    handles += mark_changes(ax, sl, np.asarray(sl.data["_family_change"]) & done, x_edges, y_edges)
+    where = int((done & ~absent).sum())
+    return f"family {chosen} ({family_regimes(sweep, chosen)}): in {maps.cells_text(where)}", handles
 
 
 def attractor_label(sweep: SweepMap, index: tuple, a: int) -> str:
@@ -180,12 +309,16 @@ def draw_shock(fig, ax, sl, x_edges, y_edges):
     return title, handles
 
 
-def plot_map(sweep: SweepMap, sl, show: str, curves=()):
+def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = None):
     done = np.asarray(sl.data["done"]) != 0
     fig, ax = plt.subplots(figsize=FIGSIZE_IN if sl.y is not None else maps.STRIP_FIGSIZE_IN, constrained_layout=True)
     x_edges, y_edges = maps.setup_axes(ax, sl)
     handles = []
-    if show == "attractors":
+    if show == "families":
+        title, handles = plot_families(sweep, sl, fig, ax, x_edges, y_edges)
+    elif show == "family":
+        title, handles = plot_family(sweep, sl, chosen, fig, ax, x_edges, y_edges)
+    elif show == "attractors":
         count = np.where(done, np.asarray(sl.data["attractors"]), -1)
         top = max(int(count.max()), 1)
         colors = [COLOR_NOT_COMPUTED] + [COUNT_COLORS[1 + (i % (len(COUNT_COLORS) - 1))] for i in range(top + 1)]
@@ -276,8 +409,14 @@ def main(argv: list[str] | None = None) -> int:
             add_soft_shock(sweep)
         if args.show == "cell":
             return plot_cell(sweep, cell_index(sweep, args.at_values))
+        chosen = None
+        if args.show == "families":  # per-cell arrays, sliced with the others
+            sweep.data["_rest_family"], sweep.data["_rest_change"] = rest_family(sweep)
+        elif args.show == "family":
+            chosen = args.family if args.family is not None else default_family(sweep)
+            sweep.data["_family_fraction"], sweep.data["_family_change"] = family_fraction(sweep, chosen)
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot_map(sweep, sl, args.show, maps.read_curve_files(args.curves))
+        fig = plot_map(sweep, sl, args.show, maps.read_curve_files(args.curves), chosen)
         if args.solved:
             maps.mark_solved(fig, sweep, sl)
         return fig

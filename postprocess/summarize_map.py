@@ -6,8 +6,9 @@ impacts, the slowest cells, and a check that every float quantity of every compu
 (NaN is allowed only where the map says "not computed": in a quantity whose long_name says
 "(NaN where not computed)", such as max_multiplier and lyapunov, and in steady_residual in a census
 map). A census map adds how many cells hold 1, 2, ... attractors,
-the soft fraction, and the non-periodic attractors with the cells where states were seen to
-leave them (transient chaos: their fractions depend on analysis.max_periods).
+the soft fraction, the non-periodic attractors with the cells where states were seen to
+leave them (transient chaos: their fractions depend on analysis.max_periods), and the largest
+families of attractors across the map (regimes, soft cells, fraction range, label changes).
 
 Usage: postprocess/vmpy summarize_map MAP.h5 [--slowest N]
 Exit status: 0 printed, 2 unreadable or damaged file, or a map of another format version (one
@@ -25,8 +26,8 @@ PROG = "summarize_map"
 try:
     import numpy as np
 
-    from vibromap_h5 import (FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError, add_soft_cells, impact_cells,
-                             read_map, regime_counts)  # fmt: skip
+    from vibromap_h5 import (FAMILY_LABEL_CHANGE, FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError,
+                             add_soft_cells, census_regimes, impact_cells, read_map, regime_counts)  # fmt: skip
 except ImportError as exc:
     missing_module(PROG, exc)
 
@@ -151,6 +152,29 @@ def census_lines(sweep, done) -> list[str]:
         left = non_periodic & (sweep.census["transient"][done] == 1)
         line += f"; states seen to leave them (transient chaos) in {int(left.any(axis=1).sum())} cells"
         lines.append(line)
+    lines.extend(family_lines(sweep, done))
+    return lines
+
+
+def family_lines(sweep, done, top: int = 5) -> list[str]:
+    """The families of a finished census map (/family), the largest `top` by cells: regimes, soft
+    cells, fraction range, cells where the family changes label."""
+    family = sweep.census.get("family")
+    if family is None or not (family[done] >= 0).any():
+        return ["families: none yet (the family pass runs when the map is finished)"] if family is not None else []
+    fam = family[done]
+    ids, cells = np.unique(fam[fam >= 0], return_counts=True)
+    lines = [f"families: {len(ids)}; the largest:"]
+    for f in ids[np.argsort(-cells, kind="stable")][:top]:
+        mine = fam == f
+        where = np.zeros(family.shape, bool)
+        where[done] = mine
+        regimes = census_regimes(sweep, where)
+        fraction = sweep.census["fraction"][done][mine]
+        soft = int((sweep.census["soft"][done][mine] == 1).sum())
+        changes = int(((sweep.census["family_flags"][done][mine] & FAMILY_LABEL_CHANGE) != 0).sum())
+        lines.append(f"  family {int(f)}: {regimes}, {int(mine.sum())} cells ({soft} soft), fraction "
+                     f"{np.nanmin(fraction):.3g} to {np.nanmax(fraction):.3g}, label changes in {changes} cells")
     return lines
 
 

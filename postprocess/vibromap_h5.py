@@ -40,10 +40,10 @@ from vibromap_regimes import (FLAG_NO, FLAG_UNKNOWN, FLAG_YES, HERTZ_KEY, HERTZ_
                               STABLE_FLAG_MEANINGS, STABLE_FLAG_VALUES, STABLE_NO, STABLE_UNKNOWN, STABLE_YES,
                               STATUS_FLAG_MEANINGS, STATUS_FLAG_VALUES, STEADY_ANSWERS, _label_key, regime_counts,
                               regime_labels)
-from vibromap_map import (CENSUS_ATTRACTOR, CENSUS_CELL, MAP_ATTRIBUTES, MAP_REQUIRED, NOT_COMPUTED_NOTE,
-                          REFINE_ATTRIBUTES, REFINE_DATASETS, MapAxis, SweepMap, _check_layout,
-                          _check_progress_attributes, _check_soft_attributes, _map_axes, _read_cells, axis_name,
-                          read_map)
+from vibromap_map import (CENSUS_ATTRACTOR, CENSUS_CELL, FAMILY_DATASETS, FAMILY_EDGE, FAMILY_LABEL_CHANGE,
+                          MAP_ATTRIBUTES, MAP_REQUIRED, NOT_COMPUTED_NOTE, REFINE_ATTRIBUTES, REFINE_DATASETS, MapAxis,
+                          SweepMap, _check_layout, _check_progress_attributes, _check_soft_attributes, _map_axes,
+                          _read_cells, axis_name, census_regimes, read_map)
 from vibromap_soft import (SoftInfo, add_soft_cells, computed_soft, hertz_validity, impact_cells,
                            periodic_with_impacts)
 from vibromap_slice import (FixedValue, MapSlice, MapSliceError, _nearest_index, _runs, cell_boundary, cell_edges,

@@ -55,6 +55,22 @@ MAP_REQUIRED = ("done", "status", "regime", "stable", "soft", "n", "k", "wall_s"
 # Root attributes every map has.
 MAP_ATTRIBUTES = ("title", "Conventions", "vibromap_version", "scene", "identity", "ranks", "cells_total",
                   "cells_done", "complete", "stored", "census_attractors", "steady", "hertz_limit", "soft_kcon")
+# A census map's families per (cell, attractor), kept in SweepMap.census under these names.
+FAMILY_DATASETS = ("family", "family_flags")
+FAMILY_LABEL_CHANGE, FAMILY_EDGE = 1, 2  # bits of family_flags
+
+
+def census_regimes(sweep, mask) -> str:
+    """The regimes of a census map's (cell, attractor) entries under `mask`, each once in order of
+    appearance: "(1,1) no-contact"."""
+    seen = []
+    for r, n, k in zip(sweep.census["regime"][mask], sweep.census["n"][mask], sweep.census["k"][mask]):
+        name = sweep.regime_meanings.get(int(r), str(r))
+        text = f"({n},{k})" if name == "periodic" else name.replace("_", "-")
+        if text not in seen:
+            seen.append(text)
+    return " ".join(seen)
+
 # A census map's datasets (census_attractors > 0): per cell, then per (cell, attractor) without
 # their prefix attractor_.
 CENSUS_CELL = ("attractors", "soft_fraction", "unresolved_fraction", "unlisted_fraction", "budget_fraction")
@@ -280,8 +296,8 @@ def _read_cells(f: h5py.File, path: str, axes: dict[str, MapAxis]):
         if item.shape != shape:
             if name in MAP_REQUIRED:
                 raise VibromapFileError(f"{path}: dataset '{name}' has shape {item.shape}, not the map's {shape}")
-            if name.startswith("attractor_") and item.shape[:-1] == shape:
-                census[name[len("attractor_"):]] = read_dataset(item, path)
+            if (name.startswith("attractor_") or name in FAMILY_DATASETS) and item.shape[:-1] == shape:
+                census[name.removeprefix("attractor_")] = read_dataset(item, path)
             continue
         data[name] = read_dataset(item, path)
         units[name] = _text(item.attrs.get("units", ""))

@@ -104,11 +104,13 @@ def _attributes(oid, path: bytes, skipped=()) -> bytes:
     return b"".join(out)
 
 
-def _group(gid, path: bytes) -> bytes:
+def _group(gid, path: bytes, skipped=()) -> bytes:
     names: list[bytes] = []
     gid.links.iterate(lambda name: names.append(name))
     out = []
     for name in sorted(names):
+        if name in skipped:
+            continue
         child = (b"" if path == b"/" else path) + b"/" + name
         kind = None
         if gid.links.get_info(name).type == h5py.h5l.TYPE_HARD:
@@ -127,9 +129,11 @@ def _group(gid, path: bytes) -> bytes:
 
 def attribute_record(f: h5py.File, uncovered=()) -> bytes:
     """The canonical record of the file's metadata (src/io/attribute_seal.hpp), without the
-    seal itself and the root attributes named in `uncovered`."""
-    skipped = {_SEAL_NAME} | {name.encode() if isinstance(name, str) else name for name in uncovered}
-    return _attributes(f.id, b"/", skipped) + _group(f.id, b"/")
+    seal itself and the root attributes named in `uncovered` (and root groups of those names: a
+    census map's /families)."""
+    names = {name.encode() if isinstance(name, str) else name for name in uncovered}
+    skipped = {_SEAL_NAME} | names
+    return _attributes(f.id, b"/", skipped) + _group(f.id, b"/", names)
 
 
 def _printable(data: bytes) -> str:

@@ -80,8 +80,9 @@ void append_attributes(std::string& out, const Hdf5Object& object, const std::ve
   }
 }
 
-void append_group(std::string& out, const Group& group) {
+void append_group(std::string& out, const Group& group, const std::vector<std::string>& skipped = {}) {
   for (const auto& [name, kind] : group.links()) {
+    if (std::find(skipped.begin(), skipped.end(), name) != skipped.end()) continue;
     const std::string path = group.name() == "/" ? "/" + name : group.name() + "/" + name;
     if (kind == LinkKind::dataset) {
       const Dataset d = group.open_dataset(name);
@@ -271,7 +272,7 @@ std::string attribute_record(const Hdf5File& file, const std::vector<std::string
   skipped.emplace_back(kSealAttribute);
   std::string out;
   append_attributes(out, file, skipped);
-  append_group(out, file);
+  append_group(out, file, uncovered);
   return out;
 }
 

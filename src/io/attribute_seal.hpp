@@ -7,7 +7,9 @@
 // that gap: the root attribute `attribute_checksum` holds "crc32 XXXXXXXX" (8 lowercase hex
 // digits), the CRC-32 (zlib's) of the canonical record of the file's metadata below, optionally
 // followed by "; not covered: NAME NAME..." (root attributes a writer updates in place later and
-// that readers never trust: a map's cells_done, complete and ranks, rewritten when a run ends).
+// that readers never trust: a map's cells_done, complete and ranks, rewritten when a run ends;
+// a root group of that name is left out too: a census map's /families, rewritten by each family
+// pass).
 //
 // The canonical record, built identically by attribute_record() here and by
 // postprocess/vibromap_seal.py (attribute_record), is a byte string: for each object, the root

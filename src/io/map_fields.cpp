@@ -1,6 +1,7 @@
 #include "map_fields.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -137,6 +138,27 @@ MapField attractor_strobe(MapField f, std::size_t slots) {
       });
 }
 
+// The attractors' first kMapStrobePoints period-start states: value a of a cell is attractor
+// a / (S 4), state (a / 4) % S, component a % 4; NaN past the attractor's period (or none kept).
+MapField attractor_strobe_states(MapField f, std::size_t slots) {
+  constexpr std::size_t kPer = kMapStrobePoints * 4;
+  f.slots = slots;
+  f.inner = {kMapStrobePoints, 4};
+  f.get_real = [](const CellResult& c, std::size_t a) -> double {
+    const std::size_t i = a / kPer, p = (a / 4) % kMapStrobePoints;
+    if (i >= c.census.size() || p >= c.census[i].strobe.size()) return kNaN;
+    return c.census[i].strobe[p][static_cast<Eigen::Index>(a % 4)];
+  };
+  f.set_real = [](CellResult& c, std::size_t a, double v) {
+    const std::size_t i = a / kPer, p = (a / 4) % kMapStrobePoints;
+    if (i >= c.census.size() || std::isnan(v)) return;
+    std::vector<Eigen::Vector4d>& strobe = c.census[i].strobe;
+    if (strobe.size() <= p) strobe.resize(p + 1, Eigen::Vector4d::Constant(kNaN));
+    strobe[p][static_cast<Eigen::Index>(a % 4)] = v;
+  };
+  return f;
+}
+
 // The census's datasets (map_file.hpp).
 void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   MapField count = count_field<&CellResult::n>("attractors", "attractors the census lists in the cell");
@@ -206,6 +228,10 @@ void add_census_fields(std::vector<MapField>& fields, std::size_t slots) {
   fields.push_back(attractor_strobe<1>(real("attractor_x2", "x2 of the attractor's first stroboscopic state", "m"), slots));
   fields.push_back(attractor_strobe<2>(real("attractor_v1", "v1 of the attractor's first stroboscopic state", "m/s"), slots));
   fields.push_back(attractor_strobe<3>(real("attractor_v2", "v2 of the attractor's first stroboscopic state", "m/s"), slots));
+  fields.push_back(attractor_strobe_states(
+      real("attractor_strobe",
+           "the attractor's period-start states (x1, x2, v1, v2) in m and m/s, its first ones; NaN past its period", ""),
+      slots));
 }
 
 // An int32 field of the census's attractors with its own fill and range (the shock's indices).
@@ -350,6 +376,27 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_
         "than the initial state: the cell's answer is not robust",
         1, "not_assessed no yes"));
   return fields;
+}
+
+std::vector<MapField> family_fields(std::size_t attractors) {
+  if (attractors == 0) return {};
+  MapField family;
+  family.name = "family";
+  family.file_type = ElementType::int32;
+  family.integer = true;
+  family.fill = -1.0;
+  family.fill_attribute = false;
+  family.long_name = "family of the attractor across the map (ids dense from 0, by first cell); -1 where not listed or "
+                     "not matched yet";
+  family.units = std::string(1, '1');
+  family.slots = attractors;
+  MapField flags = family;
+  flags.name = "family_flags";
+  flags.file_type = ElementType::int8;
+  flags.long_name = "bits: 1 the attractor's regime differs from that of a matched neighbour (a label change within "
+                    "its family), 2 a computed neighbour along some axis has no attractor matched to it (the "
+                    "family's edge); -1 where not listed or not matched yet";
+  return {family, flags};
 }
 
 std::uint64_t element_bytes(ElementType t) {

@@ -29,12 +29,19 @@ struct MapField {
   // (slots == the map's attractor dimension): one more dimension; slot a of a cell listing
   // fewer attractors holds the fill value, and setting it does nothing.
   std::size_t slots = 0;
+  // Dimensions after the attractor's (attractor_strobe: period start and state); values are
+  // slot-major, then these dimensions row-major, so slot a's values are the a-th run of them.
+  std::vector<std::size_t> inner;
   std::function<double(const CellResult&, std::size_t)> get_real;
   std::function<void(CellResult&, std::size_t, double)> set_real;
   std::function<std::int64_t(const CellResult&, std::size_t)> get_int;
   std::function<void(CellResult&, std::size_t, std::int64_t)> set_int;
 
-  std::size_t width() const { return slots == 0 ? 1 : slots; }  // values per cell
+  std::size_t width() const {  // values per cell
+    std::size_t w = slots == 0 ? 1 : slots;
+    for (const std::size_t n : inner) w *= n;
+    return w;
+  }
 };
 
 // /done (not a CellResult member: written by checkpoints).
@@ -51,6 +58,13 @@ std::vector<MapField> map_fields(const std::vector<Quantity>& stored, std::size_
 // The datasets of a map of `layout`.
 std::vector<MapField> map_fields(const MapLayout& layout);
 std::uint64_t element_bytes(ElementType t);
+// Period-start states per attractor that a census map keeps (/attractor_strobe): the first ones
+// of each orbit, NaN past its period.
+constexpr std::size_t kMapStrobePoints = 4;
+// The family datasets of a census map (/family, /family_flags; slots = attractors): made with
+// the map, filled by the family pass (io/map_families.hpp), not CellResult members (no
+// accessors: a cell's write leaves them alone).
+std::vector<MapField> family_fields(std::size_t attractors);
 
 // The chunks of an N-D map dataset of `shape`: trailing axes whole while they fit in
 // kMapChunkCells cells, then as many slices of the next axis as fit (at least one), 1 before.

@@ -63,6 +63,8 @@ std::uint64_t MapWriter::file_bytes(const MapLayout& layout) {
   std::uint64_t per_cell = 1;  // done
   for (const detail::MapField& f : detail::map_fields(layout))
     per_cell += detail::element_bytes(f.file_type) * f.width();
+  for (const detail::MapField& f : detail::family_fields(layout.attractors))
+    per_cell += detail::element_bytes(f.file_type) * f.width();
   // HDF5 stores every chunk whole, the ones that overhang the grid's edge included.
   const Shape shape = layout.grid.shape();
   const Shape chunk = detail::map_chunk_shape(shape);
@@ -90,10 +92,11 @@ void make_skeleton(NewFile& out, const MapLayout& layout, int ranks) {
   const Shape shape = layout.grid.shape();
   const Shape chunk = detail::map_chunk_shape(shape);
   std::vector<Dataset> scales = detail::write_axes(file, layout.grid);
-  if (layout.attractors > 0) scales.push_back(detail::write_attractor_scale(file, layout.attractors));
+  if (layout.attractors > 0) detail::write_census_scales(file, layout.attractors, scales);
   detail::make_field(file, detail::done_field(), shape, chunk, scales);
   for (const detail::MapField& f : detail::map_fields(layout))
     detail::make_field(file, f, shape, chunk, scales);
+  for (const detail::MapField& f : detail::family_fields(layout.attractors)) detail::make_field(file, f, shape, chunk, scales);
   detail::write_root_attributes(file, layout, ranks);
   scales.clear();
   file.close();

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "attribute_seal.hpp"
+#include "index_scale.hpp"
 #include "vibromap/core/text.hpp"
 
 // CF conventions (cfconventions.org, 1.8): a coordinate variable is a 1-D variable named after
@@ -83,15 +84,16 @@ std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid) {
 // the cells of a chunk are those of every other dataset's chunk, so chunk spans agree.
 Shape with_slots(Shape shape, const MapField& f) {
   if (f.slots > 0) shape.push_back(f.slots);
+  shape.insert(shape.end(), f.inner.begin(), f.inner.end());
   return shape;
 }
 
-// `scales`: the axes' coordinates, then (with a census) /attractor.
+// `scales`: the axes' coordinates, then (with a census) /attractor, /period_start and /state.
 Dataset make_field(Hdf5File& file, const MapField& f, const Shape& shape, const Shape& chunk,
                    const std::vector<Dataset>& scales) {
   Dataset d = file.create_dataset(f.name, f.file_type, with_slots(shape, f),
                                   chunked(with_slots(chunk, f), f.fill, f.fill_attribute));
-  const std::size_t dims = shape.size() + (f.slots > 0 ? 1 : 0);
+  const std::size_t dims = shape.size() + (f.slots > 0 ? 1 : 0) + f.inner.size();
   for (std::size_t i = 0; i < dims; ++i) d.attach_dimension_scale(scales[i], i);
   d.set_attribute("long_name", f.long_name);
   if (!f.units.empty()) d.set_attribute("units", f.units);
@@ -122,6 +124,7 @@ void write_root_attributes(Hdf5File& file, const MapLayout& layout, int ranks) {
   if (layout.census_shock) file.set_attribute("census_shock", 1);
   if (layout.fragility > 0.0) file.set_attribute("fragility", layout.fragility);
   std::vector<std::string> uncovered = {"cells_done", "complete", "ranks"};
+  if (layout.attractors > 0) uncovered.push_back("families");  // the family table, made by each family pass
   if (layout.refine_levels > 0) {
     file.set_attribute("refine_levels", layout.refine_levels);
     file.set_attribute("refine_on", layout.refine_on);
@@ -169,6 +172,12 @@ Dataset write_attractor_scale(Hdf5File& file, std::size_t attractors) {
   coordinate.set_attribute("long_name", "index of the attractor in the cell's census, by basin fraction");
   coordinate.set_attribute("units", "1");
   return coordinate;
+}
+
+void write_census_scales(Hdf5File& file, std::size_t attractors, std::vector<Dataset>& scales) {
+  scales.push_back(write_attractor_scale(file, attractors));
+  scales.push_back(write_index_scale(file, "period_start", kMapStrobePoints, "period start within the attractor's orbit"));
+  scales.push_back(write_flag_scale(file, "state", {"x1", "x2", "v1", "v2"}, "state variable"));
 }
 
 // ---- Reading a map's layout ----------------------------------------------------------------
@@ -323,6 +332,7 @@ Shape cell_offset(std::uint64_t flat, const Shape& shape) {
 // held whole in each chunk.
 Shape field_offset(Shape offset, const MapField& f) {
   if (f.slots > 0) offset.push_back(0);
+  offset.insert(offset.end(), f.inner.size(), 0);
   return offset;
 }
 

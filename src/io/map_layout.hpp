@@ -29,6 +29,9 @@ void check_layout(const std::string& path, const MapLayout& layout);
 std::vector<Dataset> write_axes(Hdf5File& file, const Grid& grid);
 // The census's attractor index 0..A-1 as a coordinate.
 Dataset write_attractor_scale(Hdf5File& file, std::size_t attractors);
+// A census map's coordinates after the axes: /attractor, /period_start (kMapStrobePoints) and
+// /state (x1 x2 v1 v2), appended to `scales` in that order.
+void write_census_scales(Hdf5File& file, std::size_t attractors, std::vector<Dataset>& scales);
 // The shape of field f's dataset: the grid's, with one more dimension per (cell, attractor) field.
 Shape with_slots(Shape shape, const MapField& f);
 // Field f's dataset, chunked as the cells' `chunk`, with its attributes; `scales`: the axes'

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <iomanip>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "vibromap/io/json_writer.hpp"
 
@@ -69,6 +71,49 @@ void write_refine_line(std::ostream& out, const FarmFigures& f, const SweepTotal
         << std::setprecision(3) << x.mismatch_bound << ")\n";
 }
 
+// The largest families (by cells, then id), at most `n`.
+std::vector<std::size_t> top_families(const FamilyPassReport& r, std::size_t n) {
+  std::vector<std::size_t> ids(r.families.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
+  std::stable_sort(ids.begin(), ids.end(),
+                   [&](std::size_t a, std::size_t b) { return r.families[a].cells > r.families[b].cells; });
+  ids.resize(std::min(ids.size(), n));
+  return ids;
+}
+
+constexpr std::size_t kTopFamilies = 5;
+
+void write_families_json(JsonWriter& w, const FamilyPassReport& r) {
+  w.key("families").begin_object();
+  w.field("count", r.families.size()).field("distance", r.distance).field("wall_s", r.wall_s).field("nodes", r.nodes);
+  w.key("top").begin_array();
+  for (const std::size_t id : top_families(r, kTopFamilies)) {
+    const FamilyRecord& f = r.families[id];
+    w.begin_object()
+        .field("id", id)
+        .field("regimes", family_regimes_text(f))
+        .field("cells", f.cells)
+        .field("soft_cells", f.soft_cells)
+        .field("fraction_min", f.fraction_min)
+        .field("fraction_max", f.fraction_max)
+        .field("edge_cells", f.edge_cells)
+        .field("label_changes", f.label_changes)
+        .end_object();
+  }
+  w.end_array().end_object();
+}
+
+void write_families_lines(std::ostream& out, const FamilyPassReport& r) {
+  out << "families       " << r.families.size() << " (attractors of neighbouring cells within " << r.distance
+      << " motion scales; the pass took " << std::setprecision(3) << r.wall_s << " s); the largest:\n";
+  for (const std::size_t id : top_families(r, kTopFamilies)) {
+    const FamilyRecord& f = r.families[id];
+    out << "  family " << id << ": " << family_regimes_text(f) << ", " << f.cells << " cells (" << f.soft_cells
+        << " soft), fraction " << std::setprecision(3) << f.fraction_min << " to " << f.fraction_max << ", "
+        << f.edge_cells << " at its edge, " << f.label_changes << " label changes\n";
+  }
+}
+
 }  // namespace
 
 void write_sweep_json(std::ostream& out, const FarmFigures& f, const SweepTotals& t, const std::string& output) {
@@ -96,6 +141,7 @@ void write_sweep_json(std::ostream& out, const FarmFigures& f, const SweepTotals
   w.field("soft_cells", t.soft).field("impacting_cells", t.impacting).field("hertz_invalid_cells", t.hertz_invalid);
   if (t.fragility_assessed > 0) w.field("fragile_cells", t.fragile).field("fragility_assessed_cells", t.fragility_assessed);
   if (t.refine_levels > 0) write_refine_json(w, f, t);
+  if (t.families) write_families_json(w, *t.families);
   w.key("regimes").begin_object();
   for (const auto& [label, count] : t.regimes) w.field(label, count);
   w.end_object().end_object();
@@ -119,6 +165,7 @@ void write_sweep_table(std::ostream& out, const FarmFigures& f, const SweepTotal
     out << "fragile        " << t.fragile << " of " << t.fragility_assessed
         << " cells assessed (a perturbation of the initial state ends on another attractor: the label is not an answer)\n";
   if (t.refine_levels > 0) write_refine_line(out, f, t);
+  if (t.families) write_families_lines(out, *t.families);
   out << "regimes       ";
   for (const auto& [label, count] : t.regimes) out << " " << label << " " << count;
   out << "\n";

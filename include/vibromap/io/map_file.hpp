@@ -37,7 +37,7 @@
 //                    other n - 1 follow by the period map; NaN when none), float64 NaN where
 //                    not listed. These are what a map keeps of a CellResult's census
 //                    attractors (core/analysis/census/census.hpp's Attractor): read back, an attractor
-//                    has one stroboscopic state (or none, all NaN) and its other fields at their
+//                    has its first min(n, 4) stroboscopic states (none for a non-periodic one) and its other fields at their
 //                    defaults; a listed attractor whose regime or flag holds -1 is malformed.
 //   With census.shock (root attribute census_shock = 1), per (cell, attractor) the minimal critical
 //   shock (core/analysis/census/critical_shock.hpp): /attractor_shock (float64, motion scales; NaN
@@ -47,6 +47,13 @@
 //   -1 none), /attractor_shock_to_regime (int8, regime codes), /attractor_shock_strobe (int32: which
 //   stroboscopic state was perturbed, -1 none), /attractor_shock_dx1, _dx2 (m), _dv1, _dv2 (m/s)
 //   (float64, NaN where none).
+//   /period_start, /state  coordinates (S = kMapStrobePoints = 4; x1 x2 v1 v2) of
+//   /attractor_strobe (N+3)-D, shape + (A, S, 4) float64: the attractor's first S period-start
+//                    states (NaN past its period; read back, an attractor has min(n, S) of them)
+//   /family, /family_flags  shape + (A) int32, int8: the attractor's family across the map and
+//                    its flags, -1 until the family pass (io/map_families.hpp) writes them; no
+//                    CellResult member holds them, so writing cells leaves them alone
+//   /families        the family table, rewritten by each family pass (not covered by the seal)
 //   The ordinary datasets then describe the attractor the rest state reaches.
 // Float datasets hold NaN (their _FillValue) where done == 0; integer ones hold 0, and
 // regime/status/stable -1. So a NaN alone does not say whether a cell was reached: /done does.

@@ -9,17 +9,21 @@
 //   census_budget_states; soft_cells, impacting_cells, hertz_invalid_cells; for an adaptive map
 //   refine_levels, refine_solved_per_level, points_solved_now, points_solved_per_s,
 //   refine_solved, refine_inherited, refine_audited, refine_mismatches, refine_mismatch_bound,
-//   refine_whole_cells; regimes: {label: cells, ...}.
+//   refine_whole_cells; a finished census map families (count, distance, wall_s, nodes, and top:
+//   the largest five by cells, each id, regimes, cells, soft_cells, fraction_min, fraction_max,
+//   edge_cells, label_changes); regimes: {label: cells, ...}.
 //
 // Table: the map, its cells (or an adaptive map's points by how each got its values), ranks,
-// time, checkpoints, the census's budget, the soft and Hertz-invalid cells, the refinement and
-// the regimes.
+// time, checkpoints, the census's budget, the soft and Hertz-invalid cells, the refinement, the
+// families (the largest five) and the regimes.
 
 #include <cstdint>
 #include <iosfwd>
 #include <map>
+#include <optional>
 #include <string>
 
+#include "vibromap/io/map_families.hpp"
 #include "vibromap/io/map_file.hpp"
 #include "vibromap/io/report.hpp"
 
@@ -41,6 +45,7 @@ struct SweepTotals {
   int refine_levels = 0;
   RefineFigures refine;
   std::uint64_t refine_solved_now = 0;   // points solved (audited too) by this run: the farm's items less the fill
+  std::optional<FamilyPassReport> families;  // a finished census map: its family pass
 };
 
 // `output`: the map file.

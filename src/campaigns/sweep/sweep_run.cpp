@@ -15,7 +15,9 @@
 #include "vibromap/campaigns/output_target.hpp"
 #include "vibromap/campaigns/stoppable.hpp"
 #include "vibromap/core/text.hpp"
+#include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/io/hdf5_file.hpp"
+#include "vibromap/io/map_families.hpp"
 #include "vibromap/io/scene/cell_maker.hpp"
 #include "vibromap/io/scene/identity.hpp"
 #include "vibromap/parallel/campaign.hpp"
@@ -190,6 +192,18 @@ FarmReport run_phases(const MpiSession& mpi, const FarmOptions& options, const C
   return total;
 }
 
+// Rank 0, a census map whose every cell is done: the family pass over the finished map
+// (io/map_families.hpp), each cell's motion scales from its point.
+std::optional<FamilyPassReport> label_families(const Scene& scene, const SweepRunConfig& config,
+                                               const detail::MapSink& sink, const CellMaker& cells) {
+  if (!scene.census || sink.items_done() != sink.items()) return std::nullopt;
+  const auto scale_of = [&](std::uint64_t flat) {
+    const StateScale scale{Model(cells(static_cast<std::size_t>(flat)).params)};
+    return MotionScale{scale.length(), scale.speed()};
+  };
+  return write_map_families(config.output, scale_of, scene.census->family_distance);
+}
+
 }  // namespace
 
 SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunConfig& config) {
@@ -210,6 +224,9 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   } else {
     report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
   }
+  mpi.agree([&] {  // rank 0, which alone knows whether the run was stopped
+    if (sink && report.farm.stop_signal == 0) report.totals.families = label_families(scene, config, *sink, cells);
+  }, exit_status_of);
   SweepTotals& totals = report.totals;
   totals.refine_levels = levels;
   if (auto* refine = dynamic_cast<detail::RefineSink*>(sink.get())) {

@@ -47,6 +47,9 @@ void add_census_options(std::vector<KeyInfo>& rows) {
   rows.push_back(option(s, "shock_max_radius", KeyType::real, B::between(0.0, 1e3, true, false), "-",
                         "shock: largest shock looked for, in motion scales (L, omega L); a ray that leads nowhere "
                         "else up to it gives none (2: the default box's half-diagonal)"));
+  rows.push_back(option(s, "family_distance", KeyType::real, B::between(0.0, 10.0, true, false), "-",
+                        "census maps: attractors of neighbouring cells whose period-start states lie closer than "
+                        "this (symmetric Hausdorff distance, motion scales L, omega L) are one family"));
 }
 
 void add_optimise_options(std::vector<KeyInfo>& rows) {

@@ -133,6 +133,7 @@ std::vector<CensusRow> make_rows() {
                             "state integrated to its steady state at [solver] rtol (for checks)",
                             d.early_stop ? "true" : "false", bool_field<C, &C::early_stop>()));
   add_shock_rows(rows);
+  rows.push_back(numeric_row("family_distance", float_text(d.family_distance), real_field<C, &C::family_distance>()));
   return rows;
 }
 

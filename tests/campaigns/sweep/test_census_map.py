@@ -8,7 +8,9 @@ attractor with its basin fraction, on MPI ranks, with checkpoint and resume.
   -sum f ln f over those shares (recomputed here), as `run --census` prints it;
 - budget_fraction is the share of states `run --census` reports followed to the budget's end,
   and the report's census_budget_states their count over the map (after a resume too);
-- a census sweep killed with SIGKILL resumes to the same map as an uninterrupted run.
+- a census sweep killed with SIGKILL resumes to the same map as an uninterrupted run;
+- every listed attractor gets a family id, the same from 1 and 2 ranks and after a kill and
+  resume, with the same family table (/families).
 """
 import json
 import os
@@ -47,6 +49,22 @@ def write_scene(tmp_path, n1, n2, checkpoint=60.0, k=8):
     return path
 
 
+def assert_same_families(a, b):
+    """/family, /family_flags and the family table of maps a and b are equal, and every listed
+    attractor has a family."""
+    with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+        listed = np.arange(fa["family"].shape[-1]) < fa["attractors"][()][..., None]
+        assert (fa["family"][()][listed] >= 0).all() and (fa["family"][()][~listed] == -1).all()
+        for name in ("family", "family_flags"):
+            np.testing.assert_array_equal(fa[name][()], fb[name][()], err_msg=name)
+        table_a, table_b = fa["families"], fb["families"]
+        assert int(table_a.attrs["count"]) == int(table_b.attrs["count"]) == fa["family"][()].max() + 1
+        assert sorted(table_a) == sorted(table_b)
+        for name in table_a:
+            np.testing.assert_array_equal(table_a[name][()], table_b[name][()], err_msg=name)
+        assert table_a["cells"][()].sum() == listed.sum()
+
+
 def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
     scene = write_scene(tmp_path, 3, 3)
     one, two = tmp_path / "one.h5", tmp_path / "two.h5"
@@ -55,6 +73,8 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
     assert report["census_initial_conditions"] == 8
     assert abs(report["initial_conditions_per_s"] - 8 * report["cells_per_s"]) <= 1e-9 * report["initial_conditions_per_s"]
     assert_same_map(one, two)
+    assert_same_families(one, two)
+    assert report["families"]["count"] >= 1
     with h5py.File(two, "r") as f:
         assert int(f.attrs["census_attractors"]) == 4
         assert f["attractor_fraction"].shape == (3, 3, 4)
@@ -128,3 +148,5 @@ def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
     assert report["cells_computed"] == 16 - before
     assert report["census_budget_states"] == whole["census_budget_states"]
     assert_same_map(reference, out)
+    assert_same_families(reference, out)
+    assert report["families"] == {**whole["families"], "wall_s": report["families"]["wall_s"]}

@@ -23,7 +23,8 @@ std::string validate(const CensusOptions& o) {
       {"census.max_transient_periods", static_cast<double>(o.max_transient_periods)},
       {"census.cell", o.cell},                               {"census.rtol", o.rtol},
       {"census.shock_directions", o.shock_directions},       {"census.shock_tolerance", o.shock_tolerance},
-      {"census.shock_max_radius", o.shock_max_radius}};
+      {"census.shock_max_radius", o.shock_max_radius},
+      {"census.family_distance", o.family_distance}};
   for (const auto& [name, v] : numbers)
     if (std::string r = check_option(name, v); !r.empty()) return r;
   const std::pair<const char*, const std::optional<std::array<double, 2>>*> sides[] = {

@@ -65,6 +65,10 @@ struct CensusOptions {
   double shock_tolerance = 1e-3;  // relative tolerance on the shock's size, -
   double shock_max_radius = 2.0;  // largest shock looked for, in motion scales (2: the default box's half-diagonal), -
   bool shock_optimise = true;   // false: the random directions alone, no compass search (for checks)
+  // Census maps (a sweep with [census]): attractors of neighbouring cells whose stroboscopic sets
+  // lie closer than this (symmetric Hausdorff distance in motion scales) are one family
+  // (core/analysis/census/families.hpp), -
+  double family_distance = 3.0;
 };
 
 std::string validate(const CensusOptions& o);
