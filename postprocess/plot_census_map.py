@@ -9,11 +9,14 @@ basin fractions of one chosen cell.
   --show soft         soft_fraction per cell: the total basin fraction of the attractors that
                       are soft (periodic with impacts, stable, Hertz-valid, k_con <= the map's
                       soft_kcon) (0..1)
-  --show shock        per cell the minimal critical shock of its soft attractor (the soft one with
-                      the largest basin fraction), in motion scales, on a log colour scale: how hard
-                      a kick knocks the soft impact out; cells without a soft attractor grey, soft
-                      attractors with no shock up to census.shock_max_radius dark (the map needs
-                      census.shock = true)
+  --show shock [--family ID]
+                      per cell the minimal critical shock of one family's attractor (default: the
+                      soft family, the one with the most soft cells), in motion scales, on a log
+                      colour scale: how hard a kick knocks that motion out; cells without the family
+                      grey, its attractors with no shock up to census.shock_max_radius dark, those
+                      not searched (census.shock_soft_only) pale. A map without families (not
+                      finished) shows each cell's soft attractor (the soft one with the largest
+                      basin fraction). The map needs census.shock = true
 A map made with analysis.steady = "shooting" says so in every picture's title.
   --show cell --at E1=1.4e10 E2=1e6
                       the basin fractions of the grid cell nearest those values, one bar per
@@ -72,6 +75,7 @@ COLOR_SOFT = "#1a9850"
 COLOR_OTHER = "#4575b4"
 COLOR_UNDECIDED = "#9e9e9e"
 COLOR_NO_SHOCK = "#252525"
+COLOR_NOT_SEARCHED = "#f3e6c4"  # the family is there, its shock was not looked for (census.shock_soft_only)
 SUFFIX = {"attractors": "_attractors", "soft": "_soft", "shock": "_shock", "cell": "_cell", "families": "_families",
           "family": "_family"}
 FAMILY_COLORS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf",
@@ -94,7 +98,7 @@ def parse_args(argv: list[str] | None):
     parser.add_argument("--show", choices=("attractors", "soft", "shock", "cell", "families", "family"), default="attractors",
                         help="what to draw (default: attractors)")
     parser.add_argument("--family", type=int, metavar="ID",
-                        help="--show family: the family's id (default: the family with the most soft cells)")
+                        help="--show family, --show shock: the family's id (default: the family with the most soft cells)")
     parser.add_argument("--at", metavar="NAME=VALUE", nargs="+", action="extend", default=[],
                         help="--show cell: the cell nearest these axis values (SI units; default: the middle of every axis)")
     args = parser.parse_args(argv)
@@ -268,32 +272,64 @@ def require_shock(sweep: SweepMap) -> None:
         )
 
 
-def add_soft_shock(sweep: SweepMap) -> None:
-    """Adds to the map's per-cell data "soft_shock", the shock of each cell's soft attractor with
-    the largest basin fraction (NaN where none was found), and "has_soft" (1 where the cell has a
-    soft attractor), so that a slice carries them."""
-    soft = np.asarray(sweep.census["soft"]) == 1
-    fraction = np.where(soft, np.asarray(sweep.census["fraction"], dtype=float), -1.0)
-    chosen = np.argmax(fraction, axis=-1)
-    has_soft = soft.any(axis=-1) & (np.asarray(sweep.data["done"]) != 0)
-    shock = np.take_along_axis(np.asarray(sweep.census["shock"], dtype=float), chosen[..., None], axis=-1)[..., 0]
-    sweep.data["soft_shock"] = np.where(has_soft, shock, np.nan)
-    sweep.data["has_soft"] = has_soft.astype(np.int8)
+SHOCK_NOT_COMPUTED = 0  # /attractor_shock_status: ShockStatus::not_computed (census.shock_soft_only)
 
 
-def draw_shock(fig, ax, sl, x_edges, y_edges):
-    shock = np.asarray(sl.data["soft_shock"], dtype=float)
-    has_soft = np.asarray(sl.data["has_soft"]) == 1
-    found = has_soft & np.isfinite(shock) & (shock > 0)
-    status = np.full(shock.shape, 0.0)  # 0 grey: no soft attractor (or not computed); 1 dark: no shock found
-    status[has_soft & ~found] = 1.0
-    ax.pcolormesh(x_edges, y_edges, status, cmap=matplotlib.colors.ListedColormap([COLOR_NOT_COMPUTED, COLOR_NO_SHOCK]),
-                  vmin=0.0, vmax=1.0, shading="flat")
+def add_shock(sweep: SweepMap, chosen: int | None) -> str:
+    """Adds to the map's per-cell data "cell_shock", the shock of each cell's attractor of family
+    `chosen` (without families: its soft attractor with the largest basin fraction; NaN where none
+    was found), "has_it" (1 where the cell has that attractor) and "searched" (1 where its shock
+    was looked for), so that a slice carries them. Returns what the attractor is, for the title."""
+    done = np.asarray(sweep.data["done"]) != 0
+    if chosen is None:
+        mine = np.asarray(sweep.census["soft"]) == 1
+        what = "the soft attractor"
+    else:
+        mine = np.asarray(sweep.census["family"]) == chosen
+        what = f"family {chosen} {family_regimes(sweep, chosen)}"
+    weight = np.where(mine, np.asarray(sweep.census["fraction"], dtype=float), -1.0)
+    at = np.argmax(np.nan_to_num(weight, nan=-0.5), axis=-1)[..., None]
+    has_it = mine.any(axis=-1) & done
+    shock = np.take_along_axis(np.asarray(sweep.census["shock"], dtype=float), at, axis=-1)[..., 0]
+    status = np.take_along_axis(np.asarray(sweep.census["shock_status"]), at, axis=-1)[..., 0]
+    sweep.data["cell_shock"] = np.where(has_it, shock, np.nan)
+    sweep.data["has_it"] = has_it.astype(np.int8)
+    sweep.data["searched"] = (has_it & (status != SHOCK_NOT_COMPUTED)).astype(np.int8)
+    return what
+
+
+def shock_family(sweep: SweepMap, asked: int | None) -> int | None:
+    """The family whose shock is drawn: the one asked, else the soft family; None for a map
+    without families (each cell's soft attractor is drawn)."""
+    family = sweep.census.get("family")
+    if family is None or not (family >= 0).any():
+        if asked is not None:
+            require_families(sweep)
+        return None
+    if asked is not None and not 0 <= asked <= int(family.max()):
+        raise MapSliceError(f"{sweep.path}: no family {asked} (ids 0..{int(family.max())})")
+    return asked if asked is not None else default_family(sweep)
+
+
+def draw_shock(fig, ax, sl, what: str, x_edges, y_edges):
+    shock = np.asarray(sl.data["cell_shock"], dtype=float)
+    has_it = np.asarray(sl.data["has_it"]) == 1
+    searched = has_it & (np.asarray(sl.data["searched"]) == 1)
+    found = searched & np.isfinite(shock) & (shock > 0)
+    status = np.full(shock.shape, 0.0)  # 0 grey: not there; 1 pale: not searched; 2 dark: no shock found
+    status[has_it & ~searched] = 1.0
+    status[searched & ~found] = 2.0
+    colors = [COLOR_NOT_COMPUTED, COLOR_NOT_SEARCHED, COLOR_NO_SHOCK]
+    ax.pcolormesh(x_edges, y_edges, status, cmap=matplotlib.colors.ListedColormap(colors), vmin=-0.5, vmax=2.5,
+                  shading="flat")
     handles = [Patch(facecolor=COLOR_NOT_COMPUTED, edgecolor="0.4", linewidth=0.5,
-                     label=f"no soft attractor: {maps.cells_text(int((~has_soft).sum()))}")]
-    if (has_soft & ~found).any():
+                     label=f"not there: {maps.cells_text(int((~has_it).sum()))}")]
+    if (has_it & ~searched).any():
+        handles.append(Patch(facecolor=COLOR_NOT_SEARCHED, edgecolor="0.4", linewidth=0.5,
+                             label=f"not searched (not soft): {maps.cells_text(int((has_it & ~searched).sum()))}"))
+    if (searched & ~found).any():
         handles.append(Patch(facecolor=COLOR_NO_SHOCK, edgecolor="0.4", linewidth=0.5,
-                             label=f"soft, no shock found: {maps.cells_text(int((has_soft & ~found).sum()))}"))
+                             label=f"no shock found: {maps.cells_text(int((searched & ~found).sum()))}"))
     if found.any():
         values = np.ma.masked_array(shock, mask=~found)
         lo, hi = float(values.min()), float(values.max())
@@ -301,15 +337,14 @@ def draw_shock(fig, ax, sl, x_edges, y_edges):
             lo, hi = lo / 1.5, hi * 1.5
         mesh = ax.pcolormesh(x_edges, y_edges, values, cmap=plt.get_cmap("viridis"),
                              norm=matplotlib.colors.LogNorm(vmin=lo, vmax=hi), shading="flat")
-        fig.colorbar(mesh, ax=ax, pad=0.02).set_label(
-            "minimal critical shock of the soft attractor (motion scales L, omega L)", fontsize=9)
-    title = f"soft attractor's critical shock: soft in {maps.cells_text(int(has_soft.sum()))}"
+        fig.colorbar(mesh, ax=ax, pad=0.02).set_label("minimal critical shock (motion scales L, omega L)", fontsize=9)
+    title = f"shock of {what}: found in {maps.cells_text(int(found.sum()))}"
     if found.any():
         title += f", {float(shock[found].min()):.3g} .. {float(shock[found].max()):.3g}"
     return title, handles
 
 
-def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = None):
+def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = None, what: str = ""):
     done = np.asarray(sl.data["done"]) != 0
     fig, ax = plt.subplots(figsize=FIGSIZE_IN if sl.y is not None else maps.STRIP_FIGSIZE_IN, constrained_layout=True)
     x_edges, y_edges = maps.setup_axes(ax, sl)
@@ -333,7 +368,7 @@ def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = Non
                                      label=f"{what}: {maps.cells_text(cells)}"))
         title = "attractors per cell (census)"
     elif show == "shock":
-        title, handles = draw_shock(fig, ax, sl, x_edges, y_edges)
+        title, handles = draw_shock(fig, ax, sl, what, x_edges, y_edges)
     else:
         soft = np.ma.masked_array(np.asarray(sl.data["soft_fraction"], dtype=float), mask=~done)
         cmap = plt.get_cmap("viridis").copy()
@@ -404,19 +439,20 @@ def main(argv: list[str] | None = None) -> int:
     def figure():
         sweep = read_map(args.map)
         require_census(sweep)
-        if args.show == "shock":
-            require_shock(sweep)
-            add_soft_shock(sweep)
         if args.show == "cell":
             return plot_cell(sweep, cell_index(sweep, args.at_values))
-        chosen = None
+        chosen, what = None, ""
         if args.show == "families":  # per-cell arrays, sliced with the others
             sweep.data["_rest_family"], sweep.data["_rest_change"] = rest_family(sweep)
         elif args.show == "family":
             chosen = args.family if args.family is not None else default_family(sweep)
             sweep.data["_family_fraction"], sweep.data["_family_change"] = family_fraction(sweep, chosen)
+        elif args.show == "shock":
+            require_shock(sweep)
+            chosen = shock_family(sweep, args.family)
+            what = add_shock(sweep, chosen)
         sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot_map(sweep, sl, args.show, maps.read_curve_files(args.curves), chosen)
+        fig = plot_map(sweep, sl, args.show, maps.read_curve_files(args.curves), chosen, what)
         if args.solved:
             maps.mark_solved(fig, sweep, sl)
         return fig

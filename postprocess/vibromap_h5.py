@@ -20,7 +20,7 @@ Every reader returns numpy arrays and plain Python numbers and strings, and rais
 VibromapFileError with a one-line message (naming the file) when the file is missing, is not
 HDF5, is of another format version, lacks what the reader needs, or is damaged: open_h5 checks
 the file's format version (FileVersionError, the one line vibromap prints: "FILE: a regime map of
-format version 0; this vibromap reads version 1 only: make the file again with this vibromap")
+format version 0; this vibromap reads version 2 only: make the file again with this vibromap")
 and then the attribute checksum vibromap writes into every file (vibromap_seal.py; "FILE:
 damaged: its attributes fail their checksum (...)"), a chunk that fails its Fletcher32 checksum is
 named, and whatever else h5py raises while reading a damaged or truncated file becomes one line

@@ -5,7 +5,7 @@ Every reader raises VibromapFileError with a one-line message (naming the file) 
 missing, is not HDF5, is of another format version, lacks what the reader needs, or is damaged.
 open_h5(path, kind) checks, before any value is read, the file's format version (the root
 attribute `version`, FORMAT_VERSIONS: a file of another version, older or newer, raises
-FileVersionError, "FILE: a regime map of format version 0; this vibromap reads version 1 only:
+FileVersionError, "FILE: a regime map of format version 0; this vibromap reads version 2 only:
 make the file again with this vibromap", the line vibromap itself prints) and then the attribute
 checksum vibromap writes into every file (vibromap_seal.py; "FILE: damaged: its attributes fail
 their checksum (...)"); read_dataset names a chunk that fails its Fletcher32 checksum or is
@@ -29,7 +29,7 @@ from vibromap_seal import DamagedAttributes, check_heaps, check_seal
 # agree): a reader takes its kind's version and no other. A file without the root attribute
 # `version` is version 0 (made before vibromap versioned its files).
 FORMAT_VERSIONS = {
-    "regime map": 1,
+    "regime map": 2,
     "basins file": 1,
     "optimisation file": 1,
     "trajectory file": 1,
@@ -118,6 +118,31 @@ def _stored_version(f: h5py.File, path: str, kind: str) -> int:
     return int(value.reshape(()).item())
 
 
+# The root attribute (and its value) that marks a kind of file, and how a file without it is named.
+KIND_MARKS = {
+    "regime map": ("title", "vibromap regime map", "not a vibromap map file"),
+    "curve file": ("vibromap_file", "curves", "not a curve file of vibromap continue --curve"),
+}
+
+
+def _check_kind_mark(f: h5py.File, path: str, kind: str) -> None:
+    """VibromapFileError when the file lacks the mark of `kind` (KIND_MARKS): another kind of file,
+    whose own version says nothing about this kind's."""
+    if kind not in KIND_MARKS:
+        return
+    name, value, what = KIND_MARKS[kind]
+    try:
+        have = _text(f.attrs[name]) if name in f.attrs else None
+    except READ_ERRORS:
+        return
+    if have is None and kind == "regime map":
+        raise VibromapFileError(f"{path}: {what} (no root attribute '{name}')")
+    if have is None:
+        raise VibromapFileError(f"{path}: {what} (no root attribute {name} = \"{value}\")")
+    if have != value:
+        raise VibromapFileError(f"{path}: {what} (its {name} is '{have}')")
+
+
 def open_h5(path: str, kind: str) -> OpenFile:
     """Opens a vibromap HDF5 file of kind `kind` (a key of FORMAT_VERSIONS) for reading and checks
     it before any value is read: its global heaps and its format version, then its attribute
@@ -140,6 +165,7 @@ def open_h5(path: str, kind: str) -> OpenFile:
         check_heaps(f)
         found = _stored_version(f, path, kind)
         if found != FORMAT_VERSIONS[kind]:
+            _check_kind_mark(f, path, kind)  # a file of another kind is named as such, not by its version
             raise FileVersionError(version_refusal(path, kind, found))
         check_seal(f)
     except DamagedAttributes as exc:

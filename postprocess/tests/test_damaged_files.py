@@ -101,12 +101,13 @@ def test_a_map_without_its_seal_is_refused_as_damaged(sealed_map):
                    "damaged: it has no attribute 'attribute_checksum'; make it again with vibromap --overwrite")
 
 
-@pytest.mark.parametrize("version", [0, 2, None])
+@pytest.mark.parametrize("version", [0, vibromap_h5.FORMAT_VERSIONS["regime map"] + 1, None])
 def test_a_map_of_another_format_version_is_refused_naming_both_versions(sealed_map, version):
     """The version changed (None: removed, version 0) without sealing again: it is checked first,
     so it is named, not reported as damage; the scripts as programs exit 2 with that one line."""
     set_version(sealed_map, version)
-    line = (f"{sealed_map}: a regime map of format version {version or 0}; this vibromap reads version 1 only: "
+    line = (f"{sealed_map}: a regime map of format version {version or 0}; this vibromap reads version "
+            f"{vibromap_h5.FORMAT_VERSIONS['regime map']} only: "
             "make the file again with this vibromap")
     with pytest.raises(vibromap_h5.FileVersionError) as error:
         vibromap_h5.read_map(str(sealed_map))

@@ -25,7 +25,8 @@ P, NP = make_map.REGIME["periodic"], make_map.REGIME["non_periodic"]
 A = 3
 
 
-def census_map(path):
+def census_map(path, extra=None):
+    """Writes the map; extra(path, count) adds datasets before it is sealed."""
     shape = (3, 2)
     done = np.ones(shape, dtype=bool)
     done[2, 1] = False
@@ -65,6 +66,8 @@ def census_map(path):
             f.create_dataset(name, data=values)
         for name, values in per.items():
             f.create_dataset("attractor_" + name, data=values)
+    if extra is not None:
+        extra(path, count)
     make_map.seal(path)
     return count, soft
 
@@ -121,3 +124,52 @@ def test_a_map_without_census_and_a_cell_not_computed_are_one_line_errors(tmp_pa
     census_map(path)
     proc = run([SCRIPT, str(path), "--show", "cell", "--at", "E1=1e9", "R1=1", "-o", str(tmp_path / "c.png")])
     assert proc.returncode == 2 and "is not computed yet" in proc.stderr
+
+
+def add_shocks_and_families(path, count):
+    """Families 0, 1, 2 for attractor slots 0 (the soft (1,1)), 1, 2 of every listed attractor;
+    the soft one's shock 0.5 + 0.25 (i + j), found, except cell [0, 0] where it was not looked for;
+    the (3,3)'s none found; the non-periodic's not periodic (statuses as map_file.hpp's)."""
+    shape = count.shape
+    listed = np.arange(A) < count[..., None]
+    family = np.where(listed, np.arange(A), -1).astype(np.int32)
+    shock = np.full(shape + (A,), np.nan)
+    status = np.where(listed, np.array([1, 2, 3], dtype=np.int8), -1).astype(np.int8)
+    for i, j in np.ndindex(shape):
+        if count[i, j] > 0:
+            shock[i, j, 0] = 0.5 + 0.25 * (i + j)
+    status[0, 0, 0], shock[0, 0, 0] = 0, np.nan
+    with h5py.File(path, "a") as f:
+        f.create_dataset("family", data=family)
+        f.create_dataset("family_flags", data=np.zeros(shape + (A,), dtype=np.int8))
+        f.create_dataset("attractor_shock", data=shock)
+        f.create_dataset("attractor_shock_status", data=status)
+        f.attrs["census_shock"] = np.int64(1)
+
+
+def test_the_shock_map_of_a_family(tmp_path):
+    """--show shock draws the soft family's shock (family 0: the most soft cells): found in the 4
+    computed cells but [0, 0], where it was not searched; --family 1 draws the (3,3), whose shock
+    none was found, where it is listed."""
+    path = tmp_path / "census.h5"
+    count, _ = census_map(path, add_shocks_and_families)
+    sweep = read_map(str(path))
+    chosen = plot_census_map.shock_family(sweep, None)
+    assert chosen == 0
+    assert plot_census_map.add_shock(sweep, chosen) == "family 0 (1,1)"
+    sl = plot_census_map.maps.choose_slice(sweep, None, None, {})
+    fig = plot_census_map.plot_map(sweep, sl, "shock", chosen=chosen, what="family 0 (1,1)")
+    title = fig.axes[0].get_title()
+    assert "shock of family 0 (1,1): found in 4 cells, 0.75 .. 1" in title
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert legend == ["not there: 1 cell", "not searched (not soft): 1 cell"]
+    assert plot_census_map.add_shock(sweep, 1) == "family 1 (3,3)"
+    sl = plot_census_map.maps.choose_slice(sweep, None, None, {})
+    fig = plot_census_map.plot_map(sweep, sl, "shock", chosen=1, what="family 1 (3,3)")
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert legend == [f"not there: {int((count < 2).sum())} cells", f"no shock found: {int((count >= 2).sum())} cells"]
+    out = tmp_path / "shock.png"
+    proc = run([SCRIPT, str(path), "--show", "shock", "-o", str(out)])
+    assert proc.returncode == 0, proc.stderr
+    proc = run([SCRIPT, str(path), "--show", "shock", "--family", "7", "-o", str(out)])
+    assert (proc.returncode, proc.stderr.strip()) == (2, f"plot_census_map: error: {path}: no family 7 (ids 0..2)")

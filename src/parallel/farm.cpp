@@ -208,6 +208,7 @@ class Coordinator {
       std::uint64_t n = mean_item_s_ > 0.0 ? static_cast<std::uint64_t>(o_.chunk_seconds / mean_item_s_) : 1;
       n = std::clamp<std::uint64_t>(n, 1, std::max<std::uint64_t>(1, left_ / (2 * ranks)));
       if (max_chunk_ > 0) n = std::min(n, max_chunk_);
+      if (o_.block > 1) n = std::max(o_.block, n / o_.block * o_.block);
       fill_buffer(n);
       std::uint64_t taken = 0;
       while (taken < n && !buffer_.empty()) {

@@ -162,6 +162,41 @@ TEST(Census, EveryLabelEqualsBruteForceAtTheBistableTable2Point) {
   EXPECT_DOUBLE_EQ(census.soft_fraction, census.attractors[0].fraction);
 }
 
+// A seed state (census_point's seeds) is followed first and does not count: at Table 2, the rest
+// state alone (K = 1) reaches the soft (1,1); seeded with a state of the (3,3) that a K = 16 census
+// finds, the census lists that same (3,3) orbit too, with count 0, and the (1,1)'s fraction stays 1.
+TEST(Census, ASeedStateAddsItsAttractorWithFractionZero) {
+  const Parameters p = table2();
+  const PointOptions options;
+  CensusOptions o;
+  o.initial_conditions = 16;
+  o.seed = 7;
+  const CensusSummary wide = census_point(p, options, o);
+  ASSERT_EQ(wide.attractors.size(), 2u);
+  const Attractor& three = wide.attractors[0].regime.n == 3 ? wide.attractors[0] : wide.attractors[1];
+  ASSERT_EQ(three.regime.label(), "(3,3)");
+
+  o.initial_conditions = 1;
+  const CensusSummary rest = census_point(p, options, o);
+  ASSERT_EQ(rest.attractors.size(), 1u);
+  EXPECT_EQ(rest.attractors[0].regime.label(), "(1,1)");
+  EXPECT_EQ(rest.seeds, 0);
+
+  const CensusSummary seeded = census_point(p, options, o, {three.strobe[1]});
+  ASSERT_EQ(seeded.status, SolveStatus::ok) << seeded.message;
+  EXPECT_EQ(seeded.seeds, 1);
+  ASSERT_EQ(seeded.attractors.size(), 2u);
+  EXPECT_EQ(seeded.attractors[0].regime.label(), "(1,1)");
+  EXPECT_EQ(seeded.attractors[0].count, 1);
+  EXPECT_EQ(seeded.attractors[0].fraction, 1.0);
+  EXPECT_TRUE(seeded.attractors[0].from_rest);
+  EXPECT_EQ(seeded.attractors[1].count, 0);
+  EXPECT_EQ(seeded.attractors[1].fraction, 0.0);
+  EXPECT_TRUE(same_attractor(p, options, seeded.attractors[1], three));
+  EXPECT_EQ(seeded.soft_fraction, 1.0);
+  EXPECT_EQ(seeded.basin_entropy, 0.0);
+}
+
 TEST(CensusFollower, OrbitStatesAreDecidedEarlyAndAttractorsFoundApartAreMatched) {
   const Parameters p = table2();
   const PointOptions options;

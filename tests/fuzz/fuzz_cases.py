@@ -956,8 +956,8 @@ class Generator:
     # damage
     def plan_damage(self, rng):
         post = rng.choice(("resume", "resume", "summarize"))
-        if rng.random() < 0.25:  # a map of another format version (None: made before files had one)
-            return f"{post}|version {rng.choice((0, 2, 3, -1, 2**40, None))!r}", []
+        if rng.random() < 0.25:  # a map of another format version than 2 (None: made before files had one)
+            return f"{post}|version {rng.choice((0, 1, 3, -1, 2**40, None))!r}", []
         flips = rng.randint(1, 3)
         offsets = [(rng.random() < 0.6, rng.random(), rng.randrange(8)) for _ in range(flips)]
         return f"{post}|{offsets!r}", []

@@ -24,7 +24,8 @@ struct FileFormat {
   std::int64_t version;   // the version this vibromap writes and reads
 };
 
-inline constexpr FileFormat kMapFormat{"regime map", 1};  // sweep (uniform, census, adaptive), optimise's seeding map
+// Map 2: census maps carry /basin_entropy, /attractor_strobe and the families.
+inline constexpr FileFormat kMapFormat{"regime map", 2};  // sweep (uniform, census, adaptive), optimise's seeding map
 inline constexpr FileFormat kBasinsFormat{"basins file", 1};
 inline constexpr FileFormat kOptimiseFormat{"optimisation file", 1};
 inline constexpr FileFormat kTrajectoryFormat{"trajectory file", 1};

@@ -110,6 +110,9 @@ struct FarmOptions {
   bool progress = true;               // progress lines on rank 0's stderr
   double chunk_seconds = 0.25;        // work per chunk to aim for, s (> 0)
   std::uint64_t max_chunk = 0;        // most items per chunk; 0: no cap (VIBROMAP_MAX_CHUNK overrides)
+  // Chunks are whole multiples of this many items (above max_chunk if need be), so that a run from
+  // the first item hands out aligned blocks (a seeded census map's lines), -
+  std::uint64_t block = 1;
   std::uint32_t codec_version = 0;    // the campaign's result layout: ranks built apart must agree
   // The exit code the other ranks end with when rank 0's sink throws; empty: ExitCode::io.
   ExitClassifier exit_code_of;

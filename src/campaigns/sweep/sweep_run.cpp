@@ -116,12 +116,13 @@ std::unique_ptr<detail::MapSink> prepare_sink(const Scene& scene, const SweepRun
   return make(MapWriter::create(config.output, layout, ranks));
 }
 
-// One cell: its point solved from rest, or (with [census]) its census.
-CellResult solve_cell(const CellMaker& cells, const std::optional<CensusOptions>& census, std::uint64_t flat) {
+// One cell: its point solved from rest, or (with [census]) its census, seeded by `seeds`.
+CellResult solve_cell(const CellMaker& cells, const std::optional<CensusOptions>& census, std::uint64_t flat,
+                      const std::vector<Eigen::Vector4d>& seeds = {}) {
   try {
     CellPoint point = cells(static_cast<std::size_t>(flat));
     point.options.analysis.trajectory_periods = 0;  // a map keeps no trajectory (run --trajectory does)
-    if (census) return solve_census_cell(point.params, point.options, *census);
+    if (census) return solve_census_cell(point.params, point.options, *census, seeds);
     return summarize(solve_point(point.params, point.options));
   } catch (const std::exception&) {  // a cell's trouble is its status, never the run's
     CellResult c;
@@ -131,8 +132,15 @@ CellResult solve_cell(const CellMaker& cells, const std::optional<CensusOptions>
   }
 }
 
-FarmOptions farm_options(const Scene& scene, const SweepRunConfig& config) {
+// With census.seed_from_neighbour: the cells of a line along the last axis (the farm's block).
+std::uint64_t seeded_line(const Scene& scene, const Grid& grid) {
+  if (!scene.census || !scene.census->seed_from_neighbour || grid.axes().empty()) return 0;
+  return grid.shape().back();
+}
+
+FarmOptions farm_options(const Scene& scene, const SweepRunConfig& config, std::uint64_t line) {
   FarmOptions o;
+  o.block = std::max<std::uint64_t>(line, 1);
   o.label = "sweep";
   o.noun = "cells";
   o.checkpoint_interval = scene.sweep->checkpoint_interval;
@@ -211,18 +219,27 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   std::optional<OutputTarget> target;
   std::unique_ptr<detail::MapSink> sink;
   mpi.agree([&] { sink = prepare_sink(scene, config, mpi.size(), codec, target); }, exit_status_of);
-  const CellMaker cells(scene, map_grid(*scene.sweep));
+  const Grid grid = map_grid(*scene.sweep);
+  const CellMaker cells(scene, grid);
+  const std::uint64_t line = seeded_line(scene, grid);
+  std::optional<SeededCells> seeded;
+  if (line > 0)
+    seeded.emplace(line, [&](std::uint64_t flat, const std::vector<Eigen::Vector4d>& seeds) {
+      return solve_cell(cells, scene.census, flat, seeds);
+    });
   Campaign<CellResult> campaign;
-  campaign.solve = stoppable([&](std::uint64_t flat) { return solve_cell(cells, scene.census, flat); });
+  campaign.solve = stoppable([&](std::uint64_t flat) {
+    return seeded ? (*seeded)(flat) : solve_cell(cells, scene.census, flat);
+  });
   campaign.codec = &codec;
   campaign.sink = sink.get();
   SweepReport report;
   const int levels = scene.sweep->refine;
   if (levels > 0) {
-    report.farm = run_phases(mpi, farm_options(scene, config), campaign, static_cast<detail::RefineSink*>(sink.get()),
+    report.farm = run_phases(mpi, farm_options(scene, config, line), campaign, static_cast<detail::RefineSink*>(sink.get()),
                              levels);
   } else {
-    report.farm = run_campaign(mpi, farm_options(scene, config), campaign);
+    report.farm = run_campaign(mpi, farm_options(scene, config, line), campaign);
   }
   mpi.agree([&] {  // rank 0, which alone knows whether the run was stopped
     if (sink && report.farm.stop_signal == 0) report.totals.families = label_families(scene, config, *sink, cells);

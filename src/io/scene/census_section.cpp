@@ -104,6 +104,10 @@ void add_shock_rows(std::vector<CensusRow>& rows) {
                             "shock: refine the best random direction by the compass search on the sphere; false: the "
                             "random directions alone (for checks)",
                             d.shock_optimise ? "true" : "false", bool_field<C, &C::shock_optimise>()));
+  rows.push_back(census_row("shock_soft_only", KeyType::boolean, Bounds::finite(), "-",
+                            "shock: search only the soft attractors (the question of a soft-impact machine: how hard "
+                            "a kick knocks the soft motion out); the others report not_computed",
+                            d.shock_soft_only ? "true" : "false", bool_field<C, &C::shock_soft_only>()));
 }
 
 std::vector<CensusRow> make_rows() {
@@ -134,6 +138,12 @@ std::vector<CensusRow> make_rows() {
                             d.early_stop ? "true" : "false", bool_field<C, &C::early_stop>()));
   add_shock_rows(rows);
   rows.push_back(numeric_row("family_distance", float_text(d.family_distance), real_field<C, &C::family_distance>()));
+  rows.push_back(census_row("seed_from_neighbour", KeyType::boolean, Bounds::finite(), "-",
+                            "census maps: each cell first follows one period-start state of each periodic attractor "
+                            "of the cell before it along the last axis (not counted in the fractions: an attractor "
+                            "only they reach has fraction 0); each such line is computed in order on one rank; "
+                            "uniform maps only (sweep.refine = 0)",
+                            d.seed_from_neighbour ? "true" : "false", bool_field<C, &C::seed_from_neighbour>()));
   return rows;
 }
 
@@ -162,12 +172,14 @@ std::optional<CensusOptions> read_census(const toml::table& table, const Context
   return o;
 }
 
-// The shock's keys change no cell unless census.shock is on: without it they are left out, so that
-// a map's identity is the one it had before they existed.
+// The shock's keys change no cell unless census.shock is on, and seed_from_neighbour none while it
+// is off: then they are left out, so that a map's identity is the one it had before they existed.
 std::vector<std::string> census_lines(const CensusOptions& o) {
   std::vector<std::string> lines = row_lines(kCensus, o, census_rows());
   if (!o.shock)
     std::erase_if(lines, [](const std::string& line) { return line.starts_with(cat(kCensus, ".shock")); });
+  if (!o.seed_from_neighbour)
+    std::erase_if(lines, [](const std::string& line) { return line.starts_with(cat(kCensus, ".seed_from_neighbour")); });
   return lines;
 }
 

@@ -24,6 +24,10 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess"))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess", "tests"))
 from campaign_helpers import ENV, EXE, TABLE2_POINT  # noqa: E402
 from stamp import set_version  # noqa: E402
+from vibromap_h5io import FORMAT_VERSIONS  # noqa: E402
+
+MAP = FORMAT_VERSIONS["regime map"]  # the versions this vibromap reads
+BASINS_VERSION = FORMAT_VERSIONS["basins file"]
 
 # The bistable Table 2 point, its [sweep] two cells of E2 (a few seconds).
 SWEEP = TABLE2_POINT + """
@@ -69,14 +73,14 @@ def sweep_map(tmp_path_factory):
     return scene, path
 
 
-@pytest.mark.parametrize("version", [0, 2, None])
+@pytest.mark.parametrize("version", [0, MAP - 1, MAP + 1, None])
 def test_sweep_resume_refuses_a_map_of_another_format_version(sweep_map, tmp_path, version):
     scene, reference = sweep_map
     path = tmp_path / "map.h5"
     path.write_bytes(reference.read_bytes())
     set_version(path, version)
     before = path.read_bytes()
-    assert_refused(vibromap("sweep", scene, "-q", "--resume", "-o", path), refusal(path, "regime map", version or 0, 1))
+    assert_refused(vibromap("sweep", scene, "-q", "--resume", "-o", path), refusal(path, "regime map", version or 0, MAP))
     assert path.read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["map.h5"]  # no lock, nothing beside it
 
@@ -85,10 +89,10 @@ def test_optimise_refuses_a_seeding_map_of_another_format_version(sweep_map, tmp
     _, reference = sweep_map
     seeds = tmp_path / "seeds.h5"
     seeds.write_bytes(reference.read_bytes())
-    set_version(seeds, 2)
+    set_version(seeds, MAP + 1)
     scene = tmp_path / "optimise.toml"
     scene.write_text(TABLE2_POINT + FREE_E2 + f'map = "{seeds}"\n')
-    assert_refused(vibromap("optimise", scene, "-q", "-o", tmp_path / "opt.h5"), refusal(seeds, "regime map", 2, 1))
+    assert_refused(vibromap("optimise", scene, "-q", "-o", tmp_path / "opt.h5"), refusal(seeds, "regime map", MAP + 1, MAP))
     assert sorted(p.name for p in tmp_path.iterdir()) == ["optimise.toml", "seeds.h5"]
 
 
@@ -108,11 +112,11 @@ def test_optimise_resume_refuses_a_journal_of_another_format_version(sweep_map, 
     assert not (tmp_path / "opt.h5").exists()
 
 
-@pytest.mark.parametrize("version", [0, 2])
+@pytest.mark.parametrize("version", sorted({0, BASINS_VERSION - 1, BASINS_VERSION + 1}))
 def test_basins_resume_refuses_a_file_of_another_format_version(tmp_path, version):
     path = tmp_path / "basins.h5"
     assert vibromap(*BASINS, "-o", path).returncode == 0
     set_version(path, version)
     before = path.read_bytes()
-    assert_refused(vibromap(*BASINS, "--resume", "-o", path), refusal(path, "basins file", version, 1))
+    assert_refused(vibromap(*BASINS, "--resume", "-o", path), refusal(path, "basins file", version, BASINS_VERSION))
     assert path.read_bytes() == before

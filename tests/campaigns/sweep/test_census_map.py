@@ -150,3 +150,55 @@ def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
     assert_same_map(reference, out)
     assert_same_families(reference, out)
     assert report["families"] == {**whole["families"], "wall_s": report["families"]["wall_s"]}
+
+
+def seeded_scene(tmp_path, n1, n2, checkpoint=60.0, k=4):
+    path = write_scene(tmp_path, n1, n2, checkpoint=checkpoint, k=k)
+    path.write_text(path.read_text().replace("max_attractors = 4", "max_attractors = 4\nseed_from_neighbour = true"))
+    return path
+
+
+def test_seeded_census_map_is_rank_independent_and_lists_what_the_seeds_reach(tmp_path):
+    """census.seed_from_neighbour: each cell also follows the attractors of the cell before it along
+    E2 (the last axis). The map is the same on 1 and 3 ranks; an attractor only seeds reach has
+    count 0 and fraction 0; the unseeded map's attractors are all there (the seeds only add)."""
+    scene = seeded_scene(tmp_path, 3, 4)
+    one, three, plain = tmp_path / "one.h5", tmp_path / "three.h5", tmp_path / "plain.h5"
+    sweep(1, scene, one)
+    sweep(3, scene, three)
+    assert_same_map(one, three)
+    assert_same_families(one, three)
+    sweep(1, write_scene(tmp_path, 3, 4, k=4), plain)
+    with h5py.File(one, "r") as s, h5py.File(plain, "r") as p:
+        assert "census.seed_from_neighbour = true" in s.attrs["identity"]
+        assert "seed_from_neighbour" not in p.attrs["identity"]
+        count_s, count_p = s["attractors"][()], p["attractors"][()]
+        assert (count_s >= count_p).all()
+        # The first cell of each line has no seeds: its census is the unseeded one.
+        np.testing.assert_array_equal(s["attractor_fraction"][:, 0], p["attractor_fraction"][:, 0])
+        # Fractions still count the K box states only, and sum to 1 with unresolved and unlisted.
+        fraction = s["attractor_fraction"][()]
+        np.testing.assert_allclose(np.nansum(fraction, axis=2) + s["unresolved_fraction"][()]
+                                   + s["unlisted_fraction"][()], 1.0, rtol=0, atol=1e-12)
+
+
+def test_killed_seeded_census_sweep_resumes_to_the_same_map(tmp_path):
+    """A seeded census map killed with SIGKILL resumes to the uninterrupted map (a line cut by a
+    stop, whose resumed cells compute the line's start again, is tests/campaigns/census's)."""
+    scene = seeded_scene(tmp_path, 4, 4, checkpoint=0.2, k=24)
+    reference = tmp_path / "reference.h5"
+    sweep(2, scene, reference)
+    out = tmp_path / "killed.h5"
+    proc = subprocess.Popen([MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out), "--quiet"],
+                            env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wait_for_cells_done(proc, out, 3, poll=0.05)
+    assert proc.poll() is None, "the seeded census sweep finished before it could be killed; make it longer"
+    kill_all(proc.pid)
+    proc.wait()
+    with h5py.File(out, "r") as f:
+        before = int(f["done"][()].sum())
+        assert 0 < before < 16
+    report = json.loads(sweep(2, scene, out, "--resume", "--format", "json").stdout)
+    assert report["cells_resumed"] == before
+    assert_same_map(reference, out)
+    assert_same_families(reference, out)

@@ -398,7 +398,8 @@ std::string census_input_error(const Parameters& p, const PointOptions& o, const
   return msg;
 }
 
-CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census) {
+CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census,
+                           const std::vector<Eigen::Vector4d>& seeds) {
   const auto start = std::chrono::steady_clock::now();
   CensusSummary s;
   s.T = p.period();
@@ -416,6 +417,11 @@ CensusSummary census_point(const Parameters& p, const PointOptions& options, con
   }
 
   CensusFollower follower(p, options, census);
+  for (const Eigen::Vector4d& x0 : seeds) {  // found first, so that the K states are captured by them
+    if (!x0.allFinite()) continue;
+    s.periods += follower.follow(x0).periods;
+    ++s.seeds;
+  }
   std::vector<CensusFollower::Outcome> outcomes;
   for (const Eigen::Vector4d& x0 : ics) {
     const CensusFollower::Outcome f = follower.follow(x0);

@@ -270,7 +270,8 @@ void add_critical_shocks(const Parameters& p, const PointOptions& options, const
   if (!census.shock || s.status == SolveStatus::invalid_input) return;
   CensusFollower follower(p, options, census);
   for (std::size_t i = 0; i < s.attractors.size(); ++i)
-    s.attractors[i].shock = critical_shock(p, options, census, s, i, follower);
+    if (!census.shock_soft_only || s.attractors[i].soft)
+      s.attractors[i].shock = critical_shock(p, options, census, s, i, follower);
 }
 
 std::string to_string(ShockStatus s) {

@@ -61,14 +61,20 @@ struct CensusOptions {
   // The minimal critical shock of each attractor (critical_shock.hpp), when `shock`.
   bool shock = false;           // look for each listed attractor's minimal critical shock
   std::array<bool, 4> shock_on = {true, true, true, true};  // coordinates the shock moves: x1, x2, v1, v2
-  int shock_directions = 32;    // random directions of the search's first step, -
+  int shock_directions = 512;   // random directions of the search's first step, -
   double shock_tolerance = 1e-3;  // relative tolerance on the shock's size, -
   double shock_max_radius = 2.0;  // largest shock looked for, in motion scales (2: the default box's half-diagonal), -
   bool shock_optimise = true;   // false: the random directions alone, no compass search (for checks)
+  bool shock_soft_only = false; // true: only soft attractors (is_soft) are searched, the others stay not_computed
   // Census maps (a sweep with [census]): attractors of neighbouring cells whose stroboscopic sets
   // lie closer than this (symmetric Hausdorff distance in motion scales) are one family
   // (core/analysis/census/families.hpp), -
   double family_distance = 3.0;
+  // Census maps: each cell of a line along the map's last axis first follows, as extra initial
+  // states, one period-start state of each periodic attractor of the cell before it on that line
+  // (seed states, census_point's `seeds`): Attractors.jl's seeded continuation. Every line is
+  // computed in order on one rank, so a cell's seeds do not depend on the rank count.
+  bool seed_from_neighbour = false;
 };
 
 std::string validate(const CensusOptions& o);
@@ -156,6 +162,7 @@ struct CensusSummary {
   double basin_entropy = 0.0;          // -sum f ln f over the outcomes' shares (listed attractors, unresolved,
                                        // unlisted), nats: basin_entropy.hpp's S_b with the box as one box
   int decided_early = 0;               // initial states decided by capture or recurrence
+  int seeds = 0;                       // seed states followed before the K (census_point's seeds)
   std::vector<Eigen::Vector4d> initial_conditions;  // with CensusOptions::labels
   std::vector<int> labels;                          // with CensusOptions::labels: index into attractors
   long periods = 0;                    // forcing periods integrated for all initial states
@@ -168,7 +175,11 @@ struct CensusSummary {
   int ranks = 1;                       // MPI ranks the initial states were shared out over
 };
 
-CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census);
+// seeds: physical states followed before the K initial states (a neighbouring cell's attractors,
+// CensusOptions::seed_from_neighbour). They do not count in the fractions: an attractor only
+// seeds reach is listed (after those the K states reach, room allowing) with count 0.
+CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census,
+                           const std::vector<Eigen::Vector4d>& seeds = {});
 // What census_point reports as invalid input: the point, its options or the census options
 // failing validation (or rk4); empty when they pass. The box is checked by drawing the states:
 // census_initial_conditions then gives fewer than K, and kCensusBoxOverlaps says why.
