@@ -37,7 +37,9 @@ struct ContinueArgs {
   std::string format = "table";
   std::vector<std::string> curves;  // --curve KIND: curves in (param, param2)
   std::string param2;
-  double from2 = NAN, to2 = NAN;  // NaN: not given
+  double from2 = NAN, to2 = NAN;
+  bool has_param2 = false, has_from2 = false, has_to2 = false;  // given (a given value may be empty or
+                                                                // non-finite: refused as such)
 };
 int continue_command(const ContinueArgs& args, std::ostream& out);
 
@@ -50,17 +52,23 @@ BranchTable branch_table(const ContinueArgs& args, const std::string& key) {
 
 // The --curve options: KIND parsed, --param2/--from2/--to2 given with it (and only with it).
 std::vector<CurveSpec> curve_specs(const ContinueArgs& args) {
-  const bool has_from2 = !std::isnan(args.from2), has_to2 = !std::isnan(args.to2);
-  const bool any2 = !args.param2.empty() || has_from2 || has_to2;
+  const bool any2 = args.has_param2 || args.has_from2 || args.has_to2;
   if (args.curves.empty()) {
     if (any2) throw SceneError("--param2/--from2/--to2: only with --curve KIND");
     return {};
   }
-  if (args.param2.empty() || !has_from2 || !has_to2)
+  if (!args.has_param2 || !args.has_from2 || !args.has_to2)
     throw SceneError("--curve: needs --param2 KEY --from2 C --to2 D (the second key and its range)");
-  if (!(std::isfinite(args.from2) && std::isfinite(args.to2) && args.from2 < args.to2))
+  if (args.param2.empty()) throw SceneError("--param2 '': names no key (the second key: forcing.F0, contact.E1, ...)");
+  for (const auto& [option, value] : {std::pair{"--from2", args.from2}, std::pair{"--to2", args.to2}})
+    if (!std::isfinite(value))
+      throw SceneError(cat(option, " ", number(value, 12), ": not a finite number (an end of --param2's range)"));
+  if (!(args.from2 < args.to2))
     throw SceneError(cat("--from2 ", number(args.from2, 12), " --to2 ", number(args.to2, 12),
                          ": need finite values with --from2 < --to2"));
+  if (!std::isfinite(args.to2 - args.from2))
+    throw SceneError(cat("--from2 ", number(args.from2, 12), " --to2 ", number(args.to2, 12),
+                         ": the span D - C must be finite (it scales the key)"));
   std::vector<CurveSpec> specs;
   for (const std::string& text : args.curves) {
     std::string error;
@@ -80,10 +88,12 @@ int continue_exit(const ContinueArgs& args, const ContinuationReport& r, const C
   if (curves)
     for (const MeasuredCurve& c : curves->curves) points += c.curve.points.size();
   const std::string name = signal_name(r.stop_signal);
-  std::cerr << "vibromap: stopped by " << name << " after " << points << " points: "
+  const bool branch_file = curves && curves->branch_file && !args.output.empty();
+  std::cerr << "vibromap: stopped by " << name << " after " << points << " points"
+            << (curves && curves->curves.empty() ? ", before the first curve" : "") << ": "
             << (args.output.empty() ? "the output above holds" : "the output above and " + args.output + " hold")
-            << " the continuation so far (stop: 'stopped by " << name
-            << "'); continue has no --resume: run it again to go on\n";
+            << " the continuation so far" << (branch_file ? " (" + args.output + ": a branch file, the branch so far)" : "")
+            << " (stop: 'stopped by " << name << "'); continue has no --resume: run it again to go on\n";
   return code(ExitCode::stopped);
 }
 
@@ -190,7 +200,8 @@ std::string continue_footer() {
       "SIGINT, SIGTERM or SIGUSR1 end the run before its next point: the points found so far are\n"
       "printed and written (-o, a whole file), the branch or curve cut short with stop 'stopped by\n"
       "SIGTERM' (the signal's name), and the exit code is 3 with one line on stderr; continue has\n"
-      "no --resume (run it again). A stop while the start orbit is solved writes nothing.";
+      "no --resume (run it again). A stop while the start orbit is solved writes nothing; with\n"
+      "--curve, a stop before the first curve writes the branch so far to -o's file (a branch file).";
 }
 
 }  // namespace
@@ -227,11 +238,16 @@ Command declare_continue(CLI::App& app) {
                 "grazing or level:NAME=VALUE (NAME k_con, T_con, F_max, z_ratio); may be repeated")
       ->type_name("KIND");
   c->add_option("--param2", args->param2, "With --curve: the second key (a model parameter: forcing.F0, contact.E1, ...)")
-      ->type_name("KEY2");
-  c->add_option("--from2", args->from2, "With --curve: the second key's lower end (SI units)")->check(kNumber)->type_name("C");
+      ->type_name("KEY2")
+      ->each([args](const std::string&) { args->has_param2 = true; });
+  c->add_option("--from2", args->from2, "With --curve: the second key's lower end (SI units)")
+      ->check(kNumber)
+      ->type_name("C")
+      ->each([args](const std::string&) { args->has_from2 = true; });
   c->add_option("--to2", args->to2, "With --curve: its upper end (> C; the scene's value must lie in [C, D])")
       ->check(kNumber)
-      ->type_name("D");
+      ->type_name("D")
+      ->each([args](const std::string&) { args->has_to2 = true; });
   add_format_option(*c, args->format, "Output on stdout: table or json");
   return {.app = c, .footer = continue_footer(), .topic = "the continuation of a periodic orbit",
           .campaign = always_campaign,  // one process, but a stop signal ends it cleanly (continue_exit)

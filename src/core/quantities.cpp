@@ -21,7 +21,13 @@ struct QuantityInfo {
   std::int64_t (*get_int)(const CellResult&) = nullptr;
   void (*set_int)(CellResult&, std::int64_t) = nullptr;
   std::int64_t max = 0;  // integer quantities: the largest valid value
+  Bounds range{};        // real quantities: the values it takes where defined (integer ones: [0, max])
 };
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr Bounds kPositive{0.0, kInf, true, false};
+constexpr Bounds kNonNegative{0.0, kInf, false, false};
+constexpr Bounds kFinite{-kInf, kInf, false, false};
 
 template <auto Member>
 std::int64_t get_member(const CellResult& c) {
@@ -34,8 +40,8 @@ void set_member(CellResult& c, std::int64_t v) {
 }
 
 constexpr QuantityInfo real_row(Quantity q, std::string_view name, std::string_view units,
-                                std::string_view description, double CellResult::*member) {
-  return {q, name, units, description, member};
+                                std::string_view description, double CellResult::*member, Bounds range) {
+  return {q, name, units, description, member, nullptr, nullptr, 0, range};
 }
 
 template <auto Member>
@@ -46,29 +52,29 @@ constexpr QuantityInfo int_row(Quantity q, std::string_view name, std::string_vi
 
 // Rows in enum order (checked below). The descriptions are the maps' long_name attributes.
 constexpr std::array kQuantities = {
-    real_row(Quantity::T_con, "T_con", "s", "duration of the longest impact", &CellResult::T_con),
-    real_row(Quantity::k_con, "k_con", "1", "softness T / T_con of the longest impact", &CellResult::k_con),
-    real_row(Quantity::F_max, "F_max", "N", "largest peak contact force", &CellResult::F_max),
-    real_row(Quantity::z_max, "z_max", "m", "largest peak penetration", &CellResult::z_max),
+    real_row(Quantity::T_con, "T_con", "s", "duration of the longest impact", &CellResult::T_con, kPositive),
+    real_row(Quantity::k_con, "k_con", "1", "softness T / T_con of the longest impact", &CellResult::k_con, kPositive),
+    real_row(Quantity::F_max, "F_max", "N", "largest peak contact force", &CellResult::F_max, kNonNegative),
+    real_row(Quantity::z_max, "z_max", "m", "largest peak penetration", &CellResult::z_max, kNonNegative),
     real_row(Quantity::z_ratio, "z_ratio", "1", "largest peak penetration over the reduced radius R*",
-             &CellResult::z_ratio),
-    real_row(Quantity::v_in, "v_in", "m/s", "entry velocity of the longest impact", &CellResult::v_in),
-    real_row(Quantity::impulse, "impulse", "N s", "impulse of the longest impact", &CellResult::impulse),
+             &CellResult::z_ratio, kNonNegative),
+    real_row(Quantity::v_in, "v_in", "m/s", "entry velocity of the longest impact", &CellResult::v_in, kFinite),
+    real_row(Quantity::impulse, "impulse", "N s", "impulse of the longest impact", &CellResult::impulse, kNonNegative),
     int_row<&CellResult::hertz_valid>(Quantity::hertz_valid, "hertz_valid",
                                       "1 where z_ratio is within the Hertz validity limit, else 0", 1),
     int_row<&CellResult::periods>(Quantity::periods, "periods", "forcing periods integrated"),
     int_row<&CellResult::rhs_evals>(Quantity::rhs_evals, "rhs_evals", "right-hand side evaluations"),
     real_row(Quantity::max_multiplier, "max_multiplier", "1",
              "largest modulus of the Floquet multipliers of the periodic orbit (NaN where not computed)",
-             &CellResult::max_multiplier),
+             &CellResult::max_multiplier, kNonNegative),
     real_row(Quantity::lyapunov, "lyapunov", "1/s", "largest Lyapunov exponent (NaN where not computed)",
-             &CellResult::lyapunov),
+             &CellResult::lyapunov, kFinite),
     real_row(Quantity::e_effective, "e_effective", "1",
              "effective restitution |v_out / v_in| of the relative velocity in the longest impact",
-             &CellResult::e_effective),
+             &CellResult::e_effective, kNonNegative),
     real_row(Quantity::energy_dissipated, "energy_dissipated", "J",
              "energy the contact dissipates in the longest impact (0 for elastic Hertz)",
-             &CellResult::energy_dissipated),
+             &CellResult::energy_dissipated, kFinite),
     int_row<&CellResult::clipped_impacts>(Quantity::clipped_impacts, "clipped_impacts",
                                           "impacts of the steady cycle where the damped force was clipped at 0"),
 };
@@ -112,6 +118,11 @@ std::string_view quantity_units(Quantity q) { return info(q).units; }
 std::string_view quantity_description(Quantity q) { return info(q).description; }
 bool quantity_is_integer(Quantity q) { return info(q).get_int != nullptr; }
 std::int64_t quantity_max(Quantity q) { return integer_info(q).max; }
+
+Bounds quantity_range(Quantity q) {
+  const QuantityInfo& row = info(q);
+  return row.real != nullptr ? row.range : Bounds::between(0.0, static_cast<double>(row.max));
+}
 
 Quantity parse_quantity(std::string_view s) {
   for (const auto& i : kQuantities)

@@ -317,6 +317,27 @@ vibromap_cli_test(continue_curve_bad_kind RC 2 ARGS continue jobs/paper/table2.t
 vibromap_cli_test(continue_curve_bad_level RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
                   --curve level:x1=3 --param2 F0 --from2 1 --to2 2
                   ERR "--curve level:x1=3: NAME x1 is not one of k_con, T_con, F_max, z_ratio")
+vibromap_cli_test(continue_curve_level_outside_its_range RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7
+                  --to 8 --curve level:k_con=-1 --param2 F0 --from2 300 --to2 700
+                  ERR "--curve level:k_con=-1: VALUE -1 is outside the values k_con takes: it must be > 0\n")
+vibromap_cli_test(continue_curve_level_z_ratio_negative RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7
+                  --to 8 --curve level:z_ratio=-0.5 --param2 F0 --from2 300 --to2 700
+                  ERR "--curve level:z_ratio=-0\\.5: VALUE -0\\.5 is outside the values z_ratio takes: it must be >= 0\n")
+vibromap_cli_test(continue_curve_from2_nan RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 F0 --from2 nan --to2 700
+                  ERR "--from2 nan: not a finite number \\(an end of --param2's range\\)\n")
+vibromap_cli_test(continue_curve_span2_overflows RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 phi0 --from2 -1e308 --to2 1e308
+                  ERR "--from2 -1e\\+308 --to2 1e\\+308: the span D - C must be finite")
+vibromap_cli_test(continue_curve_empty_param2 RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
+                  --curve fold --param2 <empty> --from2 300 --to2 700 ERR "--param2 '': names no key")
+# A scene whose [sweep] has an `order`: the command's own axes are not the file's to order.
+vibromap_cli_test(continue_curve_scene_with_a_sweep_order RC 2 ARGS continue jobs/demo/e1_e2.toml --param omega
+                  --from 7 --to 8 --curve fold --param2 forcing.nosuchkey --from2 1 --to2 2
+                  ERR "^vibromap: error: --param2 forcing\\.nosuchkey: unknown key 'forcing\\.nosuchkey'; it must be a parameter")
+vibromap_cli_test(continue_scene_with_a_sweep_order RC 0 ARGS continue jobs/demo/e1_e2.toml --param omega --from 7
+                  --to 7.05 --max-points 5
+                  OUT "branch +forcing\\.omega from 7 to 7\\.05, period 1 T .*points +5; max_points reached")
 vibromap_cli_test(continue_curve_reversed_range RC 2 ARGS continue jobs/paper/table2.toml --param omega --from 7 --to 8
                   --curve fold --param2 F0 --from2 700 --to2 300
                   ERR "--from2 700 --to2 300: need finite values with --from2 < --to2")
@@ -379,6 +400,17 @@ vibromap_cli_test(continue_empty_from RC 2 ARGS continue jobs/paper/table1.toml 
 vibromap_cli_test(basins_box_of_every_double RC 2 ARGS basins jobs/paper/table1.toml --grid 3x3
                   --set "census.x1=[-1e308,1e308]" -o no_file.h5
                   ERR "--set census\\.x1=\\[-1e308,1e308\\]: \\[census\\] x1 = \\[-1e\\+308, 1e\\+308\\]: must be an array \\[lo, hi\\] of two finite numbers with lo <= hi and a finite hi - lo")
+# Keys each in range whose product overflows (fuzz seed 24680, case 38: basins wrote x1 and v1
+# coordinates [-inf nan inf] from lambda F0 / k1, exit 0): refused naming the key and its bound.
+vibromap_cli_test(basins_force_amplitude_overflows RC 2 ARGS basins jobs/paper/table1.toml --grid 3x3
+                  --set analysis.max_periods=20 --set forcing.lambda=1.7976931348623157e308 -o no_file.h5
+                  ERR "jobs/paper/table1\\.toml: --set forcing\\.lambda=1\\.7976931348623157e308: \\[forcing\\] lambda = 1\\.7976931348623157e\\+308: makes the force amplitude lambda F0 \\(N\\) not finite; with the other keys as given it must be at most 3\\.595e\\+305\n")
+vibromap_cli_test(run_flores_chi_overflows RC 2 ARGS run jobs/paper/table1.toml --set contact.law=flores
+                  --set contact.restitution=5e-324
+                  ERR "\\[contact\\] restitution = 5e-324: makes the contact's damping factor chi \\(-\\) not finite; with the other keys as given it must be at least 8\\.9003e-309\n")
+vibromap_cli_test(sweep_force_amplitude_overflows_at_a_corner RC 2 ARGS sweep jobs/paper/table1.toml
+                  --set "sweep.forcing.lambda={from=1,to=1e308,n=2}" -o no_file.h5
+                  ERR "--set sweep\\.forcing\\.lambda=\\{from=1,to=1e308,n=2\\}: at the cell forcing\\.lambda = 1e\\+308: \\[forcing\\] lambda = 1e\\+308: makes the force amplitude lambda F0 \\(N\\) not finite; with the other keys as given it must be at most 3\\.595e\\+305\n")
 vibromap_cli_test(continue_span_overflows RC 2 ARGS continue jobs/paper/table1.toml -p phi0 --from -1e308 --to 1e308
                   ERR "--from -1e\\+308 --to 1e\\+308: the span B - A must be finite")
 vibromap_cli_test(step_budget_ceiling RC 2 ARGS run jobs/paper/table1.toml --set solver.max_steps=1e11

@@ -3,6 +3,8 @@
 #   docs.readme_is_a_front_page  README.md has at most 250 lines
 #   docs.links_resolve           every relative link (and anchor) of README.md and docs/*.md resolves
 #   docs.keys_md                 docs/keys.md is what `vibromap keys` prints (make_keys_md.cmake)
+#   docs.exit_codes              every exit code docs/*.md states agrees with README.md's table
+#                                (check_exit_codes.py; needs Python)
 # and the same checks on a made-up tree with one fault of each kind, which they must refuse.
 set(_vibromap_docs_check ${PROJECT_SOURCE_DIR}/tests/docs/check_docs.cmake)
 foreach(_what references readme links)
@@ -31,6 +33,24 @@ set_tests_properties(docs.readme_refuses_a_bad_tree PROPERTIES
   PASS_REGULAR_EXPRESSION "README\\.md has 252 lines, more than 250")
 set_tests_properties(docs.links_refuses_a_bad_tree PROPERTIES
   PASS_REGULAR_EXPRESSION "README\\.md: link to docs/missing\\.md: no such file.*docs/page\\.md: link to page\\.md#nowhere: no such heading")
+
+# The exit codes: a made-up tree whose page gives a full disk exit 2 and a stop exit 4.
+if(VibromapPython_FOUND)
+  set(_check_codes ${PROJECT_SOURCE_DIR}/tests/docs/check_exit_codes.py)
+  add_test(NAME docs.exit_codes COMMAND "${VibromapPython_EXECUTABLE}" ${_check_codes} ${PROJECT_SOURCE_DIR})
+  set(_bad_codes ${CMAKE_CURRENT_BINARY_DIR}/docs_bad_exit_codes)
+  file(WRITE ${_bad_codes}/README.md "# x\n\n## Exit codes\n\n| code | meaning |\n|---|---|\n"
+       "| 0 | done |\n| 1 | an unexpected error (a bug) |\n| 2 | bad input |\n"
+       "| 3 | stopped by SIGINT, SIGTERM or SIGUSR1 |\n"
+       "| 4 | a file could not be read or written, or a resource (disk, memory) ran out |\n\n## Next\n")
+  file(WRITE ${_bad_codes}/docs/guide-x.md "# X\n\nA map that cannot fit on its disk is refused (exit 2).\n"
+       "A run stopped by SIGTERM exits 4. A bad key is refused with exit 2. Done: exit 7.\n")
+  add_test(NAME docs.exit_codes_refuses_a_bad_tree COMMAND "${VibromapPython_EXECUTABLE}" ${_check_codes} ${_bad_codes})
+  set_tests_properties(docs.exit_codes_refuses_a_bad_tree PROPERTIES
+    PASS_REGULAR_EXPRESSION "guide-x\\.md:3: states exit 2 for 'disk'.*guide-x\\.md:4: states exit 4 for 'sigterm'.*guide-x\\.md:4: exit 7 is not in.*3 disagreements")
+  unset(_check_codes)
+  unset(_bad_codes)
+endif()
 unset(_bad)
 unset(_brief)
 unset(_lines)

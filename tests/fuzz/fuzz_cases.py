@@ -23,6 +23,8 @@ Classes (issue #28):
 """
 import ast
 import copy
+import functools
+import math
 import os
 import random
 import re
@@ -339,6 +341,8 @@ NUMBER_TOKEN = re.compile(r"(?<![\w.\"])[-+]?(?:\d[\d_]*(?:\.\d*)?(?:[eE][-+]?\d
 
 def split_value(value):
     """A key line's value without its trailing comment."""
+    if "#" not in value:  # the common case, and every line of the stress scenes' many keys
+        return value.rstrip(), ""
     quote = None
     for i, c in enumerate(value):
         if quote:
@@ -350,8 +354,25 @@ def split_value(value):
     return value.rstrip(), ""
 
 
+# Lines of a scene looked at for a key to change: the scenes' own are a few hundred; a stress
+# structure's 100,000 keys past them would make every case that meets one slow to build.
+MAX_SCANNED_LINES = 2000
+
+
 def key_lines(lines):
-    return [i for i, line in enumerate(lines) if KEY_LINE.match(line)]
+    """The indices of the key lines among the first MAX_SCANNED_LINES."""
+    return [i for i, line in enumerate(lines[:MAX_SCANNED_LINES]) if KEY_LINE.match(line)]
+
+
+def number_lines(lines):
+    """The indices of the key lines (among the first MAX_SCANNED_LINES) whose value (without
+    its comment) holds a number."""
+    found = []
+    for i, line in enumerate(lines[:MAX_SCANNED_LINES]):
+        m = KEY_LINE.match(line)
+        if m and NUMBER_TOKEN.search(split_value(m.group(3))[0]):
+            found.append(i)
+    return found
 
 
 def section_lines(lines):
@@ -403,7 +424,7 @@ def mut_retype(draft, rng, keys):
 def mut_extreme(draft, rng, keys):
     """One number inside a value (a scalar, an axis, a box, an array) made extreme."""
     lines = scene_lines(draft)
-    idx = [i for i in key_lines(lines) if NUMBER_TOKEN.search(split_value(KEY_LINE.match(lines[i]).group(3))[0])]
+    idx = number_lines(lines)
     if not idx:
         return
     i = rng.choice(idx)
@@ -422,7 +443,7 @@ def mut_scale(draft, rng, keys):
     """One number scaled by a power of ten or nudged: a value that is mostly still allowed,
     so the run goes on to compute and write (the outputs' numbers are then checked)."""
     lines = scene_lines(draft)
-    idx = [i for i in key_lines(lines) if NUMBER_TOKEN.search(split_value(KEY_LINE.match(lines[i]).group(3))[0])]
+    idx = number_lines(lines)
     if not idx:
         return
     i = rng.choice(idx)
@@ -434,7 +455,13 @@ def mut_scale(draft, rng, keys):
     except ValueError:
         return
     factor = rng.choice((1e-6, 1e-3, 0.1, 0.5, 0.99, 1.01, 2.0, 10.0, 1e3, 1e6))
-    new = repr(x * factor) if "." in t.group(0) or "e" in t.group(0).lower() or factor < 1 else str(int(x * factor))
+    y = x * factor
+    if not math.isfinite(y):  # nan, inf (a TOML token, or an overflow): written as TOML writes it
+        new = "nan" if math.isnan(y) else ("inf" if y > 0 else "-inf")
+    elif "." in t.group(0) or "e" in t.group(0).lower() or factor < 1:
+        new = repr(y)
+    else:
+        new = str(int(y))
     value = value[:t.start()] + new + value[t.end():]
     lines[i] = f"{m.group(1)}{m.group(2)} = {value}"
     draft.notes.append(f"scene: {m.group(2)} = {value[:80]}")
@@ -514,21 +541,32 @@ def mut_garbage(draft, rng, keys):
         draft.notes.append(f"scene: {len(junk[:64])} random bytes inserted at {at}")
 
 
+# The stress structures of mut_monster, each built once when first drawn (some are megabytes:
+# building all of them for every draw made case generation slow).
+MONSTERS = (
+    ("[system]", lambda: "x = " + "[" * 100000 + "]" * 100000),
+    ("[system]", lambda: "x = " + "{ a = " * 20000 + "1" + " }" * 20000),
+    ("[system]", lambda: "x = \"" + "a" * 1000000 + "\""),
+    ("", lambda: "# " + "c" * 3000000),
+    ("[bogus]", lambda: "\n".join(f"k{i} = {i}" for i in range(100000))),
+    ("[system]", lambda: "x = \"\x00\"\n\x00"),
+    ("[sweep]", lambda: "store = [" + "\"T_con\", " * 100000 + "]"),
+)
+
+
+@functools.lru_cache(maxsize=None)
+def monster(choice):
+    section, make = MONSTERS[choice]
+    extra = make()
+    return ("\n" + section + "\n" + extra + "\n").encode(), len(extra)
+
+
 def mut_monster(draft, rng, keys):
     """Structures that stress a parser: deep nesting, long lines, many keys, NUL bytes."""
-    choice = rng.randrange(7)
-    extra = (
-        "x = " + "[" * 100000 + "]" * 100000,
-        "x = " + "{ a = " * 20000 + "1" + " }" * 20000,
-        "x = \"" + "a" * 1000000 + "\"",
-        "# " + "c" * 3000000,
-        "\n".join(f"k{i} = {i}" for i in range(100000)),
-        "x = \"\x00\"\n\x00",
-        "store = [" + "\"T_con\", " * 100000 + "]",
-    )[choice]
-    section = ("[system]", "[system]", "[system]", "", "[bogus]", "[system]", "[sweep]")[choice]
-    draft.scene = draft.scene + ("\n" + section + "\n" + extra + "\n").encode()
-    draft.notes.append(f"scene: stress structure {choice} ({len(extra)} bytes)")
+    choice = rng.randrange(len(MONSTERS))
+    text, size = monster(choice)
+    draft.scene = draft.scene + text
+    draft.notes.append(f"scene: stress structure {choice} ({size} bytes)")
 
 
 def mut_encoding(draft, rng, keys):

@@ -22,7 +22,9 @@ Problems are (tag, detail) pairs; the tags are the failure classes of the report
   leak             a lock, journal or temporary file left behind, or a file left by exit 4
   bad-json         exit 0 with --format json and stdout is not JSON
   nonfinite-json   NaN or Infinity in JSON output
-  nonfinite-h5     inf anywhere, or NaN in a coordinate or an attribute, of a written HDF5 file
+  nonfinite-h5     inf anywhere in a written HDF5 file (datasets, attributes), NaN in a coordinate,
+                   or NaN in a dataset its kind of file does not declare NaN in (NAN_FOR_MISSING,
+                   from docs/file-formats.md)
   bad-h5           exit 0 and a written HDF5 file cannot be read
   nonfinite-csv    inf in a written CSV file
   nonfinite-table  inf in a table on stdout
@@ -294,10 +296,37 @@ def check_json(text, problems):
         problems.append((tag, str(exc)[:200]))
 
 
+# The datasets each kind of file declares NaN in, as docs/file-formats.md gives them: "not
+# computed", "not listed", "beyond the period", "no contact", "undefined". Keyed by the file's root
+# `title`; names are fnmatch patterns of the dataset's path. A regime map's float datasets declare
+# it by their _FillValue (NaN where done == 0; the quantities "(NaN where not computed)"). Every
+# other float dataset, and every coordinate of every file, must hold finite numbers only.
+NAN_FOR_MISSING = {
+    "vibromap basins": ("strobe", "max_floquet"),
+    "vibromap periodic-orbit branch": ("strobe_x1",),
+    "vibromap curves": ("curve_*/T_con", "curve_*/k_con", "curve_*/z_ratio", "curve_*/F_max"),
+    "vibromap orbit diagram": ("x1", "x2", "v1", "v2"),
+    "vibromap multistart optimisation": ("seed_objective", "starts/*/objective", "starts/*/value", "starts/*/k_con",
+                                         "starts/*/T_con", "starts/*/F_max", "starts/*/max_multiplier",
+                                         "starts/*/z_ratio", "starts/*/soft_fraction", "best/*/soft_check/*"),
+}
+
+
+def nan_declared(kind, name, obj):
+    """Whether the file of this kind (its title) declares NaN as 'missing' in dataset `name`."""
+    import fnmatch
+    import numpy as np
+    fill = obj.attrs.get("_FillValue")
+    if fill is not None and np.asarray(fill).dtype.kind == "f" and np.isnan(np.asarray(fill)).all():
+        return True
+    patterns = next((v for k, v in NAN_FOR_MISSING.items() if kind.startswith(k)), ())
+    return any(fnmatch.fnmatchcase(name, p) for p in patterns)
+
+
 def nonfinite_in_h5(path):
-    """Non-finite numbers of an HDF5 file: inf anywhere (datasets and attributes), NaN in a
-    coordinate (a dimension scale). NaN elsewhere is the files' documented mark of 'not
-    computed' or 'undefined' (_FillValue of the maps, a quantity without a value)."""
+    """Non-finite numbers of an HDF5 file: inf anywhere (datasets and attributes); NaN in a
+    coordinate (a dimension scale), or in a dataset the file does not declare NaN in
+    (NAN_FOR_MISSING)."""
     import h5py
     import numpy as np
     found = []
@@ -316,8 +345,12 @@ def nonfinite_in_h5(path):
                 found.append(f"{name}: {int(np.isinf(data).sum())} inf values")
             elif h5py.h5ds.is_scale(obj.id) and np.isnan(data).any():
                 found.append(f"{name} (a coordinate): NaN")
+            elif np.isnan(data).any() and not nan_declared(kind, name, obj):
+                found.append(f"{name}: {int(np.isnan(data).sum())} NaN values (the file declares no NaN there)")
 
     with h5py.File(path, "r") as f:
+        title = f.attrs.get("title", "")
+        kind = title.decode(errors="replace") if isinstance(title, bytes) else str(title)
         attrs(f, "/")
         f.visititems(visit)
     return found

@@ -43,6 +43,18 @@ add_test(NAME fuzz.selftest
          WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
 set_tests_properties(fuzz.selftest PROPERTIES LABELS fuzz TIMEOUT 300 RUN_SERIAL TRUE
                      ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
+# The check of written HDF5 files on made-up files with known answers (NaN where a file declares
+# none, inf, a NaN coordinate).
+add_test(NAME fuzz.checks COMMAND "${VibromapPython_EXECUTABLE}" tests/fuzz/test_fuzz_checks.py
+         WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
+set_tests_properties(fuzz.checks PROPERTIES LABELS fuzz TIMEOUT 60 ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
+# Case generation alone, no vibromap run: 150 cases (the fuzzer's default) of each of the seeds
+# 1..1000 must build, so that no seed makes the fuzzer fail before it has tested anything.
+add_test(NAME fuzz.generate
+         COMMAND "${VibromapPython_EXECUTABLE}" tests/fuzz/fuzz_generate.py --seeds 1-1000 --cases 150 --jobs 2
+         WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
+set_tests_properties(fuzz.generate PROPERTIES LABELS fuzz TIMEOUT 300 PROCESSORS 2
+                     ENVIRONMENT "PYTHONDONTWRITEBYTECODE=1")
 unset(_entry)
 unset(_pair)
 unset(_class)

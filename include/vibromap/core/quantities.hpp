@@ -16,6 +16,7 @@
 
 #include "vibromap/core/analysis/census/census.hpp"
 #include "vibromap/core/analysis/point/point_solver.hpp"
+#include "vibromap/core/model/keys.hpp"
 
 namespace vibromap {
 
@@ -51,6 +52,9 @@ std::string_view quantity_units(Quantity q);    // "s", "1", "N", "m", "m/s", "N
 std::string_view quantity_description(Quantity q);  // one line, the map's long_name
 bool quantity_is_integer(Quantity q);           // int64 in maps (hertz_valid, periods, ...); else float64
 std::int64_t quantity_max(Quantity q);          // largest valid value of an integer quantity (least: 0)
+// The values the quantity can take where it is defined: "> 0" for T_con and k_con, ">= 0" for
+// z_ratio, "in [0, 1]" for hertz_valid, "finite" for lyapunov (Bounds, model/keys.hpp).
+Bounds quantity_range(Quantity q);
 
 // Codes of the regime dataset (CF flag_values); -1 marks a cell not computed yet.
 constexpr std::int8_t kNotComputed = -1;

@@ -148,6 +148,11 @@ ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const C
   return report;
 }
 
+void write_branch_file(const std::string& path, const Axis& axis, const ContinuationReport& report,
+                       const std::string& scene_text) {
+  write_branch(path, branch_data(axis, report, scene_text));
+}
+
 ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const ContinuationConfig& config) {
   if (!config.output.empty()) check_output(config.output, {.overwrite = config.overwrite});
   const KeyScale scale = key_scale(config.from, config.to, config.from);
@@ -155,7 +160,7 @@ ContinuationReport run_continuation(const Scene& scene, const Axis& axis, const 
   to_physical(report, scale);
   report.stop_signal = stop_signal();
   for (Branch& b : report.branches) b.stop = name_stop_signal(b.stop, report.stop_signal);
-  if (!config.output.empty()) write_branch(config.output, branch_data(axis, report, scene.text));
+  if (!config.output.empty()) write_branch_file(config.output, axis, report, scene.text);
   return report;
 }
 

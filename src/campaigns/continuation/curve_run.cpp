@@ -176,7 +176,10 @@ CurvesReport run_curves(const Scene& scene, const Axis& axis, const Axis& axis2,
   to_physical(report.branch, sp);
   for (MeasuredCurve& c : report.curves) to_physical(c.curve, sp, sq);
   name_stops(report);
-  if (!config.output.empty()) write_curve_file(config.output, axis, axis2, report, scene.text);
+  // Stopped before any curve: the file named holds what was found, the branch so far.
+  report.branch_file = report.curves.empty() && report.branch.stop_signal != 0;
+  if (!config.output.empty() && report.branch_file) write_branch_file(config.output, axis, report.branch, scene.text);
+  else if (!config.output.empty()) write_curve_file(config.output, axis, axis2, report, scene.text);
   report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return report;
 }

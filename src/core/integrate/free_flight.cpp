@@ -31,10 +31,10 @@ FreeFlight::System::System(const Model& m) : omega(m.parameters().omega), phi0(m
       0, 0, 0, 1,                                                          //
       -m.k1() / m1, -m.k2() / m1, -m.c1() / m1, -m.c2() / m1,              //
       -m.k1() / m1, -m.k2() / m1 - m.k2() / m2, -m.c1() / m1, -m.c2() / m1 - m.c2() / m2;
-  b = State(0, 0, p.lambda * p.F0 / m1, p.lambda * p.F0 / m1);
+  b = State(0, 0, force_amplitude(p) / m1, force_amplitude(p) / m1);
   c = State(0, 0, -m.k2() * p.D / m1, -m.k2() * p.D / m1 - m.k2() * p.D / m2);
   // Entry tolerance on z: a few ulps of the motion's length scale.
-  z_tol = 1e-13 * std::max({p.D, p.lambda * p.F0 / m.k1(), 1e-9});
+  z_tol = 1e-13 * motion_length(p);
 }
 
 bool FreeFlight::describes(const Model& model) const { return System(model) == sys_; }

@@ -425,6 +425,8 @@ std::vector<std::string> validate(const Parameters& p) {
     errors.push_back(Key::find("contact.damping")->info().refusal(
         value_text(*p.damping), "needs a dissipative contact law (contact.law), not hertz"));
   if (errors.empty())
+    if (std::string e = derived_scale_error(p); !e.empty()) errors.push_back(std::move(e));
+  if (errors.empty())
     if (std::string e = frequency_ratio_error(p); !e.empty()) errors.push_back(std::move(e));
   return errors;
 }

@@ -21,6 +21,15 @@ double Parameters::period() const { return 2.0 * std::numbers::pi / omega; }
 
 double Parameters::damping_factor() const { return damping ? *damping : contact_law(law).chi(restitution); }
 
+double force_amplitude(const Parameters& p) { return p.lambda * p.F0; }
+
+double motion_length(const Parameters& p) {
+  const double k1 = p.spring1.stiffness(p.m1);
+  return std::max({p.D, k1 > 0.0 ? p.lambda * p.F0 / k1 : 0.0, 1e-9});
+}
+
+double motion_speed(const Parameters& p) { return p.omega * motion_length(p); }
+
 namespace {
 // The largest eigenvalue of M^-1 A, M = diag(m1, m2), A = [[a1 + a2, -a2], [-a2, a2]] (the
 // springs' K or the dampers' C): the larger root of l^2 - 2 h l + P = 0, in a form that does not

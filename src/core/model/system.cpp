@@ -13,10 +13,10 @@ Model::Model(const Parameters& p)
       c1_(p.damper1.coefficient(p.m1, k1_)),
       c2_(p.damper2.coefficient(p.m2, k2_)),
       T_(p.period()),
-      F_amp_(p.lambda * p.F0),
+      F_amp_(force_amplitude(p)),
       inv_m1_(1.0 / p.m1),
       inv_m2_(1.0 / p.m2),
-      v_floor_(1e-6 * p.omega * std::max({p.D, k1_ > 0.0 ? p.lambda * p.F0 / k1_ : 0.0, 1e-9})) {}
+      v_floor_(1e-6 * p.omega * motion_length(p)) {}
 
 double Model::energy(const State& u) const {
   const Eigen::Vector4d x = to_physical(u);

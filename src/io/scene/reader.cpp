@@ -340,15 +340,26 @@ std::string scene_text(const toml::table& table, const Context& ctx) {
 }
 
 // ---------------------------------------------------------------------------------------
-// The rule that combines keys: the forcing against the natural frequencies
-// (frequency_ratio_error, parameters.hpp). It moves one way with each key it reads, so over a
-// [sweep] grid or an [optimise] box its extremes are at the corners: those are checked.
+// The rules that combine keys: the scales derived from them are finite (derived_scale_error),
+// and the forcing against the natural frequencies (frequency_ratio_error, parameters.hpp). Each
+// moves one way with each key it reads, so over a [sweep] grid or an [optimise] box its
+// extremes are at the corners: those are checked.
+std::string combined_rule_error(const Parameters& p) {
+  std::string err = derived_scale_error(p);
+  return err.empty() ? frequency_ratio_error(p) : err;
+}
 
-// "file: --set forcing.omega=1e-9" when one of the rule's keys was overridden, else "file".
-std::string ratio_origin(const Context& ctx) {
-  for (const Key k : Key::all())
-    if (k.info().frequency_rule)
-      if (const auto it = ctx.overrides.find(k.full_name()); it != ctx.overrides.end()) return cat(ctx.path, ": ", clip(it->second, 200));
+// "file: --set forcing.omega=1e-9" when one of the rule's keys was overridden (a derived scale's
+// refusal: the key it names, "[forcing] lambda = ..."), else "file".
+std::string rule_origin(const Context& ctx, const std::string& error) {
+  const bool derived = error.starts_with("[");  // a key's refusal; the ratio rule's names keys in its text
+  for (const Key k : Key::all()) {
+    const KeyInfo& i = k.info();
+    const bool named = derived && error.starts_with(cat("[", i.section, "] ", i.name, " = "));
+    if (named || (!derived && i.frequency_rule))
+      if (const auto it = ctx.overrides.find(k.full_name()); it != ctx.overrides.end())
+        return cat(ctx.path, ": ", clip(it->second, 200));
+  }
   return ctx.path;
 }
 
@@ -390,7 +401,7 @@ void check_grid_corners(const Scene& scene, const Context& ctx) {
       index[d] = ends[d][(corner >> d) & 1U];
       at.push_back(cat(axes[d].key, " = ", shortest(axes[d].values[index[d]])));
     }
-    const std::string err = frequency_ratio_error(cells(grid.ravel(index)).params);
+    const std::string err = combined_rule_error(cells(grid.ravel(index)).params);
     if (!err.empty()) fail(cat(sweep_origin(ctx, axes), ": at the cell ", join(views(at), ", "), ": ", err));
   }
 }
@@ -406,19 +417,19 @@ void check_optimise_corners(const Scene& scene, const Context& ctx) {
       vars[d].key.set(p, v);
       at.push_back(cat(vars[d].name(), " = ", shortest(v)));
     }
-    if (const std::string err = frequency_ratio_error(p); !err.empty())
+    if (const std::string err = combined_rule_error(p); !err.empty())
       fail(cat(ctx.path, ": [", kOptimise, "] at the corner ", join(views(at), ", "), " of the box: ", err));
   }
 }
 
 Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
-  // The key table's checks cover validate() but for the rule that combines keys; this keeps the
-  // two in step if the core adds one. A grid's base point need not obey that rule itself when
-  // every cell does (an axis replaces the key that broke it).
+  // The key table's checks cover validate() but for the rules that combine keys; this keeps the
+  // two in step if the core adds one. A grid's base point need not obey those rules itself when
+  // every cell does (an axis replaces the key that broke them).
   const auto errors = validate(scene.params);
-  const bool ratio_only = errors.size() == 1 && errors.front() == frequency_ratio_error(scene.params);
-  if (ratio_only && !scene.sweep) fail(cat(ratio_origin(ctx), ": ", errors.front()));
-  if (!errors.empty() && !ratio_only) fail(ctx.path + ": " + errors.front());
+  const bool rule_only = errors.size() == 1 && errors.front() == combined_rule_error(scene.params);
+  if (rule_only && !scene.sweep) fail(cat(rule_origin(ctx, errors.front()), ": ", errors.front()));
+  if (!errors.empty() && !rule_only) fail(ctx.path + ": " + errors.front());
   check_grid_corners(scene, ctx);
   check_optimise_corners(scene, ctx);
   scene.path = ctx.path;

@@ -200,9 +200,11 @@ std::vector<Axis> read_axes(const toml::table& sweep, const Context& ctx, std::v
   return axes;
 }
 
-// Reorders the axes as `order` lists them, by any of their names: each axis exactly once.
+// Reorders the axes as `order` lists them, by any of their names: each axis exactly once, but
+// for a command's own axes (`continue --param`), which the file's order cannot know of: those
+// the order leaves out follow the listed ones.
 void apply_order(std::vector<Axis>& axes, const std::vector<std::string>& given, const toml::node& node,
-                 const std::string& loc) {
+                 const std::string& loc, const std::vector<CommandAxis>& command_axes) {
   const std::vector<std::string_view> names = views(given);
   const std::string axes_text = clip(join(names, ", "), 200);
   std::vector<std::size_t> order;  // indices into axes
@@ -217,6 +219,11 @@ void apply_order(std::vector<Axis>& axes, const std::vector<std::string>& given,
     const auto index = static_cast<std::size_t>(it - axes.begin());
     if (std::find(order.begin(), order.end(), index) != order.end()) fail(cat(loc, ": axis ", clip(name), " is listed twice"));
     order.push_back(index);
+  }
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    const bool commands = std::any_of(command_axes.begin(), command_axes.end(),
+                                      [&](const CommandAxis& c) { return c.axis.key == axes[i].key; });
+    if (commands && std::find(order.begin(), order.end(), i) == order.end()) order.push_back(i);
   }
   for (std::size_t i = 0; i < axes.size(); ++i) {
     if (std::find(order.begin(), order.end(), i) == order.end()) {
@@ -263,7 +270,7 @@ std::optional<SweepOptions> read_sweep(const toml::table& table, const Context& 
   SweepOptions sweep;
   std::vector<std::string> given;
   sweep.axes = read_axes(*sec, ctx, given);
-  if (const toml::node* node = sec->get("order")) apply_order(sweep.axes, given, *node, locate(ctx, kSweep, "order", *node));
+  if (const toml::node* node = sec->get("order")) apply_order(sweep.axes, given, *node, locate(ctx, kSweep, "order", *node), ctx.axes);
   if (const toml::node* node = sec->get("store")) sweep.store = read_store(*node, locate(ctx, kSweep, "store", *node));
   // Every map says where the Hertz law holds: its pictures mark the cells where it does not.
   if (std::find(sweep.store.begin(), sweep.store.end(), Quantity::hertz_valid) == sweep.store.end())

@@ -68,9 +68,31 @@ def test_a_curve_run_stops_in_its_branch_without_a_curve(tmp_path, sig):
     points = int(out.split("\npoints         ")[1].split(";")[0])
     assert f"\npoints         {points}; stopped by {name}\n" in out
     assert "\ncurves         0 in (forcing.omega, forcing.F0)" in out
-    assert err == (f"vibromap: stopped by {name} after {points} points: the output above holds the continuation so "
-                   f"far (stop: 'stopped by {name}'); continue has no --resume: run it again to go on\n")
+    assert err == (f"vibromap: stopped by {name} after {points} points, before the first curve: the output above "
+                   f"holds the continuation so far (stop: 'stopped by {name}'); continue has no --resume: run it "
+                   "again to go on\n")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_curve_run_stopped_before_its_first_curve_writes_the_branch_so_far(tmp_path):
+    # The file the message names holds what was found: the branch, as a branch file (a curve file
+    # would hold nothing), point for point what stdout gives.
+    path = tmp_path / "c.h5"
+    args = LONG + ["--curve", "fold", "--param2", "forcing.F0", "--from2", "300", "--to2", "700", "-o", path,
+                   "--format", "json"]
+    rc, out, err = stopped(args, signal.SIGINT, tmp_path)
+    assert rc == 3, err
+    report = json.loads(out)
+    params = [p["param"] for p in report["points"]]
+    assert report["stop"] == "stopped by SIGINT" and report["curves"] == [] and params[0] == 3.0
+    assert err == (f"vibromap: stopped by SIGINT after {len(params)} points, before the first curve: the output above "
+                   f"and {path} hold the continuation so far ({path}: a branch file, the branch so far) (stop: "
+                   "'stopped by SIGINT'); continue has no --resume: run it again to go on\n")
+    with h5py.File(path, "r") as f:
+        assert f.attrs["title"] == "vibromap periodic-orbit branch"
+        assert f.attrs["stop"] == "stopped by SIGINT"
+        assert list(f["param"][()]) == params
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.h5"]
 
 
 # The start orbit alone would take hours (FOREVER: an undamped chatter integrated for up to 10^8

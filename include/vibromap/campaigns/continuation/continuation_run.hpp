@@ -57,6 +57,10 @@ void to_physical(ContinuationReport& report, const KeyScale& scale);
 ContinuationReport continue_scaled(const Scene& scene, const Axis& axis, const ContinuationConfig& config,
                                    const KeyScale& scale);
 
+// Writes the branch file of a report in the key's own units (io/branch_file.hpp).
+void write_branch_file(const std::string& path, const Axis& axis, const ContinuationReport& report,
+                       const std::string& scene_text);
+
 // Follows the scene's orbit along `axis` (a numeric scene key, as a one-axis [sweep] names it)
 // over [config.from, config.to] (in ln of the key when key_scale says so) and writes the branch file when config.output is set (checked
 // before any solve). Throws SceneError (no periodic orbit at the start; bad --ds-max or

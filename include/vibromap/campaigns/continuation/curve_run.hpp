@@ -10,7 +10,9 @@
 //             (core/analysis/continuation/curve_continuation.hpp); a start on a curve already found is not
 //             followed again
 //   measure   every curve point's cycle measured as `run` measures an orbit (measure_orbit)
-//   output    the curve file (io/curve_file.hpp), when asked (instead of the branch file)
+//   output    the curve file (io/curve_file.hpp), when asked (instead of the branch file); a run
+//             stopped by a signal before its first curve writes the branch so far there instead
+//             (a branch file, CurvesReport::branch_file)
 
 #include <string>
 #include <vector>

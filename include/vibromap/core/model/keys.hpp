@@ -20,6 +20,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -154,6 +155,16 @@ std::string check_option(std::string_view full_name, double v);
 // Every refusal of the keys of `section` at the point (only the keys given in their own form),
 // in table order.
 std::vector<std::string> refusals(const Parameters& p, const PointOptions& o, std::string_view section);
+
+// The refusal of a point at which a quantity derived from the keys `inputs` (full names) is
+// out of its range, `ok(p)` false: `what` names the quantity and its unit ("the force amplitude
+// lambda F0 (N)"), `fault` what is wrong with it ("not finite"). It names the input given in its own form that lies furthest from the
+// default point among those whose default would make ok() hold, with the bound that key must
+// keep, the other keys as given, found by bisection (the derived quantities are monotone in
+// each key): "[forcing] lambda = 1.7976931348623157e+308: makes the force amplitude lambda F0
+// (N) not finite; with the other keys as given it must be at most 3.59e+305". Empty when ok(p).
+std::string derived_refusal(const Parameters& p, const std::vector<std::string_view>& inputs, std::string_view what,
+                            const std::function<bool(const Parameters&)>& ok, std::string_view fault = "not finite");
 
 // The text of a numeric value in a refusal: its shortest round-trip form ("-5", "1e-09").
 std::string value_text(double v);

@@ -97,10 +97,28 @@ double fastest_damping_rate(const Parameters& p);
 // the one-line reason with the range it allows.
 std::string frequency_ratio_error(const Parameters& p);
 
+// The motion's scales: the force amplitude lambda F0 (N); the length L = max(D, lambda F0 / k1,
+// 1 nm) (m), the static deflection under that force or the clearance, whichever is larger; and
+// the speed omega L (m/s). Every state scale is built from these (the steady-state and shooting
+// norms, StateScale; the census box; the least entry speed of a damped law; free flight's
+// contact tolerance).
+double force_amplitude(const Parameters& p);
+double motion_length(const Parameters& p);
+double motion_speed(const Parameters& p);
+
+// The scales the model derives from the keys must be finite at a valid point (the stiffness k1
+// also > 0): k1, k2, c1, c2, T, lambda F0, L, omega L, omega_n, the fastest damping rate, the
+// contact's K and its damping factor chi. Each is listed once in derived_scales.cpp with the
+// keys it is derived from. Empty when every one is, else the refusal of the key that made the
+// first one overflow, in the key table's form with the bound that key must keep
+// ("[forcing] lambda = 1.7976931348623157e+308: makes the force amplitude lambda F0 (N) not
+// finite; with the other keys as given it must be at most 3.59e+305").
+std::string derived_scale_error(const Parameters& p);
+
 // The point's checks: every key of [system], [contact], [forcing] and [initial] against the key
 // table (keys.hpp), in its refusal's words ("[system] m2 = -5: must be > 0 (kg)"), then the
-// rules that combine keys (a damping factor needs a damped law; frequency_ratio_error's rule,
-// once the rest holds). Empty when the point is valid. Defined with the key table (keys.cpp).
+// rules that combine keys (a damping factor needs a damped law; derived_scale_error's, then
+// frequency_ratio_error's, once the rest holds). Empty when the point is valid. Defined with the key table (keys.cpp).
 std::vector<std::string> validate(const Parameters& p);
 
 }  // namespace vibromap

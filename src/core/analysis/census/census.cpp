@@ -50,6 +50,22 @@ std::array<std::array<double, 2>, 4> census_box(const Parameters& p, const Censu
   return box;
 }
 
+std::string census_box_error(const Parameters& p, const CensusOptions& o) {
+  const std::optional<std::array<double, 2>>* given[4] = {&o.x1, &o.x2, &o.v1, &o.v2};
+  const auto finite = [&](const Parameters& q) {
+    const auto box = census_box(q, o);
+    for (std::size_t i = 0; i < 4; ++i)
+      if (!*given[i] && !(std::isfinite(box[i][0]) && std::isfinite(box[i][1]) && std::isfinite(box[i][1] - box[i][0])))
+        return false;
+    return true;
+  };
+  return derived_refusal(p,
+                         {"forcing.omega", "system.D", "forcing.lambda", "forcing.F0", "system.m1", "system.k1",
+                          "system.omega1"},
+                         "the census box, the rest state +- L in positions and +- omega L in velocities (m, m/s),",
+                         finite);
+}
+
 namespace {
 
 constexpr int kMaxDraws = 10'000;  // draws per initial state before the box is called all overlap
@@ -394,6 +410,7 @@ std::string census_input_error(const Parameters& p, const PointOptions& o, const
   for (const auto& e : validate(p)) msg += (msg.empty() ? "" : "; ") + e;
   for (const auto& e : {validate(o.integrator), validate(o.analysis), validate(c)})
     if (!e.empty()) msg += (msg.empty() ? "" : "; ") + e;
+  if (msg.empty()) msg = census_box_error(p, c);
   if (msg.empty() && o.integrator.method == Method::rk4) msg = "a census needs an adaptive method (solver.method hybrid or dopri5)";
   return msg;
 }

@@ -10,6 +10,7 @@
 
 #include "continuation_problem.hpp"
 #include "curve_problem.hpp"
+#include "vibromap/core/quantities.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/core/model/system.hpp"
 
@@ -44,6 +45,14 @@ std::optional<CurveSpec> parse_curve_spec(const std::string& text, std::string& 
     s.value = std::strtod(value.c_str(), &end);
     if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(s.value)) {
       error = text + ": VALUE must be a finite number";
+      return std::nullopt;
+    }
+    // A level the quantity never takes (k_con <= 0) would give no curve and no word why.
+    const Quantity q = parse_quantity(name);
+    if (const Bounds range = quantity_range(q); !range.contains(s.value)) {
+      const std::string_view units = quantity_units(q);
+      error = cat(text, ": VALUE ", value, " is outside the values ", name, " takes: it must be ", range.to_string(),
+                  units == "1" ? std::string() : cat(" (", units, ")"));
       return std::nullopt;
     }
   } else {

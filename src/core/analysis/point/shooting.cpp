@@ -9,9 +9,8 @@
 namespace vibromap {
 
 StateScale::StateScale(const Model& model) {
-  const Parameters& p = model.parameters();
-  length_ = std::max({p.D, p.lambda * p.F0 / model.k1(), 1e-9});
-  speed_ = p.omega * length_;
+  length_ = motion_length(model.parameters());
+  speed_ = motion_speed(model.parameters());
 }
 
 int least_period(const Model& model, const IntegratorOptions& integration, const State& y, int n, double tol,

@@ -81,6 +81,11 @@ std::string validate(const CensusOptions& o);
 
 // The box actually used for p: [lo, hi] for x1, x2, v1, v2.
 std::array<std::array<double, 2>, 4> census_box(const Parameters& p, const CensusOptions& o);
+// Empty when every side of that box has finite ends and a finite width, else the refusal of the
+// key that made a side derived from the motion's scales overflow (derived_refusal, keys.hpp):
+// "[forcing] F0 = 1e+308: makes the census box, the rest state +- L in positions and +- omega L
+// in velocities (m, m/s), not finite; ...". A side the scene gives is checked by validate().
+std::string census_box_error(const Parameters& p, const CensusOptions& o);
 // The K initial states (physical), the rest state first.
 std::vector<Eigen::Vector4d> census_initial_conditions(const Parameters& p, const CensusOptions& o);
 
@@ -181,7 +186,7 @@ struct CensusSummary {
 CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census,
                            const std::vector<Eigen::Vector4d>& seeds = {});
 // What census_point reports as invalid input: the point, its options or the census options
-// failing validation (or rk4); empty when they pass. The box is checked by drawing the states:
+// failing validation, the census box not finite (census_box_error), or rk4; empty when they pass. The box is checked by drawing the states:
 // census_initial_conditions then gives fewer than K, and kCensusBoxOverlaps says why.
 std::string census_input_error(const Parameters& p, const PointOptions& options, const CensusOptions& census);
 inline constexpr const char* kCensusBoxOverlaps =

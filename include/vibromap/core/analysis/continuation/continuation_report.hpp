@@ -37,6 +37,8 @@ struct CurvesReport {
   double q0 = 0.0;                    // the scene's Q
   std::vector<MeasuredCurve> curves;  // in the order found (by spec, then along the branches)
   std::vector<std::string> skipped;   // starts not followed, and why
+  bool branch_file = false;           // stopped before the first curve: the output holds the branch so far
+                                      // (a branch file), not curves
   double wall_s = 0.0;                // the whole run, s
 };
 
