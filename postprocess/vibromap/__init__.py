@@ -16,14 +16,17 @@ reader, solver and JSON writer. Keys, units, ranges and defaults: ``vibromap.Sce
 
 from __future__ import annotations
 
-from typing import Dict, Optional
+from typing import TYPE_CHECKING, Dict, Optional
+
+if TYPE_CHECKING:
+    import xarray
 
 from ._core import SceneError
 from ._result import Census, Result
 from ._scene import KeyInfo, Scene, Value
 from . import _core
 
-__all__ = ["Scene", "KeyInfo", "Result", "Census", "SceneError", "run", "census"]
+__all__ = ["Scene", "KeyInfo", "Result", "Census", "SceneError", "run", "census", "trajectory"]
 __version__ = "0.1.0"
 
 
@@ -58,6 +61,35 @@ def census(scene: Scene, k: Optional[int] = None, *, labels: bool = False, shock
     if k is not None:
         keys = {"census.initial_conditions": k, **keys}
     return Census.from_json(_core.census_json(_scene_of("census", scene, keys)._scene, labels, shock))
+
+
+def trajectory(scene: Scene, periods: Optional[int] = None, *, samples: Optional[int] = None,
+               **keys: Value) -> "xarray.Dataset":
+    """The steady motion of the point of ``scene`` as an xarray Dataset, as ``run --trajectory``.
+
+    ``periods`` forcing periods (analysis.trajectory_periods; the scene's, or 2 when it gives
+    0) of ``samples`` samples each (analysis.trajectory_samples) are kept after the steady
+    state: the Dataset has the coordinate ``t`` (s, since the window's start) and the
+    variables ``x1``, ``x2`` (m), ``v1``, ``v2`` (m/s), ``Fc`` and ``F`` (N), each with its
+    ``units`` and ``description``, the values of the file ``vibromap run SCENE --trajectory
+    FILE`` writes, bit for bit; its attributes are the file's (T, regime, n, k, T_con, k_con,
+    scene) and ``result``, the point's :class:`Result`. Needs xarray.
+    """
+    import xarray
+
+    if periods is not None:
+        keys = {"analysis.trajectory_periods": periods, **keys}
+    if samples is not None:
+        keys = {"analysis.trajectory_samples": samples, **keys}
+    text, scene_text, columns = _core.trajectory(_scene_of("trajectory", scene, keys)._scene)
+    result = Result.from_json(text)
+    (t_name, t_units, t_description, t), *others = columns
+    coords = {t_name: (t_name, t, {"units": t_units, "description": t_description})}
+    data = {name: (t_name, values, {"units": units, "description": description})
+            for name, units, description, values in others}
+    attrs = {"T": result.T, "regime": result.regime, "n": result.n, "k": result.k, "T_con": result.T_con,
+             "k_con": result.k_con, "scene": scene_text, "result": result}
+    return xarray.Dataset(data, coords=coords, attrs=attrs)
 
 
 def _scene_of(caller: str, scene: Scene, keys: Dict[str, Value]) -> Scene:

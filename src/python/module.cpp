@@ -2,9 +2,12 @@
 // pybind11 from the same libraries as the vibromap executable. Deliberately thin: the Python
 // package's modules give the API its shape, names, docstrings and types; this module offers
 // the scene (read, overridden and checked by io/scene exactly as the command line does), the
-// key table (core/model/keys.hpp), and the point solve and census of `vibromap run [--census]`
-// (io/point_run.hpp), whose answer is the very JSON text the command prints.
+// key table (core/model/keys.hpp), and the point solve, census and trajectory of `vibromap run
+// [--census | --trajectory]`
+// (io/point_run.hpp), whose answer is the very JSON text the command prints. Reading a scene
+// releases the GIL too (a loop over points in threads reads one scene per point).
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -17,6 +20,7 @@
 #include "vibromap/core/model/keys.hpp"
 #include "vibromap/io/point_run.hpp"
 #include "vibromap/io/scene/scene.hpp"
+#include "vibromap/io/trajectory_file.hpp"
 
 namespace vibromap::python {
 namespace {
@@ -108,24 +112,48 @@ std::string census_json_of(const Scene& scene, bool labels, bool shock) {
   return json;
 }
 
+// The point solved as `vibromap run SCENE --trajectory FILE --format json` solves it: its JSON,
+// the scene text the file would record, and the file's columns as (name, units, description,
+// values). GIL held on return only.
+py::tuple trajectory_of(const Scene& scene) {
+  std::string json;
+  Scene run_scene;
+  PointSummary summary;
+  run_released([&] {
+    const std::optional<std::string> periods = trajectory_override(scene, true);
+    run_scene = periods ? parse_scene(scene.text, scene.path, {*periods}) : scene;
+    summary = solve_scene_point(run_scene);
+    json = summary_json(summary);
+  });
+  py::list columns;
+  for (const TrajectoryColumn& c : trajectory_columns()) {
+    py::array_t<double> values(static_cast<py::ssize_t>(summary.trajectory.size()));
+    double* out = values.mutable_data();
+    for (const TrajectorySample& sample : summary.trajectory) *out++ = sample.*c.member;
+    columns.append(py::make_tuple(c.name, c.units, c.description, values));
+  }
+  return py::make_tuple(json, run_scene.text, columns);
+}
+
 void declare_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene", "A checked scene (io/scene): one parameter point and how to solve it.")
       .def_static(
           "load", [](const std::string& path, const std::vector<std::string>& overrides) { return load_scene(path, overrides); },
-          py::arg("path"), py::arg("overrides") = std::vector<std::string>{}, "Reads a scene file with --set overrides.")
+          py::arg("path"), py::arg("overrides") = std::vector<std::string>{}, py::call_guard<py::gil_scoped_release>(),
+          "Reads a scene file with --set overrides.")
       .def_static(
           "parse",
           [](const std::string& text, const std::string& path, const std::vector<std::string>& overrides) {
             return parse_scene(text, path, overrides);
           },
           py::arg("text"), py::arg("path") = kDefaultScenePath, py::arg("overrides") = std::vector<std::string>{},
-          "Reads scene text (named `path` in messages) with --set overrides.")
+          py::call_guard<py::gil_scoped_release>(), "Reads scene text (named `path` in messages) with --set overrides.")
       .def(
           "with_overrides",
           [](const Scene& s, const std::vector<std::string>& overrides) {
             return parse_scene(s.text, s.path, overrides);
           },
-          py::arg("overrides"), "This scene with --set overrides.")
+          py::arg("overrides"), py::call_guard<py::gil_scoped_release>(), "This scene with --set overrides.")
       .def_readonly("path", &Scene::path)
       .def_readonly("text", &Scene::text)
       .def("get", [](const Scene& s, const std::string& name) { return key_value(s, find_key(name)); },
@@ -144,6 +172,8 @@ void declare_module(py::module_& m) {
         "Solves the scene's point as `vibromap run --format json` does and returns that JSON text.");
   m.def("census_json", &census_json_of, py::arg("scene"), py::arg("labels") = false, py::arg("shock") = false,
         "The census of the scene's point as `vibromap run --census --format json` prints it (one process).");
+  m.def("trajectory", &trajectory_of, py::arg("scene"),
+        "The point solved keeping its trajectory, as `vibromap run --trajectory`: (json, scene text, columns).");
   m.attr("default_scene_path") = kDefaultScenePath;
 }
 

@@ -99,6 +99,27 @@ def test_census_equals_the_command_line_bit_for_bit(labels):
     assert pickle.loads(pickle.dumps(c)) == c
 
 
+def test_trajectory_equals_the_command_lines_file_bit_for_bit(tmp_path):
+    import h5py
+    import numpy as np
+
+    path = tmp_path / "traj.h5"
+    sets = ("analysis.trajectory_periods=3", "analysis.trajectory_samples=100")
+    args = ["run", TABLE2, "--trajectory", str(path)] + [a for s in sets for a in ("--set", s)]
+    assert cli(*args).returncode == 0
+    ds = vibromap.trajectory(vibromap.Scene.from_toml(TABLE2), periods=3, samples=100)
+    with h5py.File(path) as f:
+        assert list(ds.coords) == ["t"] and sorted(ds.data_vars) == sorted(k for k in f if k != "t")
+        assert ds.sizes["t"] == f["t"].shape[0] >= 300  # 100 a period, and more in contact
+        for name in f:
+            assert np.array_equal(ds[name].values, f[name][...]), name
+            units = f[name].attrs["units"]
+            assert ds[name].attrs["units"] == (units.decode() if isinstance(units, bytes) else units), name
+        for name in ("T", "n", "k", "T_con", "k_con"):
+            assert ds.attrs[name] == f.attrs[name], name
+    assert ds.attrs["result"].k_con == ds.attrs["k_con"]
+
+
 def test_scene_defaults_are_the_programs():
     # jobs/reference.toml gives every key its default (a test of tests/cli holds it to `vibromap keys --toml`).
     expected = without_timings(cli_json("jobs/reference.toml", "contact.E2=1e6"))
