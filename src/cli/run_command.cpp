@@ -15,6 +15,7 @@
 #include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/text.hpp"
 #include "vibromap/io/output_file.hpp"
+#include "vibromap/io/point_run.hpp"
 #include "vibromap/io/report.hpp"
 #include "vibromap/io/census_output.hpp"
 #include "vibromap/io/hdf5_file.hpp"
@@ -26,9 +27,6 @@
 #include "vibromap/parallel/signals.hpp"
 
 namespace vibromap::cli {
-
-// Forcing periods kept by `run --trajectory` when the scene's [analysis] trajectory_periods is 0.
-inline constexpr int kDefaultTrajectoryPeriods = 2;
 
 // `vibromap run SCENE [--set section.key=value]... [--format table|json] [--trajectory FILE.h5]`
 struct RunArgs {
@@ -48,20 +46,14 @@ int run_command(const RunArgs& args, std::ostream& out);
 
 namespace {
 
-// The scene with the command line's overrides. A trajectory is computed only when it will be
-// written: with --trajectory, trajectory_periods 0 becomes kDefaultTrajectoryPeriods; without
-// it, trajectory_periods becomes 0. Done as one more override, so Scene::text records it.
+// The scene with the command line's overrides and trajectory_override's: a trajectory is
+// computed only when it will be written (--trajectory).
 Scene load_run_scene(const RunArgs& args) {
   std::vector<std::string> sets = args.sets;
   Scene scene = load_scene(args.scene, sets);
-  const int periods = scene.options.analysis.trajectory_periods;
-  if (!args.trajectory.empty() && periods == 0) {
-    sets.push_back("analysis.trajectory_periods=" + std::to_string(kDefaultTrajectoryPeriods));
-  } else if (args.trajectory.empty() && periods != 0) {
-    sets.push_back("analysis.trajectory_periods=0");
-  } else {
-    return scene;
-  }
+  const std::optional<std::string> periods = trajectory_override(scene, !args.trajectory.empty());
+  if (!periods) return scene;
+  sets.push_back(*periods);
   return load_scene(args.scene, sets);
 }
 
@@ -100,9 +92,7 @@ int census_command(const RunArgs& args, std::ostream& out) {
   std::optional<MpiSession> mpi;
   if (launched_by_mpi()) mpi.emplace();
   const Scene scene = mpi ? load_scene_everywhere(*mpi, args.scene, args.sets) : load_scene(args.scene, args.sets);
-  CensusOptions census = scene.census.value_or(CensusOptions{});
-  census.labels = args.labels;
-  census.shock = census.shock || args.shock;
+  const CensusOptions census = run_census_options(scene, args.labels, args.shock);
   CensusSummary summary;
   if (mpi && mpi->size() > 1) {
     if (mpi->rank() == 0 && census.decide_by_recurrence)
@@ -120,8 +110,7 @@ int census_command(const RunArgs& args, std::ostream& out) {
     summary = r.summary;
     summary.ranks = r.farm.ranks;
   } else {
-    summary = census_point(scene.params, scene.options, census);
-    if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
+    summary = census_scene_point(scene, census);
   }
   if (args.format == "json") {
     write_census_json(out, summary);
@@ -143,8 +132,7 @@ int run_command(const RunArgs& args, std::ostream& out) {
   if (launcher_rank() != 0) return code(ExitCode::ok);
   const Scene scene = load_run_scene(args);
   if (!args.trajectory.empty()) check_trajectory(args.trajectory, args.overwrite, scene);
-  const PointSummary summary = solve_point(scene.params, scene.options);
-  if (summary.status == SolveStatus::invalid_input) throw SceneError(scene.path + ": " + summary.message);
+  const PointSummary summary = solve_scene_point(scene);
   print_summary(out, summary, scene, args.format);
   if (!args.trajectory.empty()) save_trajectory(args.trajectory, summary, scene);
   return code(ExitCode::ok);
@@ -165,7 +153,7 @@ std::string run_footer() {
         "checks. The value is read as TOML (310, 1e-8, \"rk4\") or else as a string (rk4).\n"
         "Setting one key of a pair (k1|omega1, xi1|c1, ...) replaces the other one.\n\n"
         "--trajectory keeps [analysis] trajectory_periods forcing periods of the steady\n"
-        "motion (" << cli::kDefaultTrajectoryPeriods << " when the scene gives 0), sampled "
+        "motion (" << kDefaultTrajectoryPeriods << " when the scene gives 0), sampled "
         "trajectory_samples times per period,\nand writes them to an HDF5 file (read by "
         "postprocess/). Without --trajectory no\ntrajectory is computed. An existing FILE.h5 is replaced "
         "only with --overwrite, and\nnever when it is not a regular file; a trajectory too big for the "

@@ -32,14 +32,6 @@ std::string gigabytes(double bytes) {
   return text;
 }
 
-// One column of the trajectory: dataset name, units, meaning, and the member it comes from.
-struct TrajectoryColumn {
-  const char* name;
-  const char* units;
-  const char* description;
-  double TrajectorySample::*member;
-};
-
 constexpr std::array<TrajectoryColumn, 7> kTrajectoryColumns = {{
     {"t", "s", "time since the start of the kept window", &TrajectorySample::t},
     {"x1", "m", "displacement of the main body", &TrajectorySample::x1},
@@ -112,5 +104,7 @@ void check_trajectory_fits(const std::string& path, const std::string& option, l
     throw IoError(path + ": " + what + " make a " + gigabytes(file) + " file; its file system has " +
                   gigabytes(static_cast<double>(space.available)) + " free");
 }
+
+const std::array<TrajectoryColumn, 7>& trajectory_columns() { return kTrajectoryColumns; }
 
 }  // namespace vibromap

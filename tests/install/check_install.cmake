@@ -1,8 +1,8 @@
 # One step of the install tests (install_tests.cmake), run with cmake -P:
-#   STEP        tree | run_table1 | post | consumer_core | consumer_all | python_package
+#   STEP        tree | run_table1 | python | post | consumer_core | consumer_all | python_package
 #   SOURCE_DIR  BUILD_DIR  PREFIX (the install prefix)  WORK (scratch folder)
 #   EXE         the build tree's vibromap   GENERATOR CXX CC LAUNCHER: for the consumer project
-#   PYTHON      the interpreter of the postprocess tests (python_package)
+#   PYTHON      the interpreter of the postprocess tests (python_package), of the package (python)
 
 # Runs a command; fails the test unless it exits 0. Sets <prefix>_out.
 function(run prefix)
@@ -22,6 +22,23 @@ function(regime_of exe scene result)
     message(FATAL_ERROR "${exe} run ${scene}: no regime and k_con rows in\n${cli_out}")
   endif()
   set(${result} "regime ${CMAKE_MATCH_1} k_con ${CMAKE_MATCH_2}" PARENT_SCOPE)
+endfunction()
+
+# `vibromap.run` of Table 1 with the package found in `path` prints the regime and k_con the
+# build tree's vibromap prints.
+function(python_run_table1 path)
+  # A script file: a list (run's ARGN) would split code at its semicolons.
+  file(WRITE ${WORK}/table1.py "import vibromap\n"
+       "r = vibromap.run(vibromap.Scene.from_toml('${SOURCE_DIR}/${table1}'))\n"
+       "print(vibromap.__file__)\nprint('regime', r.regime, 'k_con', r.k_con)\n")
+  run(py ${CMAKE_COMMAND} -E env PYTHONPATH=${path} ${PYTHON} ${WORK}/table1.py)
+  run(cli ${EXE} run ${SOURCE_DIR}/${table1} --format json)
+  if(NOT cli_out MATCHES "\"regime\": \"([^\"]+)\".*\"k_con\": ([^,]+),")
+    message(FATAL_ERROR "no regime and k_con in\n${cli_out}")
+  endif()
+  if(NOT py_out STREQUAL "${path}/vibromap/__init__.py\nregime ${CMAKE_MATCH_1} k_con ${CMAKE_MATCH_2}\n")
+    message(FATAL_ERROR "vibromap.run printed '${py_out}', vibromap run: regime ${CMAKE_MATCH_1} k_con ${CMAKE_MATCH_2}")
+  endif()
 endfunction()
 
 file(MAKE_DIRECTORY ${WORK})
@@ -61,6 +78,14 @@ elseif(STEP STREQUAL "run_table1")
     message(FATAL_ERROR "installed: '${installed}', build tree: '${built}' (the paper: (1,1))")
   endif()
   message(STATUS "installed vibromap, table1: ${installed}")
+
+elseif(STEP STREQUAL "python")
+  # The package cmake --install put under the prefix, imported from there.
+  file(GLOB_RECURSE init ${PREFIX}/lib/python*/__init__.py)
+  if(NOT init MATCHES "^(${PREFIX}/lib/python3[.][0-9]+/(dist|site)-packages)/vibromap/__init__.py$")
+    message(FATAL_ERROR "the package vibromap is not installed under ${PREFIX}/lib/python3.X/: '${init}'")
+  endif()
+  python_run_table1(${CMAKE_MATCH_1})
 
 elseif(STEP STREQUAL "post")
   run(help ${PREFIX}/bin/vibromap-post --help)
@@ -103,12 +128,23 @@ elseif(STEP STREQUAL "python_package")
   # the tree it is given), into a folder of its own: every module, one command per script.
   set(dir ${WORK}/python)
   file(REMOVE_RECURSE ${dir})
+  # The package vibromap too; with PYTHON_CORE (a build with the module) its compiled core, which
+  # setup.py has CMake build in the build tree (VIBROMAP_BUILD_DIR).
   file(GLOB modules RELATIVE ${SOURCE_DIR}/postprocess ${SOURCE_DIR}/postprocess/*.py)
-  foreach(f ${modules} pyproject.toml)
+  list(REMOVE_ITEM modules setup.py)
+  set(copied ${modules} pyproject.toml vibromap)
+  if(PYTHON_CORE)
+    list(APPEND copied setup.py)
+  endif()
+  foreach(f ${copied})
     file(COPY ${SOURCE_DIR}/postprocess/${f} DESTINATION ${dir}/src)
   endforeach()
-  run(pip ${PYTHON} -m pip install --no-build-isolation --no-deps --no-index --no-cache-dir
+  run(pip ${CMAKE_COMMAND} -E env VIBROMAP_BUILD_DIR=${BUILD_DIR}
+      ${PYTHON} -m pip install --no-build-isolation --no-deps --no-index --no-cache-dir
       --disable-pip-version-check --target ${dir}/target ${dir}/src)
+  if(PYTHON_CORE)
+    python_run_table1(${dir}/target)
+  endif()
   file(GLOB installed RELATIVE ${dir}/target ${dir}/target/*.py)
   list(SORT modules)
   list(SORT installed)

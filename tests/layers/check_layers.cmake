@@ -6,12 +6,14 @@
 
 cmake_minimum_required(VERSION 3.20)
 
-# Layer -> layers whose headers it may include (itself included).
+# Layer -> layers whose headers it may include (itself included). python is the Python module
+# (src/python), beside cli at the top.
 set(allowed_core      core)
 set(allowed_io        core io)
 set(allowed_parallel  parallel)
 set(allowed_campaigns core io parallel campaigns)
 set(allowed_cli       core io parallel campaigns cli)
+set(allowed_python    core io python)
 # Layer -> regex of third-party includes it must not use (MPI only in parallel, HDF5 and TOML
 # only in io, CLI11 only in cli, NLopt not in the core).
 set(forbidden_core     "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*|nlopt.*)$")
@@ -19,7 +21,8 @@ set(forbidden_io       "^(mpi\\.h|CLI/.*)$")
 set(forbidden_parallel "^(hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
 set(forbidden_campaigns "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
 set(forbidden_cli      "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*)$")
-set(layers core io parallel campaigns cli)
+set(forbidden_python   "^(mpi\\.h|hdf5.*|H5.*|toml\\+\\+/.*|CLI/.*)$")
+set(layers core io parallel campaigns cli python)
 # Inside campaigns: each campaign folder may include, besides its own headers and the
 # campaigns' shared ones (exit_status.hpp, stoppable.hpp), the public headers of the campaign
 # folders listed for it: the census folder holds the following of initial states (state codec,

@@ -8,11 +8,23 @@
 // CRC-32 of every attribute, written last: src/io/attribute_seal.hpp). Written to FILE.tmp and
 // renamed, so a failure never leaves a half-written FILE behind. Throws vibromap::IoError (hdf5_file.hpp) with the path on failure.
 
+#include <array>
 #include <string>
 
 #include "vibromap/core/analysis/point/point_solver.hpp"
 
 namespace vibromap {
+
+// One column of a kept trajectory: its dataset name, units, meaning, and the sample's member.
+struct TrajectoryColumn {
+  const char* name;
+  const char* units;
+  const char* description;
+  double TrajectorySample::*member;
+};
+
+// The columns the file holds, in its order (t first); the Python module's Dataset has the same.
+const std::array<TrajectoryColumn, 7>& trajectory_columns();
 
 void write_trajectory(const std::string& path, const PointSummary& summary, const std::string& scene_text);
 
