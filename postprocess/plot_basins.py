@@ -18,6 +18,8 @@ import argparse
 import os
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_basins"
 
 from vibromap_deps import missing_module
@@ -132,6 +134,7 @@ def plot(b: Basins):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     return write_plot(PROG, lambda: plot(read_basins(args.file)), args.output, args.dpi)

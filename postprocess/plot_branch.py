@@ -24,6 +24,8 @@ import re
 import sys
 import textwrap
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_branch"
 
 from vibromap_deps import missing_module
@@ -343,6 +345,7 @@ def plot(branch: dict, diagram: str | None = None):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog=PROG, description="Plot a branch of vibromap continue.")
     parser.add_argument("branch", help="branch file of vibromap continue -o (HDF5), or its --format json output")

@@ -38,6 +38,8 @@ from __future__ import annotations
 
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_census_map"
 
 from vibromap_deps import missing_module
@@ -433,6 +435,7 @@ def cell_text(sweep: SweepMap, index: tuple) -> str:
     return ", ".join(f"{name} = {axis.values[i]:.4g}" for (name, axis), i in zip(sweep.axes.items(), index))
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
 

@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_kcon_map"
 
 from vibromap_deps import missing_module
@@ -219,6 +221,7 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     try:

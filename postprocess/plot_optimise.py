@@ -42,6 +42,8 @@ import dataclasses
 import os
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_optimise"
 
 from vibromap_deps import missing_module
@@ -509,6 +511,7 @@ def write_figures(args: argparse.Namespace) -> tuple[list[str], list[str]]:
     return written, notes
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     try:

@@ -17,6 +17,8 @@ import argparse
 import os
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_orbit_diagram"
 
 from vibromap_deps import missing_module
@@ -70,6 +72,7 @@ def plot(path: str, var: str):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog=PROG, description="Plot a vibromap orbit-diagram file (sweep up and down).")
     parser.add_argument("file", help="orbit-diagram file (HDF5) of vibromap orbit-diagram -o")

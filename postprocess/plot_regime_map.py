@@ -25,6 +25,8 @@ import argparse
 import os
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_regime_map"
 
 from vibromap_deps import missing_module
@@ -484,6 +486,7 @@ def cells_text(count: int) -> str:
     return f"{count} cell{'s' if count != 1 else ''}"
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     try:

@@ -20,6 +20,8 @@ import json
 import math
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_restitution"
 
 from vibromap_deps import missing_module
@@ -88,6 +90,7 @@ def make_figure(laws: dict[str, list[tuple[float, float]]]):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog=PROG,

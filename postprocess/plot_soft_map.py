@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_soft_map"
 
 from vibromap_deps import missing_module
@@ -185,6 +187,7 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     notes = []

@@ -16,6 +16,8 @@ import argparse
 import os
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_trajectory"
 
 from vibromap_deps import missing_module
@@ -105,6 +107,7 @@ def plot(traj: Trajectory, mask: np.ndarray):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
 

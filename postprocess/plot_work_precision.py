@@ -27,6 +27,8 @@ import math
 import os
 import sys
 
+from vibromap_guard import guarded_main
+
 PROG = "plot_work_precision"
 
 from vibromap_deps import missing_module
@@ -238,6 +240,7 @@ def plot(study: Study, quantity: str):
     return fig
 
 
+@guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
     return write_plot(PROG, lambda: plot(read_study(args.csv), args.quantity), args.output, args.dpi,

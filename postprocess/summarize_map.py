@@ -21,6 +21,8 @@ import sys
 
 from vibromap_deps import missing_module
 
+from vibromap_guard import guarded_main
+
 PROG = "summarize_map"
 
 try:
@@ -178,6 +180,7 @@ def family_lines(sweep, done, top: int = 5) -> list[str]:
     return lines
 
 
+@guarded_main(PROG)
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog=PROG, description=__doc__.split("\n\n")[0])
     parser.add_argument("map", help="map file written by vibromap sweep")

@@ -32,9 +32,10 @@ modules above define, the private helpers some scripts use included, is this mod
 """
 
 # fmt: off
-from vibromap_h5io import (FORMAT_VERSIONS, READ_ERRORS, VERSION_ATTRIBUTE, FileVersionError, OpenFile,
-                           VibromapFileError, _attribute_value, _flag_meanings, _missing_chunk, _one_line, _scalar,
-                           _stored_version, _text, open_h5, read_dataset, save_figure, version_refusal, write_plot)
+from vibromap_h5io import (FORMAT_VERSIONS, KIND_MARKS, READ_ERRORS, VERSION_ATTRIBUTE, FileVersionError, OpenFile,
+                           VibromapFileError, _attribute_value, _check_kind_mark, _flag_meanings, _missing_chunk,
+                           _one_line, _scalar, _stored_version, _text, open_h5, read_dataset, save_figure,
+                           version_refusal, write_plot)
 from vibromap_regimes import (FLAG_NO, FLAG_UNKNOWN, FLAG_YES, HERTZ_KEY, HERTZ_LIMIT_DEFAULT, NOT_COMPUTED,
                               REGIME_FLAG_MEANINGS, REGIME_FLAG_VALUES, REGIME_PERIODIC, SOFT_FROM_MAP, SOFT_KEY,
                               STABLE_FLAG_MEANINGS, STABLE_FLAG_VALUES, STABLE_NO, STABLE_UNKNOWN, STABLE_YES,

@@ -38,10 +38,10 @@ def test_every_name_of_the_reader_modules_is_vibromap_h5s():
     assert "read_map" in vibromap_h5.__all__ and "_text" not in vibromap_h5.__all__
 
 
-def test_the_reader_modules_are_all_the_vibromap_modules_but_seal_and_deps():
+def test_the_reader_modules_are_all_the_vibromap_modules_but_seal_deps_and_guard():
     files = glob.glob(os.path.join(conftest.POSTPROCESS_DIR, "vibromap_*.py"))
     names = sorted(os.path.basename(f)[:-3] for f in files)
-    assert names == sorted(list(vibromap_h5.MODULES) + ["vibromap_deps", "vibromap_h5", "vibromap_seal"])
+    assert names == sorted(list(vibromap_h5.MODULES) + ["vibromap_deps", "vibromap_guard", "vibromap_h5", "vibromap_seal"])
 
 
 def test_no_postprocess_file_is_over_600_lines():

@@ -22,6 +22,8 @@ if TYPE_CHECKING:
     import xarray
 
 from ._core import SceneError
+
+SceneError.__module__ = __name__  # tracebacks name vibromap.SceneError, where users import it
 from ._result import Census, Result
 from ._scene import KeyInfo, Scene, Value
 from . import _core

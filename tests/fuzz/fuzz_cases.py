@@ -19,7 +19,8 @@ Classes (issue #28):
               existing file, links in place of the lock, journal and derived files
   signal      SIGTERM or SIGINT during a longer run: it must end within a bound
   damage      bytes flipped in a finished map, or its format version changed (another number, or
-              none), then sweep --resume and summarize_map
+              none), then sweep --resume, summarize_map, plot_regime_map or plot_kcon_map (each must
+              refuse in one line, never die of a signal)
 """
 import ast
 import copy
@@ -105,6 +106,10 @@ SCENE_COMMANDS = ("run", "sweep", "accuracy", "optimise", "orbit-diagram", "cont
 ALL_COMMANDS = SCENE_COMMANDS + ("restitution", "keys")
 
 
+# The postprocess scripts a damaged map is given to (each run as a program: postprocess/NAME.py map.h5).
+POSTPROCESS_SCRIPTS = ("summarize_map", "plot_regime_map", "plot_kcon_map")
+
+
 @dataclass
 class Setup:
     """One thing made in the case's scratch directory before the run."""
@@ -128,7 +133,7 @@ class Draft:
     absent: list = field(default_factory=list)     # paths that must still not exist afterwards
     json: bool = False              # stdout is JSON on exit 0
     signal: tuple = ()              # (signal name, delay in s)
-    post: str = ""                  # damage: "resume" or "summarize"
+    post: str = ""                  # damage: "resume", or a POSTPROCESS_SCRIPTS script's name
     quick: bool = False             # a refusal must come within the quick bound
     notes: list = field(default_factory=list)      # one line per mutation applied
 
@@ -993,7 +998,7 @@ class Generator:
 
     # damage
     def plan_damage(self, rng):
-        post = rng.choice(("resume", "resume", "summarize"))
+        post = rng.choice(("resume", "resume") + POSTPROCESS_SCRIPTS)
         if rng.random() < 0.25:  # a map of another format version than 2 (None: made before files had one)
             return f"{post}|version {rng.choice((0, 1, 3, -1, 2**40, None))!r}", []
         flips = rng.randint(1, 3)
@@ -1002,7 +1007,7 @@ class Generator:
 
     def base_damage(self, base, rng):
         post, offsets = base.split("|", 1)
-        draft = Draft(command="sweep" if post == "resume" else "summarize_map", args=[], post=post)
+        draft = Draft(command="sweep" if post == "resume" else post, args=[], post=post)
         draft.setup.append(Setup("copy", "map.h5", b"damage-map"))
         if offsets.startswith("version "):
             version = ast.literal_eval(offsets[len("version "):])

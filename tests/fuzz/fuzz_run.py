@@ -49,7 +49,7 @@ import tempfile
 import time
 from dataclasses import dataclass, field
 
-from fuzz_cases import CANARY_DIR, SCENE, STOPS_WITH_EXIT_3
+from fuzz_cases import CANARY_DIR, POSTPROCESS_SCRIPTS, SCENE, STOPS_WITH_EXIT_3
 
 # The postprocess's readers and test helpers: a changed format version (stamp.set_version) and the
 # line that refuses it (vibromap_h5io.version_refusal).
@@ -381,7 +381,7 @@ def check_outputs(scratch, before, after, outcome):
     text = outcome.result.stdout.decode(errors="replace")
     # A help option anywhere (CLI11 also takes `--help=1`) prints help, not the JSON asked for.
     asks_help = any(a in ("-h", "--help") or a.startswith("--help=") for a in outcome.argv)
-    if case.draft.json and case.draft.command != "summarize_map" and not asks_help:
+    if case.draft.json and case.draft.command not in POSTPROCESS_SCRIPTS and not asks_help:
         check_json(text, problems)
     elif INF_WORD.search(text):
         problems.append(("nonfinite-table", INF_WORD.search(text).group(0)))
@@ -405,7 +405,7 @@ def check_exit(outcome, limits):
                              f"{'signal ' + str(res.signum) if res.rc is None else 'exit ' + str(res.rc)})"))
     if res.signum is not None and not res.timed_out and not res.mem_killed and res.signal_sent is None:
         problems.append(("crash", f"died of signal {res.signum} ({signal.Signals(res.signum).name}): {first_lines(res.stderr)}"))
-    if draft.command == "summarize_map":  # its own exit codes: check_damage
+    if draft.command in POSTPROCESS_SCRIPTS:  # their own exit codes: check_damage
         return
     if res.rc == 1:
         problems.append(("exit-1", first_lines(res.stderr)))
@@ -521,7 +521,7 @@ def check_damage(scratch, outcome, shared):
     if version:  # refused in the one line vibromap prints for it, naming both versions
         from vibromap_h5io import version_refusal
         found = eval(version[0].data.decode())
-        prog = "vibromap" if draft.post == "resume" else "summarize_map"
+        prog = "vibromap" if draft.post == "resume" else draft.command
         line = f"{prog}: error: {version_refusal('map.h5', 'regime map', 0 if found is None else found)}\n"
         if res.stderr.decode(errors="replace") != line:
             problems.append(("stderr", f"expected {line!r}, got {first_lines(res.stderr, 3)}"))
@@ -533,26 +533,29 @@ def check_damage(scratch, outcome, shared):
         if differs:
             problems.append(("damage-accepted", f"sweep --resume exit 0 and the map differs from the intact one "
                              f"in {', '.join(differs[:6])}"))
-    elif draft.post == "summarize":
+    elif draft.post in POSTPROCESS_SCRIPTS:
         # The postprocess must refuse a map whose file attributes (title, Conventions,
         # vibromap_version, identity, ...) are damaged; a damaged chunk of a dataset it does not
         # read is no concern of a summary, so only the root attributes are compared here.
         differs = [d for d in content_differs(path, intact) if d.startswith("@") or "h5py" in d] if res.rc in (0, 1) else []
         if differs:
-            problems.append(("damage-accepted", f"summarize_map exit {res.rc} on a map that differs from the "
+            problems.append(("damage-accepted", f"{draft.command} exit {res.rc} on a map that differs from the "
                              f"intact one in {', '.join(differs[:6])}: {first_lines(res.stdout, 1)}"))
-        if res.rc == 2 and not res.stderr.decode(errors="replace").startswith("summarize_map: error: "):
+        if res.rc == 2 and not res.stderr.decode(errors="replace").startswith(f"{draft.command}: error: "):
             problems.append(("stderr", first_lines(res.stderr, 3)))
-        if res.rc not in (0, 1, 2):
-            problems.append(("exit-code", f"summarize_map exit {res.rc}"))
+        if res.rc == 2 and len(res.stderr.decode(errors="replace").splitlines()) != 1:
+            problems.append(("stderr", f"{draft.command}: not one line: {first_lines(res.stderr, 3)}"))
+        if res.rc not in ((0, 1, 2) if draft.command == "summarize_map" else (0, 2)):
+            problems.append(("exit-code", f"{draft.command} exit {res.rc}"))
 
 
 # ---- one case ----------------------------------------------------------------------------
 
 def case_argv(case, exe, repo):
     draft = case.draft
-    if draft.command == "summarize_map":
-        return [sys.executable, os.path.join(repo, "postprocess", "summarize_map.py"), "map.h5"]
+    if draft.command in POSTPROCESS_SCRIPTS:
+        script = [sys.executable, os.path.join(repo, "postprocess", draft.command + ".py"), "map.h5"]
+        return script if draft.command == "summarize_map" else script + ["-o", "picture.png"]
     return [exe] + draft.args
 
 
@@ -579,12 +582,12 @@ def run_case(case, exe, repo, env, limits, workdir, shared, keep=False):
     after = snapshot(scratch)
     check_exit(outcome, limits)
     check_signal(outcome, limits)
-    if draft.command == "summarize_map" or draft.post:
+    if draft.command in POSTPROCESS_SCRIPTS or draft.post:
         check_damage(scratch, outcome, shared)
-    if draft.command != "summarize_map":
+    if draft.command not in POSTPROCESS_SCRIPTS:
         check_files(scratch, before, after, outcome)
     check_canaries(scratch, draft, canary_before, outcome.problems)
-    if outcome.result.rc == 0 and draft.command != "summarize_map":
+    if outcome.result.rc == 0 and draft.command not in POSTPROCESS_SCRIPTS:
         check_outputs(scratch, before, after, outcome)
     if not keep:
         remove_scratch(scratch)

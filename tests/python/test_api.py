@@ -133,6 +133,7 @@ def test_a_bad_key_raises_scene_error_with_the_command_lines_message():
         vibromap.Scene.from_toml(TABLE2).with_(**{"contact.E3": 1})
     assert str(e.value) == message
     assert isinstance(e.value, ValueError)
+    assert type(e.value).__module__ == "vibromap"  # as tracebacks name it
     assert message.startswith("jobs/paper/table2.toml: --set contact.E3=1: unknown key 'E3' in [contact]")
 
 
