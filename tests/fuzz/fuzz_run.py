@@ -218,6 +218,25 @@ def rss_mb(pid):
     return 0.0
 
 
+def catches(pid, sig) -> bool:
+    """Whether process pid has a handler of its own for sig (its SigCgt mask in /proc); True when
+    that cannot be read."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith("SigCgt:"):
+                    return bool(int(line.split()[1], 16) >> (sig - 1) & 1)
+    except (OSError, ValueError, IndexError):
+        pass
+    return True
+
+
+# A case's signal waits, after its time, until the process has its own handler for it (a signal
+# before the program's first instruction, while the loader maps its libraries, kills any
+# program), but no longer than this many seconds.
+SIGNAL_HANDLER_WAIT = 2.0
+
+
 def kill_group(pid, sig):
     try:
         os.killpg(pid, sig)
@@ -247,7 +266,9 @@ def run_bounded(argv, cwd, env, limits, case_signal=()):
                     res.mem_killed = True
                     kill_group(proc.pid, signal.SIGKILL)
                 next_rss = now + 0.03
-            if case_signal and res.signal_sent is None and now >= case_signal[1]:
+            if (case_signal and res.signal_sent is None and now >= case_signal[1]
+                    and (catches(proc.pid, getattr(signal, case_signal[0]))
+                         or now >= case_signal[1] + SIGNAL_HANDLER_WAIT)):
                 res.signal_sent = now
                 kill_group(proc.pid, getattr(signal, case_signal[0]))
                 deadline_kill = now + limits.signal_bound
