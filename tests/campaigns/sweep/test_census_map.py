@@ -19,6 +19,7 @@ import sys
 
 import h5py
 import numpy as np
+import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from campaign_helpers import ENV, EXE, MPIEXEC, kill_all, wait_for_cells_done  # noqa: E402
@@ -125,8 +126,18 @@ def test_census_map_is_rank_independent_and_equals_run_census(tmp_path):
             assert np.isnan(per["x1"][a])
 
 
-def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
-    scene = write_scene(tmp_path, 4, 4, checkpoint=0.2, k=24)
+def seeded_scene(tmp_path, n1, n2, checkpoint=60.0, k=4):
+    path = write_scene(tmp_path, n1, n2, checkpoint=checkpoint, k=k)
+    path.write_text(path.read_text().replace("max_attractors = 4", "max_attractors = 4\nseed_from_neighbour = true"))
+    return path
+
+
+@pytest.mark.parametrize("seeded", [False, True])
+def test_killed_census_sweep_resumes_to_the_same_map(tmp_path, seeded):
+    """Killed with SIGKILL and resumed, a census map (seeded from the neighbour, too) is the
+    uninterrupted one (a seeded line cut by a stop, whose resumed cells compute the line's start
+    again, is tests/campaigns/census's)."""
+    scene = (seeded_scene if seeded else write_scene)(tmp_path, 4, 4, checkpoint=0.2, k=24)
     reference = tmp_path / "reference.h5"
     whole = json.loads(sweep(2, scene, reference, "--format", "json").stdout)
 
@@ -152,12 +163,6 @@ def test_killed_census_sweep_resumes_to_the_same_map(tmp_path):
     assert report["families"] == {**whole["families"], "wall_s": report["families"]["wall_s"]}
 
 
-def seeded_scene(tmp_path, n1, n2, checkpoint=60.0, k=4):
-    path = write_scene(tmp_path, n1, n2, checkpoint=checkpoint, k=k)
-    path.write_text(path.read_text().replace("max_attractors = 4", "max_attractors = 4\nseed_from_neighbour = true"))
-    return path
-
-
 def test_seeded_census_map_is_rank_independent_and_lists_what_the_seeds_reach(tmp_path):
     """census.seed_from_neighbour: each cell also follows the attractors of the cell before it along
     E2 (the last axis). The map is the same on 1 and 3 ranks; an attractor only seeds reach has
@@ -180,25 +185,3 @@ def test_seeded_census_map_is_rank_independent_and_lists_what_the_seeds_reach(tm
         fraction = s["attractor_fraction"][()]
         np.testing.assert_allclose(np.nansum(fraction, axis=2) + s["unresolved_fraction"][()]
                                    + s["unlisted_fraction"][()], 1.0, rtol=0, atol=1e-12)
-
-
-def test_killed_seeded_census_sweep_resumes_to_the_same_map(tmp_path):
-    """A seeded census map killed with SIGKILL resumes to the uninterrupted map (a line cut by a
-    stop, whose resumed cells compute the line's start again, is tests/campaigns/census's)."""
-    scene = seeded_scene(tmp_path, 4, 4, checkpoint=0.2, k=24)
-    reference = tmp_path / "reference.h5"
-    sweep(2, scene, reference)
-    out = tmp_path / "killed.h5"
-    proc = subprocess.Popen([MPIEXEC, "-n", "2", EXE, "sweep", str(scene), "-o", str(out), "--quiet"],
-                            env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    wait_for_cells_done(proc, out, 3, poll=0.05)
-    assert proc.poll() is None, "the seeded census sweep finished before it could be killed; make it longer"
-    kill_all(proc.pid)
-    proc.wait()
-    with h5py.File(out, "r") as f:
-        before = int(f["done"][()].sum())
-        assert 0 < before < 16
-    report = json.loads(sweep(2, scene, out, "--resume", "--format", "json").stdout)
-    assert report["cells_resumed"] == before
-    assert_same_map(reference, out)
-    assert_same_families(reference, out)
