@@ -128,8 +128,9 @@ int entropy_box(const BasinsArgs& args, const BasinsSpec& spec) {
 int basins_command(const BasinsArgs& args, std::ostream& out) {
   const BasinsSpec spec = parse_spec(args);  // the same on every rank: no MPI needed to refuse it
   const int box = entropy_box(args, spec);
+  std::optional<Scene> read = load_scene_before_mpi(args.scene, args.sets);
   const MpiSession mpi;
-  const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
+  const Scene scene = load_scene_everywhere(mpi, std::move(read), args.scene, args.sets);
   BasinsPlane plane;
   mpi.agree([&] {
     if (const std::string e = validate(scene.census.value_or(CensusOptions{})); !e.empty())

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,5 +59,13 @@ int campaign_exit(const FarmReport& farm, const std::string& output, const char*
 // other ranks parse the text it read, so only rank 0 needs to see the file.
 Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, const std::vector<std::string>& sets,
                             const std::vector<CommandAxis>& axes = {});
+
+// Without an MPI launcher, the one process reads and checks the scene before MPI starts: a bad
+// scene is refused at once, with no MPI to start (about a second) and finish for nothing. Under
+// a launcher, nothing (std::nullopt: load_scene_everywhere reads it once MPI is up).
+std::optional<Scene> load_scene_before_mpi(const std::string& path, const std::vector<std::string>& sets);
+// The scene of a command that starts MPI: the one read before it, else load_scene_everywhere's.
+Scene load_scene_everywhere(const MpiSession& mpi, std::optional<Scene> read_before, const std::string& path,
+                            const std::vector<std::string>& sets);
 
 }  // namespace vibromap::cli

@@ -58,8 +58,9 @@ std::string optimise_trajectory_path(const std::string& output) { return stem_pa
 std::string optimise_journal_path(const std::string& output) { return output + ".journal"; }
 
 int optimise_command(const OptimiseArgs& args, std::ostream& out) {
+  std::optional<Scene> read = load_scene_before_mpi(args.scene, args.sets);
   const MpiSession mpi;
-  const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
+  const Scene scene = load_scene_everywhere(mpi, std::move(read), args.scene, args.sets);
   OptimiseRunConfig config;
   config.output = args.output.empty() ? default_output(args.scene) : args.output;
   config.map_output = optimise_map_path(config.output);

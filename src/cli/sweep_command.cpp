@@ -50,9 +50,21 @@ Scene load_scene_everywhere(const MpiSession& mpi, const std::string& path, cons
   return scene;
 }
 
+std::optional<Scene> load_scene_before_mpi(const std::string& path, const std::vector<std::string>& sets) {
+  if (launched_by_mpi()) return std::nullopt;
+  return load_scene(path, sets);
+}
+
+Scene load_scene_everywhere(const MpiSession& mpi, std::optional<Scene> read_before, const std::string& path,
+                            const std::vector<std::string>& sets) {
+  if (read_before) return std::move(*read_before);
+  return load_scene_everywhere(mpi, path, sets);
+}
+
 int sweep_command(const SweepArgs& args, std::ostream& out) {
+  std::optional<Scene> read = load_scene_before_mpi(args.scene, args.sets);
   const MpiSession mpi;
-  const Scene scene = load_scene_everywhere(mpi, args.scene, args.sets);
+  const Scene scene = load_scene_everywhere(mpi, std::move(read), args.scene, args.sets);
   SweepRunConfig config;
   config.output = args.output.empty() ? default_output(args.scene) : args.output;
   config.resume = args.resume;

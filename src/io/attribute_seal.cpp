@@ -265,6 +265,19 @@ void check_seal(const Hdf5File& file) {
   });
 }
 
+// Every object's header reads whole: the data and attributes can read while a header chunk
+// they do not use fails its checksum, and h5py's walk of the file (visititems) then fails.
+void check_object_headers(const Hdf5File& file) {
+  try {
+    file.check_object_headers();
+  } catch (const IoError& e) {
+    const std::string_view what = e.what();
+    const std::string prefix = cat(file.path(), ": ");
+    damaged(file, cat("an object's header cannot be read (", what.starts_with(prefix) ? what.substr(prefix.size()) : what,
+                      ")"));
+  }
+}
+
 }  // namespace
 
 std::string attribute_record(const Hdf5File& file, const std::vector<std::string>& uncovered) {
@@ -286,6 +299,7 @@ void seal_attributes(Hdf5File& file, const FileFormat& format, const std::vector
 
 void verify_file(const Hdf5File& file, const FileFormat& format) {
   if (const std::string why = endless_global_heap(file.path()); !why.empty()) damaged(file, why);
+  check_object_headers(file);
   check_version(file.path(), format, stored_version(file, format));
   check_seal(file);
 }

@@ -115,6 +115,24 @@ TEST_F(AttributeSeal, AByteFlippedInsideAnyAttributeValueIsDamageForEveryMapRead
   }
 }
 
+TEST_F(AttributeSeal, AnObjectHeaderChunkThatFailsItsChecksumIsDamageForEveryMapReader) {
+  // A continuation chunk of an object header ("OCHK", HDF5's version-2 headers) with a byte
+  // flipped past its signature fails the chunk's checksum; the data and attributes may not need
+  // that chunk, but a walk of the file (h5py's visititems, h5stat) does.
+  const std::string path = file("m.h5");
+  write_map(path, small_map());
+  std::string data = bytes_of(path);
+  const std::size_t chunk = data.find("OCHK");
+  ASSERT_NE(chunk, std::string::npos) << "no object header continuation chunk in " << path;
+  data[chunk + 6] = static_cast<char>(data[chunk + 6] ^ 0x01);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << data;
+  const std::string want = path + ": damaged: an object's header cannot be read (";
+  for (const std::string& message : map_reader_errors<IoError>(path)) {
+    EXPECT_EQ(message.substr(0, want.size()), want) << message;
+    EXPECT_NE(message.find("); make it again with --overwrite"), std::string::npos) << message;
+  }
+}
+
 TEST_F(AttributeSeal, ADamagedSealIsDamageToo) {
   const std::string path = file("m.h5");
   write_map(path, small_map());

@@ -284,6 +284,10 @@ class Group : public Hdf5Object {
   // The links of this group (names sorted by their bytes) and what each leads to
   // (hdf5_listing.cpp); soft and external links are `other`. Throws IoError.
   std::vector<std::pair<std::string, LinkKind>> links() const;
+  // Reads the header of every object reachable from this group, all its chunks with their
+  // checksums (hdf5_listing.cpp): a header HDF5 cannot read throws IoError, so a file whose
+  // data reads but whose object headers are damaged is not taken as whole.
+  void check_object_headers() const;
   // Removes the link `name` (a dataset or group); HDF5 does not reclaim its space in the file.
   void remove(std::string_view name);
 

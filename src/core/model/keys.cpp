@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "vibromap/core/analysis/point/impact.hpp"
 #include "vibromap/core/analysis/point/point_solver.hpp"
 #include "key_accessors.hpp"
 #include "vibromap/core/analysis/point/steady_state.hpp"
@@ -187,7 +188,7 @@ void add_analysis_keys(std::vector<Row>& rows) {
                          "budget of forcing periods to reach steady state", field<an, &A::max_periods>()));
   rows.push_back(real(s, "steady_tol", B::at_least(0), "-",
                       "steady-state tolerance (scaled max-norm); 0: auto, 100*rtol (rk4: 1e-9)", field<an, &A::steady_tol>()));
-  rows.push_back(integer(s, "chatter_impacts", B::at_least(1), "impacts per forcing period from which the motion is chatter",
+  rows.push_back(integer(s, "chatter_impacts", B::between(1, ImpactRecorder::kMaxChatterImpacts), "impacts per forcing period from which the motion is chatter",
                          field<an, &A::chatter_impacts>()));
   rows.push_back(real(s, "hertz_limit", B::above(0), "-", "z_max/R* above which Hertz theory is flagged invalid",
                       field<an, &A::hertz_limit>()));

@@ -3,9 +3,13 @@
 #include <array>
 #include <cmath>
 
+#include "vibromap/core/analysis/point/steady_state.hpp"
 #include "vibromap/core/integrate/root_finding.hpp"
 
 namespace vibromap {
+
+// Chatter is decided on counts of at most kMaxChatterImpacts * n_max impacts, all of them kept.
+static_assert(std::size_t{ImpactRecorder::kMaxChatterImpacts} * SteadyStateDetector::kMaxN < ImpactRecorder::kMaxKept);
 
 namespace {
 // 4-point Gauss-Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun 25.4.30).
@@ -77,6 +81,7 @@ void ImpactRecorder::on_event(const ContactEvent& event) {
   im.F_max = std::max(im.F_max, model_.contact().force(im.z_max));
   im.z_ratio = im.z_max / model_.contact().effective_radius();
   impacts_.push_back(im);
+  if (impacts_.size() > kMaxKept) impacts_.pop_front();
   open_.reset();
   ++total_;
 }

@@ -8,6 +8,7 @@
 // energy the contact dissipates, the integral of the damping force (Fc minus its elastic
 // part K z^(3/2)) times the approach rate w; the effective restitution is |w_out / w_in|.
 
+#include <cstddef>
 #include <deque>
 #include <optional>
 
@@ -38,9 +39,16 @@ struct Impact {
 };
 
 // Collects the impacts completed in the last `keep_periods` forcing periods (older ones are
-// dropped so long runs use bounded memory), and the one in progress.
+// dropped so long runs use bounded memory), and the one in progress. At most kMaxKept are
+// kept (the oldest dropped first): a motion with that many impacts in a few periods (near-
+// undamped grazing contact) is chatter by every count that is made of them (chatter_impacts
+// is at most kMaxChatterImpacts, and kMaxChatterImpacts * kMaxN < kMaxKept), and its memory
+// stays bounded (about 130 MB) instead of growing with the step budget.
 class ImpactRecorder final : public Observer {
  public:
+  static constexpr std::size_t kMaxKept = std::size_t{1} << 20;
+  static constexpr int kMaxChatterImpacts = 10'000;
+
   ImpactRecorder(const Model& model, long keep_periods);
 
   void on_step(const StepView& step) override;
