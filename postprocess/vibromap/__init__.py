@@ -10,7 +10,9 @@
     {'(3,3)': 0.625, '(1,1)': 0.375}
 
 The numbers are those of ``vibromap run SCENE [--census] --format json``, bit for bit: the same scene
-reader, solver and JSON writer. Keys, units, ranges and defaults: ``vibromap.Scene.keys()``
+reader, solver and JSON writer. Branches and curves (``branch``, ``curve``), the optimisation
+(``optimise``) and maps (``sweep``, census maps too) are run by the vibromap program itself, as
+its commands run them (maps on MPI ranks under mpirun), and return its numbers and files. Keys, units, ranges and defaults: ``vibromap.Scene.keys()``
 (the command line's ``vibromap keys``). docs/python.md explains the package.
 """
 
@@ -26,9 +28,11 @@ from ._core import SceneError
 SceneError.__module__ = __name__  # tracebacks name vibromap.SceneError, where users import it
 from ._result import Census, Result
 from ._scene import KeyInfo, Scene, Value
+from ._studies import Branch, Curves, Optimisation, branch, curve, optimise, sweep
 from . import _core
 
-__all__ = ["Scene", "KeyInfo", "Result", "Census", "SceneError", "run", "census", "trajectory"]
+__all__ = ["Scene", "KeyInfo", "Result", "Census", "SceneError", "run", "census", "trajectory",
+           "Branch", "Curves", "Optimisation", "branch", "curve", "optimise", "sweep"]
 __version__ = "0.1.0"
 
 

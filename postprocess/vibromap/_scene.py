@@ -88,6 +88,25 @@ def _overrides(keys: Dict[str, Any]) -> List[str]:
     return [f"{name}={_value_text(value)}" for name, value in keys.items()]
 
 
+_EXACT_INT = 2**53  # an int of at most this size is the same number as a float
+
+
+def _numbers(keys: Dict[str, Any]) -> Optional[Tuple[List[str], List[float]]]:
+    """The keys as (full names, floats) when every key is named in full and every value is a
+    number (not a bool, not a str): those the core may set on the point directly."""
+    names: List[str] = []
+    values: List[float] = []
+    for name, value in keys.items():
+        if "." not in name or isinstance(value, bool):
+            return None
+        if isinstance(value, float) or (isinstance(value, int) and -_EXACT_INT <= value <= _EXACT_INT):
+            names.append(name)
+            values.append(float(value))
+        else:
+            return None
+    return names, values
+
+
 class Scene:
     """One parameter point and the options to solve it, checked as the command line checks it.
 
@@ -99,15 +118,19 @@ class Scene:
     is a key's value. Scenes are immutable and pickle (as their TOML text).
     """
 
-    __slots__ = ("_scene",)
+    # _origin: (file, --set overrides) that give this scene on the command line, for a scene
+    # read from a file and changed by with_(); None for one made otherwise.
+    __slots__ = ("_scene", "_origin")
 
     def __init__(self, **keys: Value) -> None:
         self._scene = _core.Scene.parse("", _core.default_scene_path, _overrides(keys))
+        self._origin: Optional[Tuple[str, Tuple[str, ...]]] = None
 
     @classmethod
     def from_toml(cls, path: Union[str, "os.PathLike[str]"], **keys: Value) -> "Scene":
         """Reads the scene file at ``path`` (TOML), then sets ``keys`` as ``--set`` does."""
-        return cls._wrap(_core.Scene.load(os.fspath(path), _overrides(keys)))
+        overrides = _overrides(keys)
+        return cls._wrap(_core.Scene.load(os.fspath(path), overrides), (os.fspath(path), tuple(overrides)))
 
     @classmethod
     def from_text(cls, text: str, path: str = _core.default_scene_path) -> "Scene":
@@ -115,14 +138,28 @@ class Scene:
         return cls._wrap(_core.Scene.parse(text, path, []))
 
     @classmethod
-    def _wrap(cls, scene: "_core.Scene") -> "Scene":
+    def _wrap(cls, scene: "_core.Scene", origin: Optional[Tuple[str, Tuple[str, ...]]] = None) -> "Scene":
         self = cls.__new__(cls)
         self._scene = scene
+        self._origin = origin
         return self
 
     def with_(self, **keys: Value) -> "Scene":
-        """A copy of this scene with ``keys`` set (``--set`` overrides); this one is unchanged."""
-        return self._wrap(self._scene.with_overrides(_overrides(keys)))
+        """A copy of this scene with ``keys`` set (``--set`` overrides); this one is unchanged.
+
+        Model parameters named in full and set to numbers (``**{"contact.E2": 2e6}``) are set
+        on the point directly, with the reader's checks, without reading the scene again; any
+        other key, or a value a check refuses, goes through the reader (same values, same
+        messages).
+        """
+        overrides = _overrides(keys)
+        origin = (self._origin[0], self._origin[1] + tuple(overrides)) if self._origin else None
+        numbers = _numbers(keys)
+        if numbers is not None:
+            fast = self._scene.with_numbers(numbers[0], numbers[1], overrides)
+            if fast is not None:
+                return self._wrap(fast, origin)
+        return self._wrap(self._scene.with_overrides(overrides), origin)
 
     @property
     def path(self) -> str:

@@ -6,6 +6,11 @@
 // [--census | --trajectory]`
 // (io/point_run.hpp), whose answer is the very JSON text the command prints. Reading a scene
 // releases the GIL too (a loop over points in threads reads one scene per point).
+//
+// A changed copy of a scene whose keys are model parameters set to numbers is made without
+// reading the scene again (HeldScene::with_numbers): the keys are set and checked on the point
+// as a sweep sets a cell's (Key::set, Key::check, validate), and the scene's text, which only
+// provenance, pickling and equality read, is made from the overrides when first asked for.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -13,11 +18,14 @@
 
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "interrupt.hpp"
 #include "vibromap/core/model/keys.hpp"
+#include "vibromap/core/model/parameters.hpp"
 #include "vibromap/io/point_run.hpp"
 #include "vibromap/io/scene/scene.hpp"
 #include "vibromap/io/trajectory_file.hpp"
@@ -29,6 +37,64 @@ namespace py = pybind11;
 
 // The scene a Python Scene() starts from: no file, every key at its default.
 constexpr const char* kDefaultScenePath = "Scene()";
+
+// A scene as the package holds it: a checked Scene whose point (params, options, path) is
+// always current, and the batches of `--set` overrides that with_numbers applied to the point
+// directly and that the scene's text does not record yet. text() replays them through the
+// reader, batch by batch as the chain of copies was made, so the text is the one
+// parse_scene(text, path, batch) would have given at each step. GIL held for text().
+class HeldScene {
+ public:
+  explicit HeldScene(Scene scene) : scene_(std::move(scene)) {}
+
+  const Scene& point() const { return scene_; }
+  // The scene with its text made (the overrides replayed).
+  const Scene& full();
+  // This scene with `overrides` given to the reader (the command line's --set).
+  HeldScene with_overrides(const std::vector<std::string>& overrides);
+  // This scene with model parameters `names` (full names) set to `values`, `overrides` their
+  // --set texts; nullopt when the reader is needed: a key that is not a model parameter, a
+  // value or a point a check refuses (the reader then gives the message), a scene with a
+  // [sweep], [optimise] or [census] section (whose checks read the point too), D under a
+  // partly given [initial] state (its unset components follow D), or a long chain of copies.
+  std::optional<HeldScene> with_numbers(const std::vector<std::string>& names, const std::vector<double>& values,
+                                        const std::vector<std::string>& overrides) const;
+
+ private:
+  static constexpr std::size_t kMaxPending = 16;  // override batches kept before the text is made
+  Scene scene_;
+  std::vector<std::vector<std::string>> pending_;
+};
+
+const Scene& HeldScene::full() {
+  for (const std::vector<std::string>& batch : pending_) scene_.text = parse_scene(scene_.text, scene_.path, batch).text;
+  pending_.clear();
+  return scene_;
+}
+
+HeldScene HeldScene::with_overrides(const std::vector<std::string>& overrides) {
+  const Scene& s = full();
+  std::string text = s.text, path = s.path;
+  py::gil_scoped_release release;
+  return HeldScene(parse_scene(text, path, overrides));
+}
+
+std::optional<HeldScene> HeldScene::with_numbers(const std::vector<std::string>& names, const std::vector<double>& values,
+                                                 const std::vector<std::string>& overrides) const {
+  if (names.size() != values.size() || names.size() != overrides.size()) throw std::invalid_argument("with_numbers: lengths differ");
+  if (scene_.sweep || scene_.optimise || scene_.census || pending_.size() >= kMaxPending) return std::nullopt;
+  HeldScene out(scene_);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::optional<Key> key = Key::find(names[i]);
+    if (!key || !key->is_parameter() || key->full_name() != names[i] || !key->check(values[i]).empty()) return std::nullopt;
+    if (names[i] == "system.D" && scene_.params.initial) return std::nullopt;
+    key->set(out.scene_.params, out.scene_.options, values[i]);
+  }
+  if (!validate(out.scene_.params).empty()) return std::nullopt;
+  out.pending_ = pending_;
+  out.pending_.push_back(overrides);
+  return out;
+}
 
 const char* type_name(KeyType t) {
   switch (t) {
@@ -94,10 +160,11 @@ py::list key_table() {
 
 // The JSON `vibromap run SCENE --format json` prints for the scene's point: the same scene
 // adjustment (no trajectory), solve and writer as the command (io/point_run.hpp).
-std::string run_json(const Scene& scene) {
+std::string run_json(HeldScene& held) {
+  const std::optional<std::string> periods = trajectory_override(held.point(), false);
+  const Scene& scene = periods ? held.full() : held.point();
   std::string json;
   run_released([&] {
-    const std::optional<std::string> periods = trajectory_override(scene, false);
     const Scene run_scene = periods ? parse_scene(scene.text, scene.path, {*periods}) : scene;
     json = summary_json(solve_scene_point(run_scene));
   });
@@ -106,7 +173,8 @@ std::string run_json(const Scene& scene) {
 
 // The JSON `vibromap run SCENE --census [--labels] [--shock] --format json` prints in one
 // process (io/point_run.hpp).
-std::string census_json_of(const Scene& scene, bool labels, bool shock) {
+std::string census_json_of(const HeldScene& held, bool labels, bool shock) {
+  const Scene& scene = held.point();
   std::string json;
   run_released([&] { json = census_json(census_scene_point(scene, run_census_options(scene, labels, shock))); });
   return json;
@@ -115,7 +183,8 @@ std::string census_json_of(const Scene& scene, bool labels, bool shock) {
 // The point solved as `vibromap run SCENE --trajectory FILE --format json` solves it: its JSON,
 // the scene text the file would record, and the file's columns as (name, units, description,
 // values). GIL held on return only.
-py::tuple trajectory_of(const Scene& scene) {
+py::tuple trajectory_of(HeldScene& held) {
+  const Scene& scene = held.full();
   std::string json;
   Scene run_scene;
   PointSummary summary;
@@ -136,27 +205,28 @@ py::tuple trajectory_of(const Scene& scene) {
 }
 
 void declare_scene(py::module_& m) {
-  py::class_<Scene>(m, "Scene", "A checked scene (io/scene): one parameter point and how to solve it.")
+  py::class_<HeldScene>(m, "Scene", "A checked scene (io/scene): one parameter point and how to solve it.")
       .def_static(
-          "load", [](const std::string& path, const std::vector<std::string>& overrides) { return load_scene(path, overrides); },
+          "load",
+          [](const std::string& path, const std::vector<std::string>& overrides) {
+            return HeldScene(load_scene(path, overrides));
+          },
           py::arg("path"), py::arg("overrides") = std::vector<std::string>{}, py::call_guard<py::gil_scoped_release>(),
           "Reads a scene file with --set overrides.")
       .def_static(
           "parse",
           [](const std::string& text, const std::string& path, const std::vector<std::string>& overrides) {
-            return parse_scene(text, path, overrides);
+            return HeldScene(parse_scene(text, path, overrides));
           },
           py::arg("text"), py::arg("path") = kDefaultScenePath, py::arg("overrides") = std::vector<std::string>{},
           py::call_guard<py::gil_scoped_release>(), "Reads scene text (named `path` in messages) with --set overrides.")
-      .def(
-          "with_overrides",
-          [](const Scene& s, const std::vector<std::string>& overrides) {
-            return parse_scene(s.text, s.path, overrides);
-          },
-          py::arg("overrides"), py::call_guard<py::gil_scoped_release>(), "This scene with --set overrides.")
-      .def_readonly("path", &Scene::path)
-      .def_readonly("text", &Scene::text)
-      .def("get", [](const Scene& s, const std::string& name) { return key_value(s, find_key(name)); },
+      .def("with_overrides", &HeldScene::with_overrides, py::arg("overrides"), "This scene with --set overrides.")
+      .def("with_numbers", &HeldScene::with_numbers, py::arg("names"), py::arg("values"), py::arg("overrides"),
+           "This scene with model parameters set to numbers without reading it again; None when the "
+           "reader is needed (with_overrides then gives the scene or the message).")
+      .def_property_readonly("path", [](const HeldScene& s) { return s.point().path; })
+      .def_property_readonly("text", [](HeldScene& s) { return s.full().text; })
+      .def("get", [](const HeldScene& s, const std::string& name) { return key_value(s.point(), find_key(name)); },
            py::arg("name"), "A key's value at the scene's point.");
 }
 
