@@ -6,7 +6,7 @@ Finds a Python interpreter that can import the modules of vibromap's ``postproce
 (numpy, h5py, matplotlib; pytest for its tests). FindPython3 is not used because the first
 ``python3`` it sees is often not the one Debian's python3-* packages were installed for (a
 pyenv shim, a conda or venv interpreter): what matters is what the interpreter can import.
-``postprocess/vmpy`` tries the same candidates in the same order at run time.
+``postprocess/vibromap-post`` tries the same candidates in the same order at run time.
 
 Candidates, in order: the cache variable ``VIBROMAP_PYTHON`` (if set), ``/usr/bin/python3``,
 then ``python3`` and ``python`` on ``PATH``. Each is run as

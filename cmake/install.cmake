@@ -1,8 +1,9 @@
 # Installation (included from the top-level CMakeLists.txt): `cmake --install build --prefix P` gives
 #   P/bin/vibromap                          the executable
-#   P/bin/vibromap-post                     the postprocess scripts, one command (postprocess/vmpy)
-#   P/share/vibromap/postprocess/           the scripts it runs
-#   P/lib/python3.X/dist-packages/vibromap/ the Python package (site-packages for a Python not Debian's)
+#   P/bin/vibromap-post                     the postprocess scripts, one command (postprocess/vibromap-post)
+#   P/lib/python3.X/dist-packages/vibromap/ the Python package (site-packages for a Python not Debian's):
+#                                           the solver (with its compiled core when built), the
+#                                           readers, the pictures and the scripts vibromap-post runs
 #   P/share/vibromap/jobs/                  the example scenes (jobs/)
 #   P/share/doc/vibromap/                   README.md, CHANGELOG.md, docs/
 #   P/include/vibromap/, P/lib/libvibromap_*.a and P/lib/cmake/vibromap/: the libraries, for
@@ -33,30 +34,30 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/vibromapConfigVersion.cma
 install(FILES ${PROJECT_BINARY_DIR}/vibromapConfig.cmake ${PROJECT_BINARY_DIR}/vibromapConfigVersion.cmake
         DESTINATION ${VIBROMAP_INSTALL_CMAKEDIR})
 
-# The postprocess scripts: vmpy installed as bin/vibromap-post finds them in
-# ../share/vibromap/postprocess (and picks the Python interpreter as in the source tree).
-file(GLOB _vibromap_py ${PROJECT_SOURCE_DIR}/postprocess/*.py)
-list(REMOVE_ITEM _vibromap_py ${PROJECT_SOURCE_DIR}/postprocess/setup.py)  # pip's, not a script
-install(FILES ${_vibromap_py} DESTINATION ${CMAKE_INSTALL_DATADIR}/vibromap/postprocess)
-install(PROGRAMS postprocess/vmpy DESTINATION ${CMAKE_INSTALL_DATADIR}/vibromap/postprocess)
-install(PROGRAMS postprocess/vmpy DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME vibromap-post)
-unset(_vibromap_py)
+# The launcher: the same file as in the checkout, which finds the package under its prefix.
+install(PROGRAMS postprocess/vibromap-post DESTINATION ${CMAKE_INSTALL_BINDIR})
 
-# The Python package (src/python): vibromap/ with its compiled _core, where the interpreter it
-# was built for looks under the prefix: lib/python3.X/dist-packages for Debian's (which reads
-# /usr/local/lib/python3.X/dist-packages), else lib/python3.X/site-packages. Under another
-# prefix: PYTHONPATH=PREFIX/<that folder> (docs/python.md).
-if(TARGET vibromap_python)
+# The Python package (postprocess/vibromap, src/python): its files, and its compiled _core when it
+# is built, where the interpreter it is for looks under the prefix: lib/python3.X/dist-packages
+# for Debian's (which reads /usr/local/lib/python3.X/dist-packages), else
+# lib/python3.X/site-packages. Under another prefix: PYTHONPATH=PREFIX/<that folder>
+# (docs/python.md); bin/vibromap-post finds it there by itself.
+if(VIBROMAP_PACKAGE_PYTHON)
   execute_process(
-    COMMAND "${VIBROMAP_PYTHON_EXECUTABLE}" -c
+    COMMAND "${VIBROMAP_PACKAGE_PYTHON}" -c
             "import sys; d = 'dist' if any(p.endswith('dist-packages') for p in sys.path) else 'site'; print('lib/python%d.%d/%s-packages' % (*sys.version_info[:2], d))"
     OUTPUT_VARIABLE _vibromap_python_dir OUTPUT_STRIP_TRAILING_WHITESPACE)
   set(VIBROMAP_PYTHON_INSTALL_DIR "${_vibromap_python_dir}" CACHE STRING
       "Where cmake --install puts the Python package vibromap, under the prefix")
-  install(TARGETS vibromap_python LIBRARY DESTINATION ${VIBROMAP_PYTHON_INSTALL_DIR}/vibromap)
-  list(TRANSFORM VIBROMAP_PYTHON_FILES PREPEND ${PROJECT_SOURCE_DIR}/postprocess/vibromap/ OUTPUT_VARIABLE _vibromap_py)
-  install(FILES ${_vibromap_py} DESTINATION ${VIBROMAP_PYTHON_INSTALL_DIR}/vibromap)
-  unset(_vibromap_py)
+  if(TARGET vibromap_python)
+    install(TARGETS vibromap_python LIBRARY DESTINATION ${VIBROMAP_PYTHON_INSTALL_DIR}/vibromap)
+  endif()
+  foreach(_file IN LISTS VIBROMAP_PYTHON_FILES)
+    get_filename_component(_dir ${_file} DIRECTORY)
+    install(FILES postprocess/vibromap/${_file} DESTINATION ${VIBROMAP_PYTHON_INSTALL_DIR}/vibromap/${_dir})
+  endforeach()
+  unset(_file)
+  unset(_dir)
   unset(_vibromap_python_dir)
 endif()
 

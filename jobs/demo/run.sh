@@ -72,9 +72,9 @@ edges="$out/soft_edges.h5"
 # The three pictures at once (each is mostly one Python start and one PNG); the first failure's
 # status is the script's.
 pids=()
-"$top/postprocess/vmpy" plot_regime_map "$map" --x E1 --y E2 -o "$out/e1_e2_regimes.png" & pids+=($!)
-"$top/postprocess/vmpy" plot_kcon_map "$map" --x E1 --y E2 --curves "$edges" -o "$out/e1_e2_kcon.png" & pids+=($!)
-"$top/postprocess/vmpy" plot_soft_map "$map" --x E1 --y E2 --curves "$edges" -o "$out/e1_e2_soft.png" & pids+=($!)
+"$top/postprocess/vibromap-post" plot_regime_map "$map" --x E1 --y E2 -o "$out/e1_e2_regimes.png" & pids+=($!)
+"$top/postprocess/vibromap-post" plot_kcon_map "$map" --x E1 --y E2 --curves "$edges" -o "$out/e1_e2_kcon.png" & pids+=($!)
+"$top/postprocess/vibromap-post" plot_soft_map "$map" --x E1 --y E2 --curves "$edges" -o "$out/e1_e2_soft.png" & pids+=($!)
 status=0
 for pid in "${pids[@]}"; do
   wait "$pid" || { [ "$status" -eq 0 ] && status=$?; }

@@ -1,4 +1,4 @@
-"""Shared fixtures for the postprocess tests: the scripts' directory on sys.path, an analytic
+"""Shared fixtures for the postprocess tests: the package's directory on sys.path, the scripts' command, an analytic
 trajectory file written with h5py in the layout of src/io/trajectory_file.cpp (stamped with its
 version and attribute checksum, stamp.py), and the map files of map_cases.py (map1d, map2d,
 map3d)."""
@@ -19,6 +19,14 @@ import pytest
 POSTPROCESS_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 if POSTPROCESS_DIR not in sys.path:
     sys.path.insert(0, POSTPROCESS_DIR)
+# The scripts run as `python -m vibromap SCRIPT` in subprocesses, which find the package here.
+os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (POSTPROCESS_DIR, os.environ.get("PYTHONPATH")) if p)
+LAUNCHER = os.path.join(POSTPROCESS_DIR, "vibromap-post")
+
+
+def script(name: str) -> list[str]:
+    """The command that runs the postprocess script `name` with this interpreter, as vibromap-post does."""
+    return [sys.executable, "-m", "vibromap", name]
 
 # The analytic motion of tests/io/test_trajectory_file.cpp (harmonic_summary): keep them equal, so
 # that a file written by the C++ writer can be checked against the same formulas.

@@ -20,14 +20,15 @@ import os
 import matplotlib.text
 import numpy as np
 
+import conftest
 import make_map
-import plot_kcon_map
+from vibromap.plot import _kcon_map as plot_kcon_map
 
 POSTPROCESS_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-REGIME_SCRIPT = os.path.join(POSTPROCESS_DIR, "plot_regime_map.py")
-KCON_SCRIPT = os.path.join(POSTPROCESS_DIR, "plot_kcon_map.py")
-SOFT_SCRIPT = os.path.join(POSTPROCESS_DIR, "plot_soft_map.py")
-VMPY = os.path.join(POSTPROCESS_DIR, "vmpy")
+REGIME_SCRIPT = conftest.script("plot_regime_map")
+KCON_SCRIPT = conftest.script("plot_kcon_map")
+SOFT_SCRIPT = conftest.script("plot_soft_map")
+LAUNCHER = conftest.LAUNCHER
 MIN_PNG_BYTES = 15_000  # a coloured map with axes, legend and title at 1350 x 900 px is well above this
 SOFT_DEFINITION = "soft: stable periodic with impacts, Hertz-valid, k_con <= 10"  # the legend entry of soft_outlines
 

@@ -13,8 +13,8 @@ import zlib
 import h5py
 import numpy as np
 
-import vibromap_h5io
-import vibromap_seal
+from vibromap._io import h5io as vibromap_h5io
+from vibromap._io import seal as vibromap_seal
 
 
 def stamp(path, kind: str, uncovered=(), version: int | None = None) -> None:

@@ -19,13 +19,13 @@ from conftest import run
 from stamp import stamp
 import make_curves
 import make_map
-import plot_census_map
-import plot_kcon_map
-import plot_regime_map as maps
-import plot_soft_map
+from vibromap.plot import _census_map as plot_census_map
+from vibromap.plot import _kcon_map as plot_kcon_map
+from vibromap.plot import _regime_map as maps
+from vibromap.plot import _soft_map as plot_soft_map
 import test_plot_census
 from map_cases import KCON_SCRIPT, REGIME_SCRIPT, SOFT_SCRIPT, legend_texts, one_line_error
-from vibromap_h5 import FileVersionError, VibromapFileError, add_soft_cells, read_curves, read_map
+from vibromap._io import FileVersionError, VibromapFileError, add_soft_cells, read_curves, read_map
 
 X_EDGES, Y_EDGES = (10.0**4.5, 10.0**10.5), (1e3, 1e11)
 FOLD = make_curves.curve("fold", [1e6, 1e7, 1e8, 1e9], [1e5, 1e6, 2e7, 1e9], n=1,
@@ -92,7 +92,7 @@ def test_a_curve_file_of_another_format_version_is_refused_naming_both_versions(
         read_curves(path)
     assert str(error.value) == line
     out = tmp_path / "out.png"
-    result = run([sys.executable, REGIME_SCRIPT, str(map2d[0]), "--curves", str(path), "-o", str(out)])
+    result = run([*REGIME_SCRIPT, str(map2d[0]), "--curves", str(path), "-o", str(out)])
     one_line_error(result, "plot_regime_map", line)
     assert not out.exists()
 
@@ -235,8 +235,8 @@ def test_a_curve_in_other_keys_is_refused_naming_the_file_the_keys_and_the_axes(
     make_curves.write_curves(curves, [FOLD], param="forcing.omega", param2="forcing.F0", units=("rad/s", "N"))
     for script in (REGIME_SCRIPT, KCON_SCRIPT, SOFT_SCRIPT):
         out = tmp_path / "out.png"
-        result = run([sys.executable, script, str(map2d[0]), "--curves", str(curves), "-o", str(out)])
-        prog = os.path.basename(script)[:-3]
+        result = run([*script, str(map2d[0]), "--curves", str(curves), "-o", str(out)])
+        prog = script[-1]
         one_line_error(result, prog, f"{curves}: curve_0 (fold) is a curve in forcing.omega and forcing.F0, but the "
                                      "plot's axes are contact.E1 (x) and contact.E2 (y); draw it over a map of these two keys")  # fmt: skip
         assert not out.exists()
@@ -244,7 +244,7 @@ def test_a_curve_in_other_keys_is_refused_naming_the_file_the_keys_and_the_axes(
 
 def test_a_curve_over_a_strip_is_refused(map1d, curve_files, tmp_path):
     out = tmp_path / "strip.png"
-    result = run([sys.executable, REGIME_SCRIPT, str(map1d), "--curves", curve_files[0], "-o", str(out)])
+    result = run([*REGIME_SCRIPT, str(map1d), "--curves", curve_files[0], "-o", str(out)])
     one_line_error(result, "plot_regime_map", f"{curve_files[0]}: curve_0 (fold) is a curve in contact.E1 and "
                                               "contact.E2, but the plot's axes are contact.E2 (x);")  # fmt: skip
     assert not out.exists()
@@ -252,17 +252,17 @@ def test_a_curve_over_a_strip_is_refused(map1d, curve_files, tmp_path):
 
 def test_the_scripts_take_curves_repeated_and_name_a_bad_curve_file(map2d, curve_files, tmp_path):
     out = tmp_path / "both.png"
-    result = run([sys.executable, REGIME_SCRIPT, str(map2d[0]), "--curves", curve_files[0], "--curves",
+    result = run([*REGIME_SCRIPT, str(map2d[0]), "--curves", curve_files[0], "--curves",
                   curve_files[1], "-o", str(out)])  # fmt: skip
     assert result.returncode == 0 and result.stdout == f"plot_regime_map: wrote {out}\n", result.stderr
-    result = run([sys.executable, KCON_SCRIPT, str(map2d[0]), "--curves", str(map2d[0]), "-o", str(out)])
+    result = run([*KCON_SCRIPT, str(map2d[0]), "--curves", str(map2d[0]), "-o", str(out)])
     one_line_error(result, "plot_kcon_map", f"{map2d[0]}: not a curve file of vibromap continue --curve")
-    result = run([sys.executable, KCON_SCRIPT, str(map2d[0]), "--curves", str(tmp_path / "none.h5"), "-o", str(out)])
+    result = run([*KCON_SCRIPT, str(map2d[0]), "--curves", str(tmp_path / "none.h5"), "-o", str(out)])
     one_line_error(result, "plot_kcon_map", f"{tmp_path / 'none.h5'}: no such file")
 
 
 def test_census_cell_pictures_refuse_curves(tmp_path, curve_files):
     path = tmp_path / "census.h5"
     test_plot_census.census_map(path)
-    result = run([sys.executable, test_plot_census.SCRIPT, str(path), "--show", "cell", "--curves", curve_files[0]])
+    result = run([*test_plot_census.SCRIPT, str(path), "--show", "cell", "--curves", curve_files[0]])
     assert result.returncode == 2 and "--curves draws over a map: not with --show cell" in result.stderr

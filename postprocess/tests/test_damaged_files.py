@@ -25,8 +25,8 @@ import pytest
 
 import make_map
 from stamp import set_version
-import summarize_map
-import vibromap_h5
+from vibromap import _summarize_map as summarize_map
+from vibromap import _io as vibromap_h5
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRIPTS = os.path.dirname(HERE)
@@ -56,7 +56,7 @@ def sealed_map(request, tmp_path):
 
 
 def run(script, *args):
-    return subprocess.run([sys.executable, os.path.join(SCRIPTS, script + ".py"), *map(str, args)],
+    return subprocess.run([sys.executable, "-m", "vibromap", script, *map(str, args)],
                           capture_output=True, text=True, timeout=120)
 
 

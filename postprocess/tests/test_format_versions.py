@@ -12,15 +12,15 @@ import sys
 import pytest
 
 import conftest
-import plot_branch
-import plot_optimise
-import plot_orbit_diagram
+from vibromap.plot import _branch as plot_branch
+from vibromap.plot import _optimise as plot_optimise
+from vibromap.plot import _orbit_diagram as plot_orbit_diagram
 from stamp import set_version
 import test_plot_basins
 import test_plot_branch
 import test_plot_optimise
 import test_plot_orbit_diagram
-import vibromap_h5
+from vibromap import _io as vibromap_h5
 
 HEADER = os.path.join(conftest.POSTPROCESS_DIR, "..", "include", "vibromap", "io", "file_format.hpp")
 
@@ -65,7 +65,7 @@ def test_a_file_of_another_format_version_is_refused_in_one_line(tmp_path, kind,
     with pytest.raises(vibromap_h5.FileVersionError) as error:
         read(str(path))
     assert str(error.value) == line
-    proc = subprocess.run([sys.executable, os.path.join(conftest.POSTPROCESS_DIR, script + ".py"), str(path), "-o",
+    proc = subprocess.run([*conftest.script(script), str(path), "-o",
                            str(tmp_path / "out.png")], capture_output=True, text=True, timeout=120)  # fmt: skip
     assert (proc.returncode, proc.stdout, proc.stderr) == (2, "", f"{script}: error: {line}\n")
     assert not list(tmp_path.glob("out*.png"))

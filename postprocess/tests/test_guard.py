@@ -12,12 +12,12 @@ import pytest
 
 import conftest
 from conftest import run
-from vibromap_guard import guarded_main
+from vibromap._guard import guarded_main
 
 PROGRAM = """
 import os, signal, sys
 sys.path.insert(0, {postprocess!r})
-from vibromap_guard import guarded_main
+from vibromap._guard import guarded_main
 
 @guarded_main("prog")
 def main(argv=None):

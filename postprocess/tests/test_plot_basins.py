@@ -15,11 +15,11 @@ import numpy as np
 
 import conftest
 from conftest import png_size, run
-import plot_basins
+from vibromap.plot import _basins as plot_basins
 from stamp import stamp
-from vibromap_h5 import read_basins
+from vibromap._io import read_basins
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_basins.py")
+SCRIPT = conftest.script("plot_basins")
 SCENE = "[system]\nm2 = 310.0\nomega2 = 3.606\n\n[contact]\nE1 = 1.4e10\nE2 = 1.0e6\n"
 
 
@@ -100,7 +100,7 @@ def test_legend_names_regime_kcon_softness_and_fraction(tmp_path):
 
 def test_png_written(tmp_path):
     out = tmp_path / "b.png"
-    proc = run([SCRIPT, str(basins_file(tmp_path / "b.h5")), "-o", str(out), "--dpi", "50"])
+    proc = run([*SCRIPT, str(basins_file(tmp_path / "b.h5")), "-o", str(out), "--dpi", "50"])
     assert proc.returncode == 0, proc.stderr
     assert png_size(out) == (450, 325)
 
@@ -109,9 +109,9 @@ def test_bad_file_is_one_line(tmp_path):
     bad = tmp_path / "bad.h5"
     with h5py.File(bad, "w") as f:
         f["x"] = np.zeros(3)
-    proc = run([SCRIPT, str(bad), "-o", str(tmp_path / "b.png")])
+    proc = run([*SCRIPT, str(bad), "-o", str(tmp_path / "b.png")])
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1 and f"{bad}: not a vibromap basins file (no root attribute 'version')" in proc.stderr
-    missing = run([SCRIPT, str(tmp_path / "none.h5")])
+    missing = run([*SCRIPT, str(tmp_path / "none.h5")])
     assert missing.returncode == 2 and "no such file" in missing.stderr
     assert not (tmp_path / "b.png").exists()

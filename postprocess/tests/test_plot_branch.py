@@ -10,10 +10,10 @@ import pytest
 
 import conftest
 from conftest import png_size, run
-import plot_branch
+from vibromap.plot import _branch as plot_branch
 from stamp import stamp
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_branch.py")
+SCRIPT = conftest.script("plot_branch")
 
 
 def panel(fig, name):
@@ -43,7 +43,7 @@ def test_stable_solid_unstable_dashed_and_the_bifurcation_at_its_state(tmp_path)
     fold = [c for c in ax.collections if c.get_gid() == "bifurcation-fold"][0]
     np.testing.assert_allclose(fold.get_offsets(), [[3.0, -1.0]])
     out = tmp_path / "b.png"
-    proc = run([SCRIPT, str(path), "-o", str(out)])
+    proc = run([*SCRIPT, str(path), "-o", str(out)])
     assert proc.returncode == 0, proc.stderr
     assert png_size(out) == (1350, 1125)
 
@@ -51,7 +51,7 @@ def test_stable_solid_unstable_dashed_and_the_bifurcation_at_its_state(tmp_path)
 def test_a_file_that_is_not_a_branch_is_one_line_exit_2(tmp_path):
     path = tmp_path / "x.json"
     path.write_text("[1, 2]")
-    proc = run([SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
+    proc = run([*SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1 and "not a branch" in proc.stderr
 
 
@@ -218,6 +218,6 @@ def test_the_branch_of_table2_from_vibromap_continue(tmp_path):
     drawn = np.concatenate([line.get_ydata() for line in kax.get_lines() if line.get_gid() == "kcon-branch"])
     assert np.nanmin(drawn) > 0 and np.isfinite(drawn).sum() > 3000
     png = tmp_path / "b.png"
-    proc = run([SCRIPT, str(out), "-o", str(png)])
+    proc = run([*SCRIPT, str(out), "-o", str(png)])
     assert proc.returncode == 0, proc.stderr
     assert png_size(png) == (1350, 1125)

@@ -15,11 +15,11 @@ import numpy as np
 import conftest
 from conftest import png_size, run
 import make_map
-import plot_census_map
-import summarize_map
-from vibromap_h5 import read_map
+from vibromap.plot import _census_map as plot_census_map
+from vibromap import _summarize_map as summarize_map
+from vibromap._io import read_map
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_census_map.py")
+SCRIPT = conftest.script("plot_census_map")
 AXES = [("E1", np.array([1e5, 1e7, 1e9]), "log"), ("R1", np.array([0.1, 1.0]), "lin")]
 P, NP = make_map.REGIME["periodic"], make_map.REGIME["non_periodic"]
 A = 3
@@ -96,7 +96,7 @@ def test_maps_and_cell_pictures(tmp_path):
     census_map(path)
     for show in ("attractors", "soft"):
         out = tmp_path / f"{show}.png"
-        proc = run([SCRIPT, str(path), "--show", show, "-o", str(out)])
+        proc = run([*SCRIPT, str(path), "--show", show, "-o", str(out)])
         assert proc.returncode == 0, proc.stderr
         assert png_size(out) == (1350, 975)
     sweep = read_map(str(path))
@@ -111,18 +111,18 @@ def test_maps_and_cell_pictures(tmp_path):
     labels = [t.get_text() for t in fig.axes[0].get_yticklabels()]
     assert labels[-1] == "non-periodic k_con 30 transient"
     out = tmp_path / "cell.png"
-    proc = run([SCRIPT, str(path), "--show", "cell", "--at", "E1=1e7", "R1=1", "-o", str(out)])
+    proc = run([*SCRIPT, str(path), "--show", "cell", "--at", "E1=1e7", "R1=1", "-o", str(out)])
     assert proc.returncode == 0, proc.stderr
 
 
 def test_a_map_without_census_and_a_cell_not_computed_are_one_line_errors(tmp_path):
     plain = tmp_path / "plain.h5"
     make_map.write_map(plain, AXES, np.zeros((3, 2), np.int8), np.ones((3, 2), np.int32), np.ones((3, 2), np.int32))
-    proc = run([SCRIPT, str(plain), "-o", str(tmp_path / "x.png")])
+    proc = run([*SCRIPT, str(plain), "-o", str(tmp_path / "x.png")])
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1 and "not a census map" in proc.stderr
     path = tmp_path / "census.h5"
     census_map(path)
-    proc = run([SCRIPT, str(path), "--show", "cell", "--at", "E1=1e9", "R1=1", "-o", str(tmp_path / "c.png")])
+    proc = run([*SCRIPT, str(path), "--show", "cell", "--at", "E1=1e9", "R1=1", "-o", str(tmp_path / "c.png")])
     assert proc.returncode == 2 and "is not computed yet" in proc.stderr
 
 
@@ -169,7 +169,7 @@ def test_the_shock_map_of_a_family(tmp_path):
     legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert legend == [f"not there: {int((count < 2).sum())} cells", f"no shock found: {int((count >= 2).sum())} cells"]
     out = tmp_path / "shock.png"
-    proc = run([SCRIPT, str(path), "--show", "shock", "-o", str(out)])
+    proc = run([*SCRIPT, str(path), "--show", "shock", "-o", str(out)])
     assert proc.returncode == 0, proc.stderr
-    proc = run([SCRIPT, str(path), "--show", "shock", "--family", "7", "-o", str(out)])
+    proc = run([*SCRIPT, str(path), "--show", "shock", "--family", "7", "-o", str(out)])
     assert (proc.returncode, proc.stderr.strip()) == (2, f"plot_census_map: error: {path}: no family 7 (ids 0..2)")

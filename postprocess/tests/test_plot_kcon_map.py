@@ -14,9 +14,9 @@ from conftest import run, png_size, pixels_near
 import make_map
 from map_cases import (KCON_SCRIPT, MIN_PNG_BYTES, R, REGIME_SCRIPT, SOFT_DEFINITION, SOFT_SCRIPT, figure_texts,
                        legend_texts, soft_outlines)
-import plot_kcon_map
-import plot_regime_map
-import vibromap_h5
+from vibromap.plot import _kcon_map as plot_kcon_map
+from vibromap.plot import _regime_map as plot_regime_map
+from vibromap import _io as vibromap_h5
 
 
 # ---- plot_kcon_map ------------------------------------------------------------------------
@@ -116,7 +116,7 @@ def test_kcon_threshold_option_recomputes_the_soft_cells(tmp_path):
     np.testing.assert_array_equal(m.data[vibromap_h5.SOFT_KEY] == 1, expected)
     assert info.soft_source == "computed from regime, stable, hertz_valid and k_con" and expected.sum() == 4 + 4  # k_con 18 added
     out = tmp_path / "k20.png"
-    result = run([sys.executable, KCON_SCRIPT, str(path), "--threshold", "20", "-o", str(out)])
+    result = run([*KCON_SCRIPT, str(path), "--threshold", "20", "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert result.stdout.splitlines() == [
         "plot_kcon_map: note: soft cells computed from regime, stable, hertz_valid and k_con "
@@ -151,7 +151,7 @@ def test_kcon_strip_outlines_the_soft_cells(map1d, tmp_path):
     finally:
         matplotlib.pyplot.close(fig)
     out = tmp_path / "strip.png"
-    result = run([sys.executable, KCON_SCRIPT, str(map1d), "-o", str(out)])
+    result = run([*KCON_SCRIPT, str(map1d), "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert png_size(out) == (1350, 525)
 
@@ -187,14 +187,14 @@ def test_kcon_one_cell_wide_slices_and_a_map_with_nothing_done(tmp_path):
     finally:
         matplotlib.pyplot.close(fig)
     for script in (REGIME_SCRIPT, KCON_SCRIPT, SOFT_SCRIPT):
-        result = run([sys.executable, script, str(empty), "-o", str(tmp_path / "empty.png")])
+        result = run([*script, str(empty), "-o", str(tmp_path / "empty.png")])
         assert result.returncode == 0, result.stderr
 
 
 def test_kcon_script_writes_a_png(tmp_path):
     path = tmp_path / "soft.h5"
     make_map.write_soft_map(path)
-    result = run([sys.executable, KCON_SCRIPT, str(path)])
+    result = run([*KCON_SCRIPT, str(path)])
     assert result.returncode == 0, result.stderr
     out = path.with_name("soft_kcon.png")
     assert result.stdout == f"plot_kcon_map: wrote {out}\n"

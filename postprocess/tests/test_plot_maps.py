@@ -14,11 +14,11 @@ import pytest
 import conftest
 from conftest import run, png_size, pixels_near
 import make_map
-from map_cases import (COUNTS_2D, E1_2D, E2_2D, KCON_SCRIPT, MIN_PNG_BYTES, R, REGIME_SCRIPT, SOFT_SCRIPT, VMPY,
+from map_cases import (COUNTS_2D, E1_2D, E2_2D, KCON_SCRIPT, MIN_PNG_BYTES, R, REGIME_SCRIPT, SOFT_SCRIPT, LAUNCHER,
                        figure_texts, legend_texts, one_line_error, pattern_2d, soft_outlines)
-import plot_kcon_map
-import plot_regime_map
-import vibromap_h5
+from vibromap.plot import _kcon_map as plot_kcon_map
+from vibromap.plot import _regime_map as plot_regime_map
+from vibromap import _io as vibromap_h5
 
 
 # ---- plot_regime_map ----------------------------------------------------------------------
@@ -26,7 +26,7 @@ import vibromap_h5
 
 def test_regime_plot_writes_a_png_with_the_regime_colours(map2d, tmp_path):
     out = tmp_path / "regimes.png"
-    result = run([sys.executable, REGIME_SCRIPT, str(map2d[0]), "-o", str(out)])
+    result = run([*REGIME_SCRIPT, str(map2d[0]), "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert result.stderr == "" and result.stdout == f"plot_regime_map: wrote {out}\n"
     assert png_size(out) == (1350, 900)  # 9 x 6 in at 150 dpi
@@ -142,7 +142,7 @@ def test_regime_figure_names_the_fixed_values(map3d):
 
 def test_regime_script_fix_and_axes_options(map3d, tmp_path):
     out = tmp_path / "r.png"
-    result = run([sys.executable, REGIME_SCRIPT, str(map3d[0]), "--x", "R1", "--y", "E2", "--fix", "E1=3e6", "-o", str(out)])
+    result = run([*REGIME_SCRIPT, str(map3d[0]), "--x", "R1", "--y", "E2", "--fix", "E1=3e6", "-o", str(out)])
     assert result.returncode == 0, result.stderr
     # log10(3e6) = 6.48: nearer 1e6 than 1e7 in log space.
     assert result.stdout.splitlines() == [
@@ -153,7 +153,7 @@ def test_regime_script_fix_and_axes_options(map3d, tmp_path):
 
 
 def test_regime_script_default_output_and_strip(map1d):
-    result = run([sys.executable, REGIME_SCRIPT, str(map1d)])
+    result = run([*REGIME_SCRIPT, str(map1d)])
     assert result.returncode == 0, result.stderr
     out = map1d.with_name("map1d_regime.png")
     assert png_size(out) == (1350, 450)
@@ -174,19 +174,19 @@ SCRIPTS = [(REGIME_SCRIPT, "plot_regime_map"), (KCON_SCRIPT, "plot_kcon_map"), (
 @pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_missing_file_gives_exit_2_and_one_line(tmp_path, script, prog):
     missing = tmp_path / "missing.h5"
-    one_line_error(run([sys.executable, script, str(missing)]), prog, str(missing), "no such file")
+    one_line_error(run([*script, str(missing)]), prog, str(missing), "no such file")
 
 
 @pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_not_a_map_gives_exit_2_and_one_line(trajectory_file, script, prog):
-    one_line_error(run([sys.executable, script, str(trajectory_file[0])]), prog, "not a vibromap map file")
+    one_line_error(run([*script, str(trajectory_file[0])]), prog, "not a vibromap map file")
 
 
 @pytest.mark.parametrize("script, prog", SCRIPTS)
 def test_unknown_axis_gives_exit_2_and_one_line(map3d, tmp_path, script, prog):
     out = tmp_path / "never.png"
-    one_line_error(run([sys.executable, script, str(map3d[0]), "--x", "omega2", "-o", str(out)]), prog, "no axis 'omega2'", "E1, E2, R1")
-    one_line_error(run([sys.executable, script, str(map3d[0]), "--fix", "m2=310", "-o", str(out)]), prog, "no axis 'm2' to fix")
+    one_line_error(run([*script, str(map3d[0]), "--x", "omega2", "-o", str(out)]), prog, "no axis 'omega2'", "E1, E2, R1")
+    one_line_error(run([*script, str(map3d[0]), "--fix", "m2=310", "-o", str(out)]), prog, "no axis 'm2' to fix")
     assert not out.exists()
 
 
@@ -194,61 +194,51 @@ def test_map_without_kcon_gives_exit_2_and_one_line(tmp_path):
     path = tmp_path / "no_kcon.h5"
     regime, n, k, _, _ = pattern_2d()
     make_map.write_map(path, [("E1", E1_2D, "log"), ("E2", E2_2D, "log")], regime, n, k, quantities={"F_max": np.ones(regime.shape)})
-    one_line_error(run([sys.executable, KCON_SCRIPT, str(path)]), "plot_kcon_map", "did not store k_con", "stored: hertz_valid F_max", "[sweep] store")
+    one_line_error(run([*KCON_SCRIPT, str(path)]), "plot_kcon_map", "did not store k_con", "stored: hertz_valid F_max", "[sweep] store")
     assert not path.with_name("no_kcon_kcon.png").exists()
 
 
 @pytest.mark.parametrize("script", [REGIME_SCRIPT, KCON_SCRIPT, SOFT_SCRIPT])
 def test_bad_option_values_give_exit_2(map2d, script):
-    result = run([sys.executable, script, str(map2d[0]), "--fix", "E1"])
+    result = run([*script, str(map2d[0]), "--fix", "E1"])
     assert result.returncode == 2 and "expected NAME=VALUE" in result.stderr
     if script == KCON_SCRIPT:
-        result = run([sys.executable, script, str(map2d[0]), "--threshold", "-1"])
+        result = run([*script, str(map2d[0]), "--threshold", "-1"])
         assert result.returncode == 2 and "--threshold must be a positive number" in result.stderr
 
 
 def test_help_describes_the_options():
-    result = run([sys.executable, REGIME_SCRIPT, "--help"])
+    result = run([*REGIME_SCRIPT, "--help"])
     assert result.returncode == 0
     for fragment in ("MAP.h5", "--x", "--y", "--fix", "NAME=VALUE", "--output", "not-computed", "middle"):
         assert fragment in result.stdout, fragment
-    result = run([sys.executable, KCON_SCRIPT, "--help"])
+    result = run([*KCON_SCRIPT, "--help"])
     assert result.returncode == 0
     for fragment in ("MAP.h5", "--x", "--y", "--fix", "--threshold", "1000", "rigid", "soft", "soft_kcon", "Hertz-valid"):
         assert fragment in result.stdout, fragment
-    result = run([sys.executable, SOFT_SCRIPT, "--help"])
+    result = run([*SOFT_SCRIPT, "--help"])
     assert result.returncode == 0
     for fragment in ("MAP.h5", "--x", "--y", "--fix", "--output", "soft_kcon", "hertz_limit", "Hertz-invalid", "rigid"):
         assert fragment in result.stdout, fragment
 
 
 @pytest.mark.parametrize("script, prog", SCRIPTS)
-def test_missing_modules_give_a_one_line_hint_to_use_vmpy(script, prog):
-    code = (
-        "import sys, runpy; sys.modules['h5py'] = None; "
-        f"sys.path.insert(0, {conftest.POSTPROCESS_DIR!r}); sys.argv = ['{prog}.py', 'x.h5']; "
-        f"runpy.run_path({script!r}, run_name='__main__')"
-    )
+def test_missing_modules_give_a_one_line_hint_to_use_the_launcher(script, prog):
+    code = (f"import sys, runpy; sys.modules['h5py'] = None; sys.argv = ['vibromap', '{prog}', 'x.h5']; "
+            "runpy.run_module('vibromap', run_name='__main__')")
     result = run([sys.executable, "-c", code])
     assert result.returncode == 3
     lines = result.stderr.splitlines()
-    assert len(lines) == 1 and f"postprocess/vmpy {prog}" in lines[0] and "h5py" in lines[0]
-
-
-def test_scripts_are_executable_with_the_debian_shebang():
-    for script, _ in SCRIPTS:
-        assert os.access(script, os.X_OK), script
-        with open(script) as f:
-            assert f.readline() == "#!/usr/bin/python3\n"
+    assert len(lines) == 1 and f"vibromap-post {prog}" in lines[0] and "h5py" in lines[0]
 
 
 @pytest.mark.parametrize("prog, size", [("plot_regime_map", (1350, 900)), ("plot_kcon_map", (1350, 975))])
-def test_vmpy_runs_the_map_scripts(map3d, tmp_path, prog, size):
+def test_launcher_runs_the_map_scripts(map3d, tmp_path, prog, size):
     out = tmp_path / f"{prog}.png"
-    result = run([VMPY, prog, str(map3d[0]), "--fix", "R1=1", "-o", str(out)], VIBROMAP_PYTHON=sys.executable)
+    result = run([LAUNCHER, prog, str(map3d[0]), "--fix", "R1=1", "-o", str(out)], VIBROMAP_PYTHON=sys.executable)
     assert result.returncode == 0, result.stderr
     assert png_size(out) == size
-    listing = run([VMPY, "--help"])
+    listing = run([LAUNCHER, "--help"])
     assert prog in listing.stdout.split()
 
 

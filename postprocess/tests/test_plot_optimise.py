@@ -27,11 +27,11 @@ import pytest
 import conftest
 from conftest import run
 import make_map
-import plot_optimise
+from vibromap.plot import _optimise as plot_optimise
 from stamp import stamp
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_optimise.py")
-VMPY = os.path.join(conftest.POSTPROCESS_DIR, "vmpy")
+SCRIPT = conftest.script("plot_optimise")
+LAUNCHER = conftest.LAUNCHER
 MIN_PNG_BYTES = 15_000  # each figure at 150 dpi with axes, curves and legend is well above this
 
 REGIME_MEANINGS = "periodic chatter no_contact permanent_contact quasi_periodic chaotic non_periodic unresolved failed"
@@ -169,7 +169,7 @@ def test_main_writes_three_figures(files, capsys):
 def test_without_a_map_the_map_figure_is_skipped(tmp_path):
     conftest.write_trajectory_h5(tmp_path / "traj.h5", conftest.analytic_trajectory(200, 2))
     write_optimisation(tmp_path / "opt.h5", seeds_from="scene")
-    proc = run([sys.executable, SCRIPT, str(tmp_path / "opt.h5")])
+    proc = run([*SCRIPT, str(tmp_path / "opt.h5")])
     assert proc.returncode == 0, proc.stderr
     assert "no seeding map (seeds from scene; give --map): map figure skipped" in proc.stdout
     assert (tmp_path / "opt_convergence.png").exists() and (tmp_path / "opt_best.png").exists()
@@ -179,11 +179,11 @@ def test_without_a_map_the_map_figure_is_skipped(tmp_path):
 def test_bad_files_end_with_one_line_and_exit_2(tmp_path, files):
     not_opt = tmp_path / "traj.h5"  # a trajectory file is no optimisation
     for path, reason in ((tmp_path / "missing.h5", "no such file"), (not_opt, "not a vibromap optimisation file")):
-        proc = run([VMPY, "plot_optimise", str(path)])
+        proc = run([LAUNCHER, "plot_optimise", str(path)])
         assert proc.returncode == 2
         assert proc.stderr.count("\n") == 1 and proc.stderr.startswith("plot_optimise: error: ")
         assert reason in proc.stderr
-    proc = run([sys.executable, SCRIPT, str(files[0]), "--x", "E9"])
+    proc = run([*SCRIPT, str(files[0]), "--x", "E9"])
     assert proc.returncode == 2
     assert "no axis 'E9' for x" in proc.stderr
 
@@ -240,7 +240,7 @@ def test_minus_o_names_a_stem_and_drops_png(files, capsys):
     assert plot_optimise.output_stem("out/LAW.PNG", "x.h5") == "out/LAW"
     assert plot_optimise.output_stem("law", "x.h5") == "law"
     assert plot_optimise.output_stem(None, "runs/opt.h5") == "runs/opt"
-    proc = run([sys.executable, SCRIPT, "--help"])
+    proc = run([*SCRIPT, "--help"])
     assert "-o law.png: law_convergence.png" in " ".join(proc.stdout.split())
 
 

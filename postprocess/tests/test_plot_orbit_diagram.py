@@ -8,10 +8,10 @@ import numpy as np
 
 import conftest
 from conftest import png_size, run
-import plot_orbit_diagram
+from vibromap.plot import _orbit_diagram as plot_orbit_diagram
 from stamp import stamp
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_orbit_diagram.py")
+SCRIPT = conftest.script("plot_orbit_diagram")
 
 
 def diagram(path):
@@ -40,7 +40,7 @@ def test_both_sweeps_are_drawn_with_their_values(tmp_path):
     np.testing.assert_allclose(down.get_offsets()[:, 1], [-0.05, -0.05, -0.06, -0.06, -0.07, -0.07])
     assert fig.axes[0].get_xlabel() == "forcing.omega, rad/s"
     out = tmp_path / "od.png"
-    proc = run([SCRIPT, str(path), "-o", str(out)])
+    proc = run([*SCRIPT, str(path), "-o", str(out)])
     assert proc.returncode == 0, proc.stderr
     assert png_size(out) == (1350, 825)
 
@@ -49,6 +49,6 @@ def test_a_file_of_another_kind_is_one_line_exit_2(tmp_path):
     path = tmp_path / "other.h5"
     with h5py.File(path, "w") as f:
         f.create_dataset("x", data=np.zeros(3))
-    proc = run([SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
+    proc = run([*SCRIPT, str(path), "-o", str(tmp_path / "x.png")])
     assert proc.returncode == 2 and proc.stderr.count("\n") == 1
     assert f"{path}: not a vibromap orbit-diagram file (no root attribute 'version')" in proc.stderr

@@ -11,9 +11,9 @@ import matplotlib.pyplot as plt
 
 import conftest
 from conftest import run, png_size
-import plot_restitution as pr
+from vibromap.plot import _restitution as pr
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_restitution.py")
+SCRIPT = conftest.script("plot_restitution")
 
 # Two laws, given out of e order: the reader sorts each law's points by e.
 ROWS = [
@@ -48,11 +48,11 @@ def test_script_writes_a_png_and_refuses_bad_input(tmp_path):
     path = tmp_path / "r.json"
     path.write_text(json.dumps(ROWS))
     out = tmp_path / "r.png"
-    r = run([sys.executable, SCRIPT, str(path), "-o", str(out)])
+    r = run([*SCRIPT, str(path), "-o", str(out)])
     assert r.returncode == 0, r.stderr
     assert png_size(out) == (1350, 675)
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps([{"law": "flores", "e": 0.5}]))
-    r = run([sys.executable, SCRIPT, str(bad), "-o", str(out)])
+    r = run([*SCRIPT, str(bad), "-o", str(out)])
     assert r.returncode == 2
     assert r.stderr.startswith("plot_restitution: error:") and "e_effective" in r.stderr

@@ -20,14 +20,14 @@ import pytest
 import conftest
 from conftest import png_size, pixels_near, run
 import make_map
-import plot_census_map
-import plot_kcon_map
-import plot_regime_map
-import plot_soft_map
-import vibromap_h5
+from vibromap.plot import _census_map as plot_census_map
+from vibromap.plot import _kcon_map as plot_kcon_map
+from vibromap.plot import _regime_map as plot_regime_map
+from vibromap.plot import _soft_map as plot_soft_map
+from vibromap import _io as vibromap_h5
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_soft_map.py")
-VMPY = os.path.join(conftest.POSTPROCESS_DIR, "vmpy")
+SCRIPT = conftest.script("plot_soft_map")
+LAUNCHER = conftest.LAUNCHER
 R, STABLE = make_map.REGIME, make_map.STABLE
 SHOOTING_LINE = "answer: some stable orbit (shooting), not necessarily the motion from rest"
 
@@ -127,7 +127,7 @@ def test_a_hertz_invalid_cell_the_map_calls_soft_is_never_shown_soft(tmp_path):
                                          "Hertz-invalid (z_max/R* > 0.05), would be soft: 2 cells"]  # fmt: skip
     finally:
         matplotlib.pyplot.close(fig)
-    result = run([sys.executable, SCRIPT, str(path), "-o", str(tmp_path / "wrong.png")])
+    result = run([*SCRIPT, str(path), "-o", str(tmp_path / "wrong.png")])
     assert result.returncode == 0, result.stderr
     assert "plot_soft_map: note: 1 cell the map calls soft are Hertz-invalid: shown as not soft" in result.stdout
 
@@ -183,7 +183,7 @@ def test_soft_map_category_counts_equal_the_counts_from_the_datasets(tmp_path):
 def test_soft_map_script_writes_a_png_with_each_categorys_colour(tmp_path):
     path = tmp_path / "soft.h5"
     make_map.write_soft_map(path)
-    result = run([sys.executable, SCRIPT, str(path)])
+    result = run([*SCRIPT, str(path)])
     assert result.returncode == 0, result.stderr
     out = tmp_path / "soft_soft.png"
     assert result.stdout == f"plot_soft_map: wrote {out}\n"
@@ -213,7 +213,7 @@ def test_soft_map_of_a_3d_map_holds_the_other_axis(tmp_path):
         finally:
             matplotlib.pyplot.close(fig)
     out = tmp_path / "r.png"
-    result = run([VMPY, "plot_soft_map", str(path), "--x", "E2", "--y", "R1", "--fix", "E1=1e5", "-o", str(out)],
+    result = run([LAUNCHER, "plot_soft_map", str(path), "--x", "E2", "--y", "R1", "--fix", "E1=1e5", "-o", str(out)],
                  VIBROMAP_PYTHON=sys.executable)  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert result.stdout == f"plot_soft_map: wrote {out}\n" and png_size(out) == (1350, 1050)
@@ -235,7 +235,7 @@ def test_soft_map_of_a_1d_map_is_a_strip(tmp_path):
     finally:
         matplotlib.pyplot.close(fig)
     out = tmp_path / "strip.png"
-    result = run([sys.executable, SCRIPT, str(path), "-o", str(out)])
+    result = run([*SCRIPT, str(path), "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert png_size(out) == (1350, 600)
 

@@ -14,8 +14,8 @@ import pytest
 from conftest import run
 import make_map
 from map_cases import KCON_SCRIPT, REGIME_SCRIPT, SOFT_SCRIPT, one_line_error
-import plot_regime_map
-import vibromap_h5
+from vibromap.plot import _regime_map as plot_regime_map
+from vibromap import _io as vibromap_h5
 
 R = make_map.REGIME
 # A refined map of 3 x 2 coarse points at L = 2: 9 x 5 fine points, the coarse ones (every 4th)
@@ -110,7 +110,7 @@ def test_scripts_take_solved(tmp_path, script):
     path = tmp_path / "refined.h5"
     refined_map(path)
     out = tmp_path / "solved.png"
-    result = run([sys.executable, script, str(path), "--solved", "-o", str(out)])
+    result = run([*script, str(path), "--solved", "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert out.stat().st_size > 1000
 
@@ -120,6 +120,6 @@ def test_solved_on_a_uniform_map_is_a_one_line_error(tmp_path, script, prog):
     path = tmp_path / "uniform.h5"
     refined_map(path, with_computed=False)
     out = tmp_path / "never.png"
-    one_line_error(run([sys.executable, script, str(path), "--solved", "-o", str(out)]), prog,
+    one_line_error(run([*script, str(path), "--solved", "-o", str(out)]), prog,
                    str(path), "no dataset 'computed'", "sweep.refine > 0")  # fmt: skip
     assert not out.exists()

@@ -1,5 +1,5 @@
 """Tests of postprocess/plot_trajectory.py, its reader (vibromap_h5.read_trajectory) and the
-postprocess/vmpy launcher. Files are made with h5py from analytic formulas (conftest.py);
+postprocess/vibromap-post launcher. Files are made with h5py from analytic formulas (conftest.py);
 when VIBROMAP_SAMPLE_TRAJECTORY names a file written by the C++ writer (ctest sets it), that
 file is checked against the same formulas, so writer and reader are tested against each other."""
 
@@ -15,12 +15,12 @@ import pytest
 
 import conftest
 from conftest import run, png_size, pixels_near
-import plot_trajectory
-import vibromap_h5
+from vibromap.plot import _trajectory as plot_trajectory
+from vibromap import _io as vibromap_h5
 from stamp import stamp
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_trajectory.py")
-VMPY = os.path.join(conftest.POSTPROCESS_DIR, "vmpy")
+SCRIPT = conftest.script("plot_trajectory")
+LAUNCHER = conftest.LAUNCHER
 MIN_PNG_BYTES = 20_000  # a two-panel figure with four curves at 1200 x 900 px is well above this
 
 
@@ -85,7 +85,7 @@ def test_reader_reads_the_cpp_writers_file():
 def test_plot_writes_a_png_of_the_expected_size_and_content(trajectory_file, tmp_path):
     path, _ = trajectory_file
     out = tmp_path / "fig.png"
-    result = run([sys.executable, SCRIPT, str(path), "-o", str(out)])
+    result = run([*SCRIPT, str(path), "-o", str(out)])
     assert result.returncode == 0, result.stderr
     assert result.stderr == ""
     assert out.is_file()
@@ -98,7 +98,7 @@ def test_plot_writes_a_png_of_the_expected_size_and_content(trajectory_file, tmp
 
 def test_default_output_is_next_to_the_input(trajectory_file):
     path, _ = trajectory_file
-    result = run([sys.executable, SCRIPT, str(path), "--dpi", "50"])
+    result = run([*SCRIPT, str(path), "--dpi", "50"])
     assert result.returncode == 0, result.stderr
     assert png_size(path.with_suffix(".png")) == (400, 300)
 
@@ -130,86 +130,82 @@ def one_line_error(result, *fragments):
 
 def test_missing_file_gives_exit_2_and_one_line(tmp_path):
     missing = tmp_path / "missing.h5"
-    one_line_error(run([sys.executable, SCRIPT, str(missing)]), str(missing), "no such file")
+    one_line_error(run([*SCRIPT, str(missing)]), str(missing), "no such file")
     assert not missing.with_suffix(".png").exists()
 
 
 def test_non_hdf5_file_gives_exit_2_and_one_line(tmp_path):
     text = tmp_path / "notes.h5"
     text.write_text("not HDF5\n")
-    one_line_error(run([sys.executable, SCRIPT, str(text)]), str(text), "not an HDF5 file")
+    one_line_error(run([*SCRIPT, str(text)]), str(text), "not an HDF5 file")
 
 
 def test_hdf5_file_of_another_kind_gives_exit_2_and_one_line(tmp_path):
     other = tmp_path / "map.h5"
     with h5py.File(other, "w") as f:
         f.create_dataset("k_con", data=np.zeros((3, 3)))
-    one_line_error(run([sys.executable, SCRIPT, str(other)]), str(other), "not a vibromap trajectory file")
+    one_line_error(run([*SCRIPT, str(other)]), str(other), "not a vibromap trajectory file")
 
 
 def test_empty_trajectory_gives_exit_2_and_one_line(tmp_path):
     empty = tmp_path / "empty.h5"
     conftest.write_trajectory_h5(empty, {name: np.zeros(0) for name in conftest.UNITS})
-    one_line_error(run([sys.executable, SCRIPT, str(empty)]), "no samples")
+    one_line_error(run([*SCRIPT, str(empty)]), "no samples")
 
 
 def test_unwritable_output_gives_exit_2_and_one_line(trajectory_file, tmp_path):
     out = tmp_path / "no_such_dir" / "fig.png"
-    one_line_error(run([sys.executable, SCRIPT, str(trajectory_file[0]), "-o", str(out)]), str(out))
+    one_line_error(run([*SCRIPT, str(trajectory_file[0]), "-o", str(out)]), str(out))
 
 
 def test_help_describes_the_options():
-    result = run([sys.executable, SCRIPT, "--help"])
+    result = run([*SCRIPT, "--help"])
     assert result.returncode == 0
     for option in ("TRAJ.h5", "--output", "--periods"):
         assert option in result.stdout
 
 
-def test_missing_modules_give_a_one_line_hint_to_use_vmpy(tmp_path):
+def test_missing_modules_give_a_one_line_hint_to_use_the_launcher(tmp_path):
     # Simulate an interpreter without h5py: a None entry in sys.modules makes the import fail.
-    code = (
-        "import sys, runpy; sys.modules['h5py'] = None; "
-        f"sys.path.insert(0, {conftest.POSTPROCESS_DIR!r}); sys.argv = ['plot_trajectory.py', 'x.h5']; "
-        f"runpy.run_path({SCRIPT!r}, run_name='__main__')"
-    )
+    code = ("import sys, runpy; sys.modules['h5py'] = None; sys.argv = ['vibromap', 'plot_trajectory', 'x.h5']; "
+            "runpy.run_module('vibromap', run_name='__main__')")
     result = run([sys.executable, "-c", code])
     assert result.returncode == 3
     lines = result.stderr.splitlines()
-    assert len(lines) == 1 and "postprocess/vmpy plot_trajectory" in lines[0] and "h5py" in lines[0]
+    assert len(lines) == 1 and "vibromap-post plot_trajectory" in lines[0] and "h5py" in lines[0]
 
 
-def test_scripts_are_executable_with_the_debian_shebang():
-    for name in ("plot_trajectory.py", "vmpy"):
-        assert os.access(os.path.join(conftest.POSTPROCESS_DIR, name), os.X_OK), name
-    with open(SCRIPT) as f:
-        assert f.readline() == "#!/usr/bin/python3\n"
+def test_the_launcher_is_executable():
+    assert os.access(LAUNCHER, os.X_OK)
+    with open(LAUNCHER) as f:
+        assert f.readline() == "#!/usr/bin/env bash\n"
 
 
 # ---- the launcher -------------------------------------------------------------------------
 
 
-def test_vmpy_prints_the_interpreter_it_is_given():
-    result = run([VMPY, "--print"], VIBROMAP_PYTHON=sys.executable)
+def test_launcher_prints_the_interpreter_it_is_given():
+    result = run([LAUNCHER, "--print"], VIBROMAP_PYTHON=sys.executable)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == sys.executable
 
 
-def test_vmpy_falls_back_when_vibromap_python_is_broken(tmp_path):
-    result = run([VMPY, "--print"], VIBROMAP_PYTHON=str(tmp_path / "no-python"))
+def test_launcher_falls_back_when_vibromap_python_is_broken(tmp_path):
+    result = run([LAUNCHER, "--print"], VIBROMAP_PYTHON=str(tmp_path / "no-python"))
     assert result.returncode == 0, result.stderr
     interpreter = result.stdout.strip()
     assert os.path.isabs(interpreter) and interpreter != str(tmp_path / "no-python")
     assert "VIBROMAP_PYTHON" in result.stderr  # says it did not use the given one
 
 
-def test_vmpy_runs_the_script(trajectory_file, tmp_path):
-    out = tmp_path / "via-vmpy.png"
-    result = run([VMPY, "plot_trajectory", str(trajectory_file[0]), "-o", str(out)], VIBROMAP_PYTHON=sys.executable)
+def test_launcher_runs_the_script(trajectory_file, tmp_path):
+    out = tmp_path / "via-launcher.png"
+    result = run([LAUNCHER, "plot_trajectory", str(trajectory_file[0]), "-o", str(out)], VIBROMAP_PYTHON=sys.executable)
     assert result.returncode == 0, result.stderr
     assert png_size(out) == (1200, 900)
 
 
-def test_vmpy_rejects_an_unknown_script():
-    result = run([VMPY, "no_such_script"])
+def test_launcher_rejects_an_unknown_script():
+    result = run([LAUNCHER, "no_such_script"])
     assert result.returncode == 2
-    assert result.stderr.splitlines() == ["vmpy: error: no postprocess script 'no_such_script' (see postprocess/vmpy --help)"]
+    assert result.stderr.splitlines() == ["vibromap-post: error: no postprocess script 'no_such_script' (see vibromap-post --help)"]

@@ -12,9 +12,9 @@ import pytest
 
 import conftest
 from conftest import run, png_size
-import plot_work_precision as wp
+from vibromap.plot import _work_precision as wp
 
-SCRIPT = os.path.join(conftest.POSTPROCESS_DIR, "plot_work_precision.py")
+SCRIPT = conftest.script("plot_work_precision")
 
 HEADER = (
     "method,setting,integrator,steady,rtol,atol,rk4_steps,status,regime,regime_matches,steady_used,"
@@ -121,7 +121,7 @@ def test_regime_mismatch_is_ringed(study_csv):
 
 def test_script_writes_a_png(study_csv, tmp_path):
     out = tmp_path / "wp.png"
-    result = run([sys.executable, SCRIPT, str(study_csv), "-o", str(out), "--quantity", "k_con"])
+    result = run([*SCRIPT, str(study_csv), "-o", str(out), "--quantity", "k_con"])
     assert result.returncode == 0, result.stderr
     assert result.stderr == ""
     assert png_size(out) == (1200, 900)  # 8 x 6 in at 150 dpi
@@ -129,7 +129,7 @@ def test_script_writes_a_png(study_csv, tmp_path):
 
 
 def test_default_output_is_next_to_the_input(study_csv):
-    result = run([sys.executable, SCRIPT, str(study_csv), "--dpi", "50"])
+    result = run([*SCRIPT, str(study_csv), "--dpi", "50"])
     assert result.returncode == 0, result.stderr
     assert png_size(study_csv.with_suffix(".png")) == (400, 300)
 
@@ -146,43 +146,38 @@ def one_line_error(result, *fragments):
 
 def test_missing_file_gives_exit_2(tmp_path):
     missing = tmp_path / "missing.csv"
-    one_line_error(run([sys.executable, SCRIPT, str(missing)]), str(missing), "no such file")
+    one_line_error(run([*SCRIPT, str(missing)]), str(missing), "no such file")
     assert not missing.with_suffix(".png").exists()
 
 
 def test_csv_of_another_kind_gives_exit_2(tmp_path):
     other = tmp_path / "other.csv"
     other.write_text("a,b\n1,2\n")
-    one_line_error(run([sys.executable, SCRIPT, str(other)]), str(other), "no column 'method'")
+    one_line_error(run([*SCRIPT, str(other)]), str(other), "no column 'method'")
 
 
 def test_bad_number_gives_exit_2_naming_the_line(study_csv):
     text = study_csv.read_text().replace("0.0013", "fast")
     study_csv.write_text(text)
-    one_line_error(run([sys.executable, SCRIPT, str(study_csv)]), f"{study_csv}:10", "wall_s 'fast' is not a number")
+    one_line_error(run([*SCRIPT, str(study_csv)]), f"{study_csv}:10", "wall_s 'fast' is not a number")
 
 
 def test_nothing_to_draw_gives_exit_2(tmp_path):
     path = tmp_path / "none.csv"
     path.write_text("\n".join([HEADER, csv_line("reference", "rtol 1e-13", "ok", 1, 0.2, 0.0, 0.0),
                                csv_line("rk4", "2^11 steps/T", "failed", 0, 0.01, math.nan, math.nan)]) + "\n")
-    one_line_error(run([sys.executable, SCRIPT, str(path)]), "no case has a finite positive error of T_con")
+    one_line_error(run([*SCRIPT, str(path)]), "no case has a finite positive error of T_con")
 
 
 def test_bad_quantity_is_a_usage_error(study_csv):
-    result = run([sys.executable, SCRIPT, str(study_csv), "--quantity", "z_max"])
+    result = run([*SCRIPT, str(study_csv), "--quantity", "z_max"])
     assert result.returncode == 2
     assert "--quantity" in result.stderr
 
 
 def test_help_describes_the_options():
-    result = run([sys.executable, SCRIPT, "--help"])
+    result = run([*SCRIPT, "--help"])
     assert result.returncode == 0
     for option in ("CSV", "--output", "--quantity", "T_con", "F_max", "k_con", "vibromap accuracy"):
         assert option in result.stdout
 
-
-def test_script_is_executable_with_the_debian_shebang():
-    assert os.access(SCRIPT, os.X_OK)
-    with open(SCRIPT) as f:
-        assert f.readline() == "#!/usr/bin/python3\n"

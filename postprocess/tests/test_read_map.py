@@ -11,7 +11,7 @@ import pytest
 
 import make_map
 from map_cases import COUNTS_2D, E1_2D, E2_2D, R, R1_3D, pattern_2d
-import vibromap_h5
+from vibromap import _io as vibromap_h5
 
 
 def test_read_map_returns_the_arrays_and_attributes_written(map2d):

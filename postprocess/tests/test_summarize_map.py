@@ -1,12 +1,13 @@
-"""Tests of postprocess/summarize_map.py on maps written by make_map.py with known contents."""
+"""Tests of the script summarize_map (vibromap/_summarize_map.py) on maps written by make_map.py with known contents."""
 import subprocess
 import sys
 
 import numpy as np
 
+import conftest
 import make_map
-import summarize_map
-from vibromap_h5 import read_map
+from vibromap import _summarize_map as summarize_map
+from vibromap._io import read_map
 
 AXES = [("E1", np.array([1e5, 1e7, 1e9]), "log"), ("R1", np.array([0.1, 1.0]), "lin")]
 P11, NOC = make_map.REGIME["periodic"], make_map.REGIME["no_contact"]
@@ -38,7 +39,7 @@ def test_non_finite_value_in_a_computed_cell_fails(tmp_path):
     k_con = np.full((3, 2), 5.0)
     k_con[1, 0] = np.inf
     write(path, k_con)
-    proc = subprocess.run([sys.executable, summarize_map.__file__, str(path)], capture_output=True, text=True)
+    proc = subprocess.run([*conftest.script("summarize_map"), str(path)], capture_output=True, text=True)
     assert proc.returncode == 1
     assert "NON-FINITE: k_con in 1 computed cells" in proc.stdout
 
@@ -61,7 +62,7 @@ def test_nan_is_allowed_where_the_long_name_says_not_computed(tmp_path):
 
 
 def test_missing_file_is_exit_2(tmp_path):
-    proc = subprocess.run([sys.executable, summarize_map.__file__, str(tmp_path / "none.h5")],
+    proc = subprocess.run([*conftest.script("summarize_map"), str(tmp_path / "none.h5")],
                           capture_output=True, text=True)
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1
@@ -71,7 +72,7 @@ def test_a_shooting_map_is_flagged_and_soft_and_hertz_invalid_cells_are_counted(
     """make_map's soft pattern: 4 soft cells of 23 done; 4 Hertz-invalid of the 22 with impacts."""
     path = tmp_path / "shooting.h5"
     arrays = make_map.write_soft_map(path, steady="shooting")
-    proc = subprocess.run([sys.executable, summarize_map.__file__, str(path)], capture_output=True, text=True)
+    proc = subprocess.run([*conftest.script("summarize_map"), str(path)], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr
     lines = proc.stdout.splitlines()
     done = arrays["regime"] != make_map.REGIME["not_computed"]

@@ -23,17 +23,25 @@ from typing import TYPE_CHECKING, Dict, Optional
 if TYPE_CHECKING:
     import xarray
 
-from ._core import SceneError
+from ._native import SceneError, _core  # the compiled core, or a stand-in saying it is not built
 
 SceneError.__module__ = __name__  # tracebacks name vibromap.SceneError, where users import it
 from ._result import Census, Result
 from ._scene import KeyInfo, Scene, Value
 from ._studies import Branch, Curves, Optimisation, branch, curve, optimise, sweep
-from . import _core
 
 __all__ = ["Scene", "KeyInfo", "Result", "Census", "SceneError", "run", "census", "trajectory",
            "Branch", "Curves", "Optimisation", "branch", "curve", "optimise", "sweep"]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str):
+    """vibromap.files and vibromap.plot, imported when first used (they need h5py, matplotlib)."""
+    if name in ("files", "plot"):
+        import importlib
+
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def run(scene: Scene, **keys: Value) -> Result:

@@ -133,9 +133,9 @@ class Scene:
         return cls._wrap(_core.Scene.load(os.fspath(path), overrides), (os.fspath(path), tuple(overrides)))
 
     @classmethod
-    def from_text(cls, text: str, path: str = _core.default_scene_path) -> "Scene":
-        """A scene from TOML text; ``path`` names it in messages."""
-        return cls._wrap(_core.Scene.parse(text, path, []))
+    def from_text(cls, text: str, path: Optional[str] = None) -> "Scene":
+        """A scene from TOML text; ``path`` names it in messages (the defaults' path when None)."""
+        return cls._wrap(_core.Scene.parse(text, _core.default_scene_path if path is None else path, []))
 
     @classmethod
     def _wrap(cls, scene: "_core.Scene", origin: Optional[Tuple[str, Tuple[str, ...]]] = None) -> "Scene":

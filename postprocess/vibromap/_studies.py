@@ -32,7 +32,7 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
-from . import _core
+from ._native import _core
 from ._result import _Answer
 from ._scene import Scene, Value
 

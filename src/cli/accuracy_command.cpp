@@ -75,7 +75,7 @@ std::string accuracy_footer() {
          "integrated, and the relative errors |x - x_ref|/|x_ref| of T_con (duration of the longest\n"
          "impact), F_max (peak contact force) and k_con = T/T_con. nan: undefined (no impact, or a\n"
          "failed solve). A regime other than the reference's is noted. --csv writes the same rows for\n"
-         "scripts; postprocess/vmpy plot_work_precision FILE.csv draws error against time.";
+         "scripts; postprocess/vibromap-post plot_work_precision FILE.csv draws error against time.";
 }
 
 }  // namespace

@@ -174,7 +174,7 @@ std::string basins_footer() {
          "-2 unlisted, -3 overlap, -4 not computed), done, the two coordinates, and per attractor its\n"
          "regime, n, k, k_con, T_con, F_max, max_floquet, stable, soft, pixels, fraction and\n"
          "stroboscopic states. Attractors are numbered by pixel count, so the file does not depend on\n"
-         "the number of ranks. postprocess/vmpy plot_basins FILE.h5 -o FILE.png draws it.\n\n"
+         "the number of ranks. postprocess/vibromap-post plot_basins FILE.h5 -o FILE.png draws it.\n\n"
          "The summary and the file give the basin entropy S_b and the boundary basin entropy S_bb\n"
          "(Daza et al. 2016: the plane cut into --entropy-box pixel boxes; unresolved and unlisted\n"
          "pixels are outcomes of their own, overlap pixels are left out), the log 2 test (S_bb > ln 2:\n"

@@ -229,7 +229,7 @@ Command declare_continue(CLI::App& app) {
       ->check(kNumber & CLI::Range(0, 8))
       ->capture_default_str();
   add_output_option(*c, "-o,--output", args->output,
-                    "Branch file to write (HDF5; postprocess/vmpy plot_branch draws it); with --curve, the curve file");
+                    "Branch file to write (HDF5; vibromap-post plot_branch draws it); with --curve, the curve file");
   c->add_flag("--overwrite", args->overwrite, "Replace an existing branch file");
   c->add_flag("--points", args->points,
               "Table: print every point of every branch too (by default a summary: branches and bifurcations)");

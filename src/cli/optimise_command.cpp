@@ -104,7 +104,7 @@ std::string optimise_footer() {
          "does not depend on the number of ranks. A line per finished start goes to stderr.\n\n"
          "The best distinct points are re-solved from scratch at [optimise] verify_rtol, by brute-force\n"
          "integration from rest and by shooting, with regime, Floquet stability, T_con, k_con and F_max.\n"
-         "FILE.h5 holds every evaluation of every start (postprocess/vmpy plot_optimise FILE.h5 draws\n"
+         "FILE.h5 holds every evaluation of every start (vibromap-post plot_optimise FILE.h5 draws\n"
          "them), FILE_trajectory.h5 the best point's steady motion. --format json prints one object\n"
          "whose 'best' lists those points, best first. An existing FILE.h5 is replaced only with\n"
          "--overwrite.\n\n"

@@ -85,7 +85,7 @@ std::string orbit_diagram_footer() {
          "checked as a [sweep] axis would be (vibromap keys). The table prints the range of x1 and the\n"
          "number of distinct x1 values per point and direction, the key increasing down the table;\n"
          "--format json prints steps (param, direction up or down, status, strobe_x1); -o writes every\n"
-         "kept state (postprocess/vmpy plot_orbit_diagram FILE.h5 draws it).";
+         "kept state (postprocess/vibromap-post plot_orbit_diagram FILE.h5 draws it).";
 }
 
 }  // namespace

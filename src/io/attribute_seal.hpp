@@ -12,7 +12,7 @@
 // pass).
 //
 // The canonical record, built identically by attribute_record() here and by
-// postprocess/vibromap_seal.py (attribute_record), is a byte string: for each object, the root
+// postprocess/vibromap/_io/seal.py (attribute_record), is a byte string: for each object, the root
 // group "/" first, then depth first through the links of each group, sorted by name:
 //   - a dataset's layout: field(path) field("") "l" field("<dtype> <shape> <scales>"), where dtype
 //     is numpy's spelling ("<f8", "|i1"), shape "3x4" ("scalar" for none) and scales the paths

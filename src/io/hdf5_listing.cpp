@@ -1,6 +1,6 @@
 // The listing part of the checked HDF5 layer (hdf5_file.hpp): the attributes of an object, their
 // values as stored, the links of a group and the element type of a dataset, in a form another
-// reader of the same file (h5py: postprocess/vibromap_seal.py) reproduces byte for byte; and the
+// reader of the same file (h5py: postprocess/vibromap/_io/seal.py) reproduces byte for byte; and the
 // removal of an attribute. The attribute checksums (attribute_seal.hpp) are built on these.
 
 #include <hdf5.h>

@@ -106,7 +106,7 @@ SCENE_COMMANDS = ("run", "sweep", "accuracy", "optimise", "orbit-diagram", "cont
 ALL_COMMANDS = SCENE_COMMANDS + ("restitution", "keys")
 
 
-# The postprocess scripts a damaged map is given to (each run as a program: postprocess/NAME.py map.h5).
+# The postprocess scripts a damaged map is given to (each run as a program: postprocess/vibromap-post NAME map.h5).
 POSTPROCESS_SCRIPTS = ("summarize_map", "plot_regime_map", "plot_kcon_map")
 
 

@@ -52,7 +52,7 @@ from dataclasses import dataclass, field
 from fuzz_cases import CANARY_DIR, POSTPROCESS_SCRIPTS, SCENE, STOPS_WITH_EXIT_3
 
 # The postprocess's readers and test helpers: a changed format version (stamp.set_version) and the
-# line that refuses it (vibromap_h5io.version_refusal).
+# line that refuses it (vibromap._io.h5io.version_refusal).
 POSTPROCESS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postprocess")
 sys.path[:0] = [POSTPROCESS, os.path.join(POSTPROCESS, "tests")]
 
@@ -540,7 +540,7 @@ def check_damage(scratch, outcome, shared):
         return
     version = [s for s in draft.setup if s.kind == "version"]
     if version:  # refused in the one line vibromap prints for it, naming both versions
-        from vibromap_h5io import version_refusal
+        from vibromap._io.h5io import version_refusal
         found = eval(version[0].data.decode())
         prog = "vibromap" if draft.post == "resume" else draft.command
         line = f"{prog}: error: {version_refusal('map.h5', 'regime map', 0 if found is None else found)}\n"
@@ -575,7 +575,7 @@ def check_damage(scratch, outcome, shared):
 def case_argv(case, exe, repo):
     draft = case.draft
     if draft.command in POSTPROCESS_SCRIPTS:
-        script = [sys.executable, os.path.join(repo, "postprocess", draft.command + ".py"), "map.h5"]
+        script = [os.path.join(repo, "postprocess", "vibromap-post"), draft.command, "map.h5"]
         return script if draft.command == "summarize_map" else script + ["-o", "picture.png"]
     return [exe] + draft.args
 

@@ -47,8 +47,7 @@ set(table1 jobs/paper/table1.toml)
 if(STEP STREQUAL "tree")
   file(REMOVE_RECURSE ${PREFIX})
   run(install ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${PREFIX})
-  foreach(f bin/vibromap bin/vibromap-post share/vibromap/postprocess/vmpy
-            share/vibromap/postprocess/vibromap_h5.py share/vibromap/postprocess/plot_regime_map.py
+  foreach(f bin/vibromap bin/vibromap-post
             share/vibromap/${table1} share/vibromap/jobs/demo/e1_e2.toml share/vibromap/jobs/reference.toml
             share/doc/vibromap/README.md share/doc/vibromap/CHANGELOG.md share/doc/vibromap/docs/model.md
             share/doc/vibromap/docs/img/demo_e1_e2_soft.png
@@ -64,6 +63,14 @@ if(STEP STREQUAL "tree")
   if(NOT config MATCHES "cmake/vibromap/vibromapConfig.cmake$"
      OR NOT libs STREQUAL "libvibromap_campaigns.a;libvibromap_core.a;libvibromap_io.a;libvibromap_parallel.a")
     message(FATAL_ERROR "package config '${config}', libraries '${libs}'")
+  endif()
+  # The package, the readers and pictures with it; no loose scripts beside it.
+  file(GLOB package ${PREFIX}/lib/python*/*-packages/vibromap/plot/_regime_map.py
+                    ${PREFIX}/lib/python*/*-packages/vibromap/_io/map.py)
+  list(LENGTH package found)
+  if(NOT found EQUAL 2 OR EXISTS ${PREFIX}/share/vibromap/postprocess)
+    message(FATAL_ERROR "the package vibromap is not installed whole under ${PREFIX}/lib/python3.X ('${package}'), "
+                        "or share/vibromap/postprocess is")
   endif()
   file(GLOB bin RELATIVE ${PREFIX}/bin ${PREFIX}/bin/*)
   list(SORT bin)
@@ -81,7 +88,7 @@ elseif(STEP STREQUAL "run_table1")
 
 elseif(STEP STREQUAL "python")
   # The package cmake --install put under the prefix, imported from there.
-  file(GLOB_RECURSE init ${PREFIX}/lib/python*/__init__.py)
+  file(GLOB init ${PREFIX}/lib/python*/*-packages/vibromap/__init__.py)
   if(NOT init MATCHES "^(${PREFIX}/lib/python3[.][0-9]+/(dist|site)-packages)/vibromap/__init__.py$")
     message(FATAL_ERROR "the package vibromap is not installed under ${PREFIX}/lib/python3.X/: '${init}'")
   endif()
@@ -90,11 +97,11 @@ elseif(STEP STREQUAL "python")
 elseif(STEP STREQUAL "post")
   run(help ${PREFIX}/bin/vibromap-post --help)
   if(NOT help_out MATCHES "^usage: vibromap-post SCRIPT" OR NOT help_out MATCHES "\n  plot_regime_map\n"
-     OR help_out MATCHES "vibromap_h5")
+     OR help_out MATCHES "_io")
     message(FATAL_ERROR "vibromap-post --help:\n${help_out}")
   endif()
-  # A script run from share/vibromap/postprocess, importing its sibling modules.
-  run(script ${PREFIX}/bin/vibromap-post summarize_map --help)
+  # A script of the package installed under the prefix, found by the launcher without PYTHONPATH.
+  run(script ${CMAKE_COMMAND} -E env --unset=PYTHONPATH ${PREFIX}/bin/vibromap-post summarize_map --help)
   if(NOT script_out MATCHES "^usage: summarize_map ")
     message(FATAL_ERROR "vibromap-post summarize_map --help:\n${script_out}")
   endif()
@@ -125,14 +132,13 @@ elseif(STEP MATCHES "^consumer_(core|all)$")
 
 elseif(STEP STREQUAL "python_package")
   # pip install --no-build-isolation --no-deps of a copy of postprocess/ (setuptools builds in
-  # the tree it is given), into a folder of its own: every module, one command per script.
+  # the tree it is given), into a folder of its own: the package, its readers and pictures, and
+  # the one command vibromap-post.
   set(dir ${WORK}/python)
   file(REMOVE_RECURSE ${dir})
-  # The package vibromap too; with PYTHON_CORE (a build with the module) its compiled core, which
-  # setup.py has CMake build in the build tree (VIBROMAP_BUILD_DIR).
-  file(GLOB modules RELATIVE ${SOURCE_DIR}/postprocess ${SOURCE_DIR}/postprocess/*.py)
-  list(REMOVE_ITEM modules setup.py)
-  set(copied ${modules} pyproject.toml vibromap)
+  # With PYTHON_CORE (a build with the module) the compiled core too, which setup.py has CMake
+  # build in the build tree (VIBROMAP_BUILD_DIR).
+  set(copied pyproject.toml vibromap)
   if(PYTHON_CORE)
     list(APPEND copied setup.py)
   endif()
@@ -145,26 +151,18 @@ elseif(STEP STREQUAL "python_package")
   if(PYTHON_CORE)
     python_run_table1(${dir}/target)
   endif()
-  file(GLOB installed RELATIVE ${dir}/target ${dir}/target/*.py)
-  list(SORT modules)
+  file(GLOB_RECURSE sources RELATIVE ${SOURCE_DIR}/postprocess ${SOURCE_DIR}/postprocess/vibromap/*.py)
+  file(GLOB_RECURSE installed RELATIVE ${dir}/target ${dir}/target/vibromap/*.py)
+  list(SORT sources)
   list(SORT installed)
-  set(commands "")
-  foreach(m IN LISTS modules)
-    if(NOT m MATCHES "^vibromap_")
-      string(REGEX REPLACE "\\.py$" "" name "${m}")
-      string(REPLACE "_" "-" name "vibromap-${name}")
-      list(APPEND commands ${name})
-    endif()
-  endforeach()
-  file(GLOB scripts RELATIVE ${dir}/target/bin ${dir}/target/bin/vibromap-*)
-  list(SORT scripts)
-  if(NOT installed STREQUAL modules OR NOT scripts STREQUAL commands)
-    message(FATAL_ERROR "modules installed '${installed}', expected '${modules}'; "
-                        "commands '${scripts}', expected '${commands}' (postprocess/pyproject.toml)")
+  file(GLOB scripts RELATIVE ${dir}/target/bin ${dir}/target/bin/*)
+  if(NOT installed STREQUAL sources OR NOT scripts STREQUAL "vibromap-post")
+    message(FATAL_ERROR "modules installed '${installed}', expected '${sources}'; "
+                        "commands '${scripts}', expected 'vibromap-post' (postprocess/pyproject.toml)")
   endif()
-  run(help ${CMAKE_COMMAND} -E env PYTHONPATH=${dir}/target ${dir}/target/bin/vibromap-summarize-map --help)
+  run(help ${CMAKE_COMMAND} -E env PYTHONPATH=${dir}/target ${dir}/target/bin/vibromap-post summarize_map --help)
   if(NOT help_out MATCHES "^usage: summarize_map ")
-    message(FATAL_ERROR "vibromap-summarize-map --help:\n${help_out}")
+    message(FATAL_ERROR "vibromap-post summarize_map --help:\n${help_out}")
   endif()
 
 else()

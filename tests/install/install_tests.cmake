@@ -9,9 +9,9 @@
 #   install.consumer_core   find_package(vibromap COMPONENTS core) from a project outside the
 #                           tree (tests/install/consumer), linked to vibromap::core, solves Table 1
 #   install.consumer_all    the same with every component, linked to vibromap::campaigns
-#   install.python_package  pip installs postprocess/ (pyproject.toml) without network: every
-#                           module, one vibromap-<script> command per script, which runs; the
-#                           package vibromap, whose run() gives Table 1's regime and k_con
+#   install.python_package  pip installs postprocess/ (pyproject.toml) without network: the
+#                           package vibromap whole, whose run() gives Table 1's regime and k_con,
+#                           and its one command vibromap-post, which runs a script
 set(_check ${PROJECT_SOURCE_DIR}/tests/install/check_install.cmake)
 set(_args -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DBUILD_DIR=${PROJECT_BINARY_DIR}
           -DPREFIX=${CMAKE_CURRENT_BINARY_DIR}/install/prefix -DWORK=${CMAKE_CURRENT_BINARY_DIR}/install

@@ -1,6 +1,6 @@
 #pragma once
 // The output file of `vibromap basins` (HDF5, CF-1.8 conventions; read by
-// postprocess/vibromap_h5.py and plot_basins.py). A plane of initial states (basins_plane.hpp),
+// vibromap.files and vibromap.plot). A plane of initial states (basins_plane.hpp),
 // each pixel labelled by the attractor its motion settles into (census.hpp's CensusFollower).
 //
 // Layout (A: N0 x N1 pixels of the plane variables P0, P1; A attractors, S the longest period):

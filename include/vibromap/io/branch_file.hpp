@@ -1,6 +1,6 @@
 #pragma once
 // The branch file of `vibromap continue -o`: the periodic-orbit branches and their
-// bifurcations, HDF5, written whole (tmp + rename), readable by postprocess/plot_branch.py. The
+// bifurcations, HDF5, written whole (tmp + rename), readable by vibromap.plot (postprocess/vibromap). The
 // points of every branch share one dimension (CF's indexed ragged layout): point_branch says
 // whose each is; branch 0 is the one followed from the start, the others were switched onto at
 // a period doubling (branch_parent, branch_born_at: the parent's bifurcation index).

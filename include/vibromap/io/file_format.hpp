@@ -1,6 +1,6 @@
 #pragma once
 // The format version of every kind of file vibromap writes, declared here and nowhere else in
-// the C++ (postprocess/vibromap_h5io.py's FORMAT_VERSIONS holds the same numbers for the Python
+// the C++ (postprocess/vibromap/_io/h5io.py's FORMAT_VERSIONS holds the same numbers for the Python
 // readers; docs/file-formats.md lists them).
 //
 // An HDF5 file carries its kind's version as the integer root attribute `version`, the last one

@@ -71,7 +71,7 @@
 // of every attribute of the file and every dataset's type, shape and dimension scales
 // (src/io/attribute_seal.hpp documents the record), written when the map is made. Every reader
 // (resume(), read_map_layout(), scan_map(), read_map(): --resume, the optimiser's seeding map;
-// postprocess/vibromap_h5.py) checks, before reading any value, the map's format version (a map
+// vibromap.files (postprocess/vibromap)) checks, before reading any value, the map's format version (a map
 // of another version, older or newer, is refused: FileVersionError, exit 2) and then the seal,
 // and refuses a map that fails it as damaged: IoError "<path>: damaged: its attributes fail their
 // checksum (...); make it again with --overwrite" (exit 4, as a damaged coordinate), never "made

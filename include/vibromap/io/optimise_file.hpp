@@ -1,5 +1,5 @@
 #pragma once
-// The output file of `vibromap optimise` (HDF5, read by postprocess/plot_optimise.py).
+// The output file of `vibromap optimise` (HDF5, read by vibromap.plot (postprocess/vibromap)).
 //
 // Layout (V free parameters, S seeds, E_i evaluations of start i; SI units throughout):
 //   root attributes  title, vibromap_version, scene (the scene text), objective ("min_k_con",

@@ -2,7 +2,7 @@
 
 - every file kind vibromap writes (basins, orbit diagram, branch, trajectory; maps, curves and
   optimisation files in tests/campaigns/outputs) carries the attribute checksum, and the
-  postprocess's own check (postprocess/vibromap_seal.py) agrees with vibromap's on it;
+  postprocess's own check (postprocess/vibromap/_io/seal.py) agrees with vibromap's on it;
 - `vibromap basins --resume` of a file with one byte flipped inside an attribute's value exits 4
   with one line "FILE: damaged: ...", before the run's identity is compared.
 
@@ -18,7 +18,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess"))
 from campaign_helpers import ENV, EXE  # noqa: E402
-import vibromap_h5io  # noqa: E402
+from vibromap._io import h5io as vibromap_h5io  # noqa: E402
 
 SCENE = "jobs/paper/table2.toml"
 BASINS = ["basins", SCENE, "--grid", "3x2", "--set", "census.max_attractors=4", "-q"]

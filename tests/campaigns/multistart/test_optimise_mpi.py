@@ -6,7 +6,7 @@
 - the JSON `best` list: params in SI (k2 = m2 omega2^2 in N/m), k_con = T / T_con, a stable
   (1,1) no worse than the best seed, and `vibromap run` on the point alone confirms it;
 - the HDF5 output: one group per start with every evaluation inside the box, the best one
-  feasible, and the best point's trajectory file; postprocess/plot_optimise.py draws them;
+  feasible, and the best point's trajectory file; vibromap-post plot_optimise draws them;
 - bad optimisations end with one line and the documented exit code;
 - min_soft_fraction at the bistable Table 2 point: kept by every feasible evaluation, the best
   point's re-check reported (JSON, HDF5) and equal to `run --census` with its size and seed, and
@@ -28,7 +28,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from campaign_helpers import ENV, EXE, MPIEXEC, TABLE2_POINT, journal_records, kill_all  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-PLOT = os.path.join(REPO, "postprocess", "plot_optimise.py")
+PLOT = [os.path.join(REPO, "postprocess", "vibromap-post"), "plot_optimise"]
 
 OMEGA = 7.23  # forcing frequency of the scene defaults, rad/s
 T = 2.0 * math.pi / OMEGA
@@ -165,7 +165,7 @@ def test_output_file_holds_every_start_and_evaluation(tmp_path):
 
     # The Python reader and figures on the C++ writer's files.
     env = dict(os.environ, MPLCONFIGDIR=str(tmp_path / "mpl"))
-    plot = subprocess.run([sys.executable, PLOT, str(tmp_path / "out.h5")], env=env, capture_output=True, text=True,
+    plot = subprocess.run([*PLOT, str(tmp_path / "out.h5")], env=env, capture_output=True, text=True,
                           timeout=120)  # fmt: skip
     assert plot.returncode == 0, plot.stderr
     for suffix in ("convergence", "on_map", "best"):
@@ -303,7 +303,7 @@ def test_min_soft_fraction_is_kept_reported_and_rechecked(tmp_path):
         states = c.attrs["unresolved"] + c.attrs["unlisted"]
         assert math.isclose(float(c["fraction"][()].sum()) + states / 32, 1.0, rel_tol=1e-12)
     env = dict(os.environ, MPLCONFIGDIR=str(tmp_path / "mpl"))
-    plot = subprocess.run([sys.executable, PLOT, str(tmp_path / "out.h5")], env=env, capture_output=True, text=True,
+    plot = subprocess.run([*PLOT, str(tmp_path / "out.h5")], env=env, capture_output=True, text=True,
                           timeout=120)  # fmt: skip
     assert plot.returncode == 0, plot.stderr
 

@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess"))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess", "tests"))
 from campaign_helpers import ENV, EXE, TABLE2_POINT  # noqa: E402
 from stamp import set_version  # noqa: E402
-from vibromap_h5io import FORMAT_VERSIONS  # noqa: E402
+from vibromap._io.h5io import FORMAT_VERSIONS  # noqa: E402
 
 MAP = FORMAT_VERSIONS["regime map"]  # the versions this vibromap reads
 BASINS_VERSION = FORMAT_VERSIONS["basins file"]

@@ -12,8 +12,8 @@ with engine netcdf4 and with h5netcdf, and:
   sizes h5py reads, and the same values (decoding off: bytes as stored);
 - the dimensions and variables each kind documents (docs/file-formats.md) are there;
 - the file carries its kind's format version, the one the postprocess reads
-  (postprocess/vibromap_h5io.py's FORMAT_VERSIONS), and still passes its attribute checksum
-  (postprocess/vibromap_seal.py); a resumed basins run and sweep still accept their file.
+  (postprocess/vibromap/_io/h5io.py's FORMAT_VERSIONS), and still passes its attribute checksum
+  (postprocess/vibromap/_io/seal.py); a resumed basins run and sweep still accept their file.
 """
 import os
 import subprocess
@@ -28,7 +28,7 @@ from campaign_helpers import ENV, EXE, TABLE2_POINT  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 sys.path.insert(0, os.path.join(REPO, "postprocess"))
-from vibromap_h5io import FORMAT_VERSIONS, open_h5  # noqa: E402
+from vibromap._io.h5io import FORMAT_VERSIONS, open_h5  # noqa: E402
 
 # The format kind (file_format.hpp) of each file written.
 KINDS = {"sweep": "regime map", "census": "regime map", "optimise_map": "regime map", "trajectory": "trajectory file",

@@ -24,7 +24,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess"))
 from campaign_helpers import ENV, EXE, reference_map  # noqa: E402
-import vibromap_h5  # noqa: E402
+from vibromap import _io as vibromap_h5  # noqa: E402
 
 # Cheap cells (no forcing: no contact), 4 x 3.
 SCENE = """

@@ -19,7 +19,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "postprocess"))
 from campaign_helpers import ENV, EXE, reference_map  # noqa: E402
-import vibromap_h5  # noqa: E402
+from vibromap import _io as vibromap_h5  # noqa: E402
 
 TRIALS = int(os.environ.get("VIBROMAP_DAMAGED_MAPS", "16"))
 

@@ -21,8 +21,8 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(REPO / "postprocess"))
 from campaign_helpers import ENV, EXE, MPIEXEC, vibromap_stdout  # noqa: E402
 
-import summarize_map  # noqa: E402
-import vibromap_h5  # noqa: E402
+from vibromap import _summarize_map as summarize_map  # noqa: E402
+from vibromap import _io as vibromap_h5  # noqa: E402
 
 # Table 2 with the Flores law (jobs/demo/restitution_e2.toml) on 2 x 4 cells, all periodic with
 # impacts, some Hertz-invalid, some clipped: every quantity but lyapunov (not asked) is not 0 in

@@ -103,7 +103,7 @@ def test_adaptive_map_is_the_fine_grid_and_the_same_on_1_2_3_ranks(tmp_path):
     assert report["cells_total"] == 117 and report["complete"]
     for other in maps[1:]:
         assert_same_map(maps[0], other)
-    summary = subprocess.run([sys.executable, str(REPO / "postprocess" / "summarize_map.py"), str(maps[0])],
+    summary = subprocess.run([str(REPO / "postprocess" / "vibromap-post"), "summarize_map", str(maps[0])],
                              capture_output=True, text=True, timeout=120)
     assert summary.returncode == 0, summary.stderr
     solved = int(per_level.sum())

@@ -239,8 +239,8 @@ def test_a_frequency_response_map_over_forcing_keys(tmp_path):
     sys.path.insert(0, str(REPO / "postprocess"))
     import matplotlib
     matplotlib.use("Agg")
-    import plot_regime_map
-    import vibromap_h5
+    from vibromap.plot import _regime_map as plot_regime_map
+    from vibromap import _io as vibromap_h5
     m = vibromap_h5.read_map(str(out))
     sl = plot_regime_map.choose_slice(m, "forcing.omega", "forcing.F0", {})
     fig = plot_regime_map.plot(m, sl)

@@ -1,7 +1,7 @@
 #pragma once
 // The accuracy study (`vibromap accuracy`): the scene's base point solved by every case of the
 // default study (core/analysis/point/accuracy.hpp) against its reference, one process, and the CSV of
-// its rows for postprocess/plot_work_precision.py. The report (table or JSON) and the progress
+// its rows for vibromap.plot (postprocess/vibromap). The report (table or JSON) and the progress
 // lines are printed by io/accuracy_output.hpp.
 
 #include <optional>

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot a vibromap trajectory file the way the source paper shows a steady motion.
 
 Top panel: displacements x1(t), x2(t) of the main and the attached body. Bottom panel: the
@@ -7,7 +6,7 @@ differ by orders of magnitude (1e5 N against 500 N for a rigid impact), so each 
 axis. Time is in forcing periods, t/T. The title gives the regime, k_con = T/T_con and T_con.
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file (one line
-on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
@@ -16,22 +15,15 @@ import argparse
 import os
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_trajectory"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    from vibromap_h5 import Trajectory, VibromapFileError, read_trajectory, write_plot
-except ImportError as exc:
-    missing_module(PROG, exc)
+from .._io import Trajectory, VibromapFileError, read_trajectory, write_plot
 
 FIGSIZE_IN = (8.0, 6.0)  # width, height in inches; at the default 150 dpi: 1200 x 900 px
 COLOR_X1, COLOR_X2, COLOR_FC, COLOR_F = "C0", "C1", "C3", "C0"
@@ -122,5 +114,3 @@ def main(argv: list[str] | None = None) -> int:
     return write_plot(PROG, figure, args.output, args.dpi)
 
 
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,5 +1,5 @@
 """Opening vibromap's HDF5 files and reading their datasets safely; writing a plot's figure.
-Part of the readers that vibromap_h5 gathers (import them from there).
+Part of the readers that vibromap._io gathers (import them from there).
 
 Every reader raises VibromapFileError with a one-line message (naming the file) when the file is
 missing, is not HDF5, is of another format version, lacks what the reader needs, or is damaged.
@@ -7,7 +7,7 @@ open_h5(path, kind) checks, before any value is read, the file's format version 
 attribute `version`, FORMAT_VERSIONS: a file of another version, older or newer, raises
 FileVersionError, "FILE: a regime map of format version 0; this vibromap reads version 2 only:
 make the file again with this vibromap", the line vibromap itself prints) and then the attribute
-checksum vibromap writes into every file (vibromap_seal.py; "FILE: damaged: its attributes fail
+checksum vibromap writes into every file (_io/seal.py; "FILE: damaged: its attributes fail
 their checksum (...)"); read_dataset names a chunk that fails its Fletcher32 checksum or is
 missing from its chunk index, and whatever else h5py raises while reading a damaged or truncated
 file inside `with open_h5(path, kind) as f:` becomes one line too. Scripts turn that into exit
@@ -22,7 +22,7 @@ import os
 import h5py
 import numpy as np
 
-from vibromap_seal import DamagedAttributes, check_heaps, check_seal
+from .seal import DamagedAttributes, check_heaps, check_seal
 
 # The format version of each kind of file vibromap writes and reads, as
 # include/vibromap/io/file_format.hpp declares them (tests/campaigns/outputs checks that they
@@ -146,7 +146,7 @@ def _check_kind_mark(f: h5py.File, path: str, kind: str) -> None:
 def open_h5(path: str, kind: str) -> OpenFile:
     """Opens a vibromap HDF5 file of kind `kind` (a key of FORMAT_VERSIONS) for reading and checks
     it before any value is read: its global heaps and its format version, then its attribute
-    checksum (vibromap_seal.py); or raises VibromapFileError (FileVersionError for another
+    checksum (_io/seal.py); or raises VibromapFileError (FileVersionError for another
     version) with a one-line reason."""
     path = os.fspath(path)
     if not os.path.exists(path):

@@ -1,5 +1,5 @@
 """Reading the files of one parameter point: a kept trajectory (`vibromap run --trajectory`) and
-a basins plane (`vibromap basins`). Part of the readers that vibromap_h5 gathers (import them
+a basins plane (`vibromap basins`). Part of the readers that vibromap._io gathers (import them
 from there).
 
 Trajectory file (src/io/trajectory_file.cpp, include/vibromap/io/trajectory_file.hpp):
@@ -21,8 +21,8 @@ import os
 import h5py
 import numpy as np
 
-from vibromap_h5io import VibromapFileError, _flag_meanings, _scalar, _text, open_h5
-from vibromap_regimes import REGIME_PERIODIC
+from .h5io import VibromapFileError, _flag_meanings, _scalar, _text, open_h5
+from .regimes import REGIME_PERIODIC
 
 TRAJECTORY_COLUMNS = ("t", "x1", "x2", "v1", "v2", "Fc", "F")
 TRAJECTORY_ATTRIBUTES = ("T", "regime", "n", "k", "T_con", "k_con", "scene", "vibromap_version")

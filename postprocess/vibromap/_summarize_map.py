@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Summarise a vibromap regime map: cells done, status and regime counts, stability, what each
 cell's answer is (the map's steady: the motion from the initial state, or, for shooting, some
 stable orbit, flagged as a warning), the soft cells and the Hertz-invalid cells among those with
@@ -10,7 +9,7 @@ the soft fraction, the non-periodic attractors with the cells where states were 
 leave them (transient chaos: their fractions depend on analysis.max_periods), and the largest
 families of attractors across the map (regimes, soft cells, fraction range, label changes).
 
-Usage: postprocess/vmpy summarize_map MAP.h5 [--slowest N]
+Usage: vibromap-post summarize_map MAP.h5 [--slowest N]
 Exit status: 0 printed, 2 unreadable or damaged file, or a map of another format version (one
 line "summarize_map: error: MAP.h5: ..." on stderr: its format version is not the one this
 vibromap reads, its attribute checksum fails, a chunk fails its checksum, or it is truncated), 1 a
@@ -19,19 +18,15 @@ computed cell holds a non-finite value.
 import argparse
 import sys
 
-from vibromap_deps import missing_module
 
-from vibromap_guard import guarded_main
+from ._guard import guarded_main
 
 PROG = "summarize_map"
 
-try:
-    import numpy as np
+import numpy as np
 
-    from vibromap_h5 import (FAMILY_LABEL_CHANGE, FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError,
-                             add_soft_cells, census_regimes, impact_cells, read_map, regime_counts)  # fmt: skip
-except ImportError as exc:
-    missing_module(PROG, exc)
+from ._io import (FAMILY_LABEL_CHANGE, FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, VibromapFileError,
+                         add_soft_cells, census_regimes, impact_cells, read_map, regime_counts)  # fmt: skip
 
 
 def summary_lines(sweep, slowest: int) -> tuple[list[str], int]:
@@ -196,5 +191,3 @@ def main(argv=None) -> int:
     return 1 if bad else 0
 
 
-if __name__ == "__main__":
-    sys.exit(main())

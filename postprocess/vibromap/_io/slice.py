@@ -1,6 +1,6 @@
 """Slices of a map for plotting: slice2d() takes a 2-D slice (or a 1-D strip) with the other axes
 held at a grid value; cell_edges() and cell_boundary() draw its cells; parse_fix() reads the
-scripts' --fix NAME=VALUE. Part of the readers that vibromap_h5 gathers (import them from there).
+scripts' --fix NAME=VALUE. Part of the readers that vibromap._io gathers (import them from there).
 """
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ import dataclasses
 
 import numpy as np
 
-from vibromap_map import MapAxis, SweepMap, axis_name
-from vibromap_regimes import regime_labels
+from .map import MapAxis, SweepMap, axis_name
+from .regimes import regime_labels
 
 
 class MapSliceError(ValueError):

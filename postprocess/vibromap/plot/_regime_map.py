@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot the regime map of a vibromap sweep: which motion each cell of a 2-D slice settles to.
 
 Each distinct regime gets its own colour and a legend entry with its number of cells: the
@@ -16,7 +15,7 @@ those values, and, for a map made with analysis.steady = "shooting", that each c
 stable orbit, not necessarily the motion from rest. A 1-D map is drawn as a strip.
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file (one line
-on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
@@ -25,46 +24,39 @@ import argparse
 import os
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_regime_map"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.colors
+import matplotlib.legend
+import matplotlib.patheffects
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import PolyCollection
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
 
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.colors
-    import matplotlib.legend
-    import matplotlib.patheffects
-    import matplotlib.pyplot as plt
-    import numpy as np
-    from matplotlib.collections import PolyCollection
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch
-
-    from vibromap_h5 import (
-        NOT_COMPUTED,
-        SOFT_FROM_MAP,
-        STABLE_NO,
-        MapAxis,
-        MapSlice,
-        MapSliceError,
-        SoftInfo,
-        SweepMap,
-        VibromapFileError,
-        axis_name,
-        cell_edges,
-        parse_fix,
-        read_curves,
-        read_map,
-        regime_counts,
-        slice2d,
-        save_figure,
-    )
-except ImportError as exc:
-    missing_module(PROG, exc)
+from .._io import (
+    NOT_COMPUTED,
+    SOFT_FROM_MAP,
+    STABLE_NO,
+    MapAxis,
+    MapSlice,
+    MapSliceError,
+    SoftInfo,
+    SweepMap,
+    VibromapFileError,
+    axis_name,
+    cell_edges,
+    parse_fix,
+    read_curves,
+    read_map,
+    regime_counts,
+    slice2d,
+    save_figure,
+)
 
 FIGSIZE_IN = (9.0, 6.0)  # width, height in inches; at the default 150 dpi: 1350 x 900 px
 STRIP_FIGSIZE_IN = (9.0, 3.0)  # a 1-D map: 1350 x 450 px
@@ -505,5 +497,3 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-if __name__ == "__main__":
-    sys.exit(main())

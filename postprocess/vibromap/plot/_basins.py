@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot a basins file of `vibromap basins`: the plane of initial states coloured by the
 attractor each one settles into (a distinct colour per attractor, grey for unresolved or
 unlisted, white for overlapping bodies or pixels not computed), a legend naming each
@@ -6,10 +5,10 @@ attractor's regime, k_con, softness and basin fraction, the rest state marked, a
 naming the scene's point, the fixed variables and the basin entropy (S_b, S_bb, the log 2 test
 and the uncertainty exponent; absent from files made before vibromap computed it).
 
-  postprocess/vmpy plot_basins FILE.h5 [-o FILE.png] [--dpi 150]
+  vibromap-post plot_basins FILE.h5 [-o FILE.png] [--dpi 150]
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable file (one line on stderr),
-3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+3 when numpy, h5py or matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
@@ -18,32 +17,25 @@ import argparse
 import os
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_basins"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.colors
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Patch
 
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.colors
-    import matplotlib.pyplot as plt
-    import numpy as np
-    from matplotlib.patches import Patch
-
-    from vibromap_h5 import (
-        BASINS_NOT_COMPUTED,
-        BASINS_OVERLAP,
-        BASINS_UNLISTED,
-        BASINS_UNRESOLVED,
-        Basins,
-        read_basins,
-        write_plot,
-    )
-except ImportError as exc:
-    missing_module(PROG, exc)
+from .._io import (
+    BASINS_NOT_COMPUTED,
+    BASINS_OVERLAP,
+    BASINS_UNLISTED,
+    BASINS_UNRESOLVED,
+    Basins,
+    read_basins,
+    write_plot,
+)
 
 FIGSIZE_IN = (9.0, 6.5)
 COLORS = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22",
@@ -140,5 +132,3 @@ def main(argv: list[str] | None = None) -> int:
     return write_plot(PROG, lambda: plot(read_basins(args.file)), args.output, args.dpi)
 
 
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,6 +1,6 @@
 """Reading a curve file of `vibromap continue --curve KIND ... -o F.h5`: curves of codimension-one
 bifurcations (fold, period-doubling, neimark-sacker, grazing) and level curves (level:k_con=10)
-followed in a plane of two scene keys. Part of the readers that vibromap_h5 gathers (import them
+followed in a plane of two scene keys. Part of the readers that vibromap._io gathers (import them
 from there).
 
 Curve file (HDF5, CF-1.8; include/vibromap/io/curve_file.hpp):
@@ -33,7 +33,7 @@ import re
 import h5py
 import numpy as np
 
-from vibromap_h5io import VibromapFileError, _scalar, _text, open_h5, read_dataset
+from .h5io import VibromapFileError, _scalar, _text, open_h5, read_dataset
 
 CURVE_FILE_KIND = "curves"  # the root attribute vibromap_file of a curve file
 CURVE_KINDS = ("fold", "period-doubling", "neimark-sacker", "grazing")  # and "level:NAME=VALUE"

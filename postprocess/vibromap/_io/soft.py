@@ -1,6 +1,6 @@
 """The soft flag and the Hertz validity of a map's cells: add_soft_cells() takes them from the
 map's /soft and /hertz_valid, or computes the soft flag by the one definition of a soft motion
-for another soft_kcon than the map's. Part of the readers that vibromap_h5 gathers (import them
+for another soft_kcon than the map's. Part of the readers that vibromap._io gathers (import them
 from there).
 """
 
@@ -10,9 +10,9 @@ import dataclasses
 
 import numpy as np
 
-from vibromap_h5io import VibromapFileError
-from vibromap_map import SweepMap
-from vibromap_regimes import (FLAG_NO, FLAG_UNKNOWN, FLAG_YES, HERTZ_KEY, REGIME_PERIODIC, SOFT_FROM_MAP, SOFT_KEY,
+from .h5io import VibromapFileError
+from .map import SweepMap
+from .regimes import (FLAG_NO, FLAG_UNKNOWN, FLAG_YES, HERTZ_KEY, REGIME_PERIODIC, SOFT_FROM_MAP, SOFT_KEY,
                               STABLE_YES)  # fmt: skip
 
 

@@ -1,4 +1,4 @@
-"""Reading a map file (one file per sweep) into a SweepMap. Part of the readers that vibromap_h5
+"""Reading a map file (one file per sweep) into a SweepMap. Part of the readers that vibromap._io
 gathers (import them from there).
 
 Map file (include/vibromap/io/map_file.hpp; N axes, first axis slowest; format version
@@ -47,8 +47,8 @@ import os
 import h5py
 import numpy as np
 
-from vibromap_h5io import VibromapFileError, _attribute_value, _flag_meanings, _text, open_h5, read_dataset
-from vibromap_regimes import STEADY_ANSWERS, regime_labels
+from .h5io import VibromapFileError, _attribute_value, _flag_meanings, _text, open_h5, read_dataset
+from .regimes import STEADY_ANSWERS, regime_labels
 
 # Datasets every map has (map_file.hpp); the stored quantities (hertz_valid always) come on top.
 MAP_REQUIRED = ("done", "status", "regime", "stable", "soft", "n", "k", "wall_s", "steady_residual")

@@ -1,14 +1,13 @@
-#!/usr/bin/python3
 """Plot an orbit-diagram file of `vibromap orbit-diagram`: the stroboscopic x1 (or x2, v1, v2)
 kept at each value of the stepped key, the upward sweep and the downward sweep in two colours,
 so that hysteresis (the two differing over a range) and period doubling (a point splitting into
 two) show.
 
-  postprocess/vmpy plot_orbit_diagram FILE.h5 [--var x1|x2|v1|v2] [-o FILE.png] [--dpi 150]
+  vibromap-post plot_orbit_diagram FILE.h5 [--var x1|x2|v1|v2] [-o FILE.png] [--dpi 150]
 
 Exit status: 0 on success, 2 for a bad argument, an unreadable file or one of another format
 version (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
-postprocess/vmpy).
+vibromap-post).
 """
 
 from __future__ import annotations
@@ -17,22 +16,15 @@ import argparse
 import os
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_orbit_diagram"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    from vibromap_h5 import VibromapFileError, open_h5, read_dataset, write_plot, _text
-except ImportError as exc:
-    missing_module(PROG, exc)
+from .._io import VibromapFileError, open_h5, read_dataset, write_plot, _text
 
 COLOR_UP = "#1f77b4"
 COLOR_DOWN = "#d62728"
@@ -86,5 +78,3 @@ def main(argv: list[str] | None = None) -> int:
     return write_plot(PROG, lambda: plot(args.file, args.var), output, args.dpi)
 
 
-if __name__ == "__main__":
-    sys.exit(main())

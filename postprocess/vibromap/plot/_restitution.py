@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot the "which law" chart: the effective restitution each contact law gives against the
 restitution e it was calibrated for.
 
@@ -10,7 +9,7 @@ e_effective = e where a law would give exactly what it was calibrated for; a sec
 the difference e_effective - e.
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid input (one line on
-stderr), 3 when numpy or matplotlib cannot be imported (run via postprocess/vmpy).
+stderr), 3 when numpy or matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
@@ -20,19 +19,12 @@ import json
 import math
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_restitution"
 
-from vibromap_deps import missing_module
-
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.pyplot as plt
-except ImportError as exc:
-    missing_module(PROG, exc)
+import matplotlib
+import matplotlib.pyplot as plt
 
 FIGSIZE_IN = (9.0, 4.5)  # width, height in inches; at the default 150 dpi: 1350 x 675 px
 FIELDS = ("law", "e", "chi", "e_effective")
@@ -116,5 +108,3 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-if __name__ == "__main__":
-    sys.exit(main())

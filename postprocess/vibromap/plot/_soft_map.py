@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot where the motion of a vibromap map is soft, by the one definition vibromap uses
 everywhere: periodic with impacts, stable, Hertz-valid (z_max/R* <= the map's hertz_limit,
 0.05 by default) and k_con <= the map's soft_kcon (10 by default).
@@ -21,50 +20,42 @@ orbit, not necessarily the motion from rest. Axes and --fix work as in plot_regi
 
 Exit status: 0 on success, 2 for a bad argument, an unreadable or invalid file, or a map of
 another format version (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported
-(run via postprocess/vmpy).
+(run via vibromap-post).
 """
 
 from __future__ import annotations
 
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_soft_map"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.colors
+import matplotlib.pyplot as plt
+import numpy as np
 
-try:
-    import matplotlib
+from .._io import (
+    FLAG_NO,
+    FLAG_YES,
+    HERTZ_KEY,
+    REGIME_PERIODIC,
+    SOFT_KEY,
+    STABLE_NO,
+    STABLE_YES,
+    MapSlice,
+    MapSliceError,
+    SoftInfo,
+    SweepMap,
+    VibromapFileError,
+    add_soft_cells,
+    periodic_with_impacts,
+    read_map,
+    write_plot,
+)
 
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.colors
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    # vibromap_h5 (h5py) first, so that a missing module is reported under this script's name.
-    from vibromap_h5 import (
-        FLAG_NO,
-        FLAG_YES,
-        HERTZ_KEY,
-        REGIME_PERIODIC,
-        SOFT_KEY,
-        STABLE_NO,
-        STABLE_YES,
-        MapSlice,
-        MapSliceError,
-        SoftInfo,
-        SweepMap,
-        VibromapFileError,
-        add_soft_cells,
-        periodic_with_impacts,
-        read_map,
-        write_plot,
-    )
-
-    import plot_regime_map as maps
-except ImportError as exc:
-    missing_module(PROG, exc)
+from . import _regime_map as maps
 
 FIGSIZE_IN = (9.0, 7.0)  # width, height in inches, legend row included; at 150 dpi: 1350 x 1050 px
 STRIP_FIGSIZE_IN = (9.0, 4.0)  # a 1-D map: 1350 x 600 px
@@ -205,5 +196,3 @@ def main(argv: list[str] | None = None) -> int:
     return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError), notes)
 
 
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot a census map (a vibromap sweep whose scene had [census]): how many attractors each
 cell holds, how much of each cell's box of initial states reaches a soft attractor, or the
 basin fractions of one chosen cell.
@@ -31,44 +30,37 @@ A map made with analysis.steady = "shooting" says so in every picture's title.
 
 Exit status: 0 on success, 2 for a bad argument, an unreadable file or a map without a
 census (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
-postprocess/vmpy).
+vibromap-post).
 """
 
 from __future__ import annotations
 
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_census_map"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.colors
+import matplotlib.lines
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Patch
 
-try:
-    import matplotlib
+from .._io import (
+    FAMILY_LABEL_CHANGE,
+    REGIME_PERIODIC,
+    MapSliceError,
+    SweepMap,
+    VibromapFileError,
+    census_regimes,
+    parse_fix,
+    read_map,
+    write_plot,
+)
 
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.colors
-    import matplotlib.lines
-    import matplotlib.pyplot as plt
-    import numpy as np
-    from matplotlib.patches import Patch
-
-    from vibromap_h5 import (
-        FAMILY_LABEL_CHANGE,
-        REGIME_PERIODIC,
-        MapSliceError,
-        SweepMap,
-        VibromapFileError,
-        census_regimes,
-        parse_fix,
-        read_map,
-        write_plot,
-    )
-
-    import plot_regime_map as maps
-except ImportError as exc:
-    missing_module(PROG, exc)
+from . import _regime_map as maps
 
 FIGSIZE_IN = (9.0, 6.5)
 COUNT_COLORS = ["#dedede", "#c6dbef", "#6baed6", "#2171b5", "#08306b", "#54278f", "#756bb1", "#9e9ac8", "#bcbddc"]
@@ -390,7 +382,7 @@ def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = Non
 
 
 def cell_index(sweep: SweepMap, at: dict[str, float]) -> tuple:
-    from vibromap_h5 import _nearest_index, axis_name
+    from .._io import _nearest_index, axis_name
 
     at = {axis_name(sweep, name): value for name, value in at.items()}
     for name in at:
@@ -463,5 +455,3 @@ def main(argv: list[str] | None = None) -> int:
     return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError))
 
 
-if __name__ == "__main__":
-    sys.exit(main())

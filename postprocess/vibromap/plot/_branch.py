@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot a branch of `vibromap continue` (its -o HDF5 file, or its --format json output saved to a
 file): the stroboscopic x1 of the periodic orbit against the key (with its unit), stable parts
 solid and unstable parts dashed, each located bifurcation marked; over the orbit diagram of the
@@ -9,10 +8,10 @@ softness k_con = T/T_con along every branch with the soft threshold analysis.sof
 file's scene, 10 when it does not say).
 
   build/vibromap continue SCENE --param KEY --from A --to B -o branch.h5
-  postprocess/vmpy plot_branch branch.h5 [--diagram od.h5] [-o branch.png] [--dpi 150]
+  vibromap-post plot_branch branch.h5 [--diagram od.h5] [-o branch.png] [--dpi 150]
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable file (one line on stderr),
-3 when numpy, h5py or matplotlib cannot be imported (run via postprocess/vmpy).
+3 when numpy, h5py or matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
@@ -24,23 +23,16 @@ import re
 import sys
 import textwrap
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_branch"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    import plot_orbit_diagram
-    from vibromap_h5 import VibromapFileError, _text, open_h5, read_dataset, write_plot
-except ImportError as exc:
-    missing_module(PROG, exc)
+from . import _orbit_diagram as plot_orbit_diagram
+from .._io import VibromapFileError, _text, open_h5, read_dataset, write_plot
 
 MARKERS = {"fold": ("o", "#000000"), "period-doubling": ("s", "#ff7f0e"), "neimark-sacker": ("D", "#9467bd"),
            "grazing": ("v", "#2ca02c")}
@@ -359,5 +351,3 @@ def main(argv: list[str] | None = None) -> int:
     return write_plot(PROG, lambda: plot(read_branch(args.branch), args.diagram), output, args.dpi)
 
 
-if __name__ == "__main__":
-    sys.exit(main())

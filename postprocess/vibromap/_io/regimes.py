@@ -1,7 +1,7 @@
 """The codes of a vibromap map's flag datasets (regime, status, stable, soft) and the names of
 regimes: regime_labels() names each cell's regime "(n,k)", "chatter", "no-contact",
 "not-computed"; regime_counts() counts them in a fixed order. Part of the readers that
-vibromap_h5 gathers (import them from there).
+vibromap._io gathers (import them from there).
 """
 
 from __future__ import annotations

@@ -58,6 +58,44 @@ def _hdf5_arguments(argv: list[str]) -> str:
     return ", ".join(files) if files else "an input file"
 
 
+def crash_line(files: str, sig: signal.Signals) -> str:
+    """What a read that crashed the HDF5 library is reported as (after "PROG: error: ")."""
+    return f"{files}: damaged: reading it crashed the HDF5 library ({sig.name}); make it again with vibromap --overwrite"
+
+
+def check_in_child(check, path: str) -> tuple[bool, str]:
+    """check(path) -> str in a forked child: (True, its answer), or (False, the one-line message of
+    the exception it raised, or crash_line when it died of a signal). In this process where
+    there is no fork."""
+    if not hasattr(os, "fork") or os.environ.get("VIBROMAP_NO_GUARD"):
+        try:
+            return True, check(path)
+        except Exception as exc:  # noqa: BLE001 - the caller raises it as one line
+            return False, str(exc)
+    read_end, write_end = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.close(read_end)
+        try:
+            answer, code = check(path).encode(), 0
+        except BaseException as exc:  # noqa: BLE001 - reported to the parent as its line
+            answer, code = (str(exc) or type(exc).__name__).encode("utf-8", "replace"), 1
+        os.write(write_end, answer)
+        os._exit(code)
+    os.close(write_end)
+    try:
+        with os.fdopen(read_end, "rb") as pipe:
+            answer = pipe.read().decode("utf-8", "replace")
+        _, status = os.waitpid(pid, 0)
+    except KeyboardInterrupt:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        raise
+    if os.WIFSIGNALED(status):
+        return False, crash_line(path, signal.Signals(os.WTERMSIG(status)))
+    return os.WEXITSTATUS(status) == 0, answer
+
+
 def run_guarded(prog: str, work) -> int:
     """work() in a forked child (the module's docstring); its exit status."""
     sys.stdout.flush()
@@ -79,8 +117,7 @@ def run_guarded(prog: str, work) -> int:
     if os.WIFSIGNALED(status):
         sig = signal.Signals(os.WTERMSIG(status))
         if sig in CRASHES:
-            print(f"{prog}: error: {_hdf5_arguments(sys.argv[1:])}: damaged: reading it crashed the HDF5 library "
-                  f"({sig.name}); make it again with vibromap --overwrite", file=sys.stderr)
+            print(f"{prog}: error: {crash_line(_hdf5_arguments(sys.argv[1:]), sig)}", file=sys.stderr)
             return 2
         print(f"{prog}: error: stopped by {sig.name}", file=sys.stderr)
         return 128 + sig.value

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot a vibromap accuracy study as a work-precision diagram: error against cost.
 
 Input: the CSV of `vibromap accuracy SCENE --csv FILE.csv` (src/campaigns/accuracy/accuracy_run.cpp),
@@ -15,7 +14,7 @@ to the reference to the last digit) cannot be drawn on a log axis and are listed
 plot. Points whose regime differs from the reference's are ringed in black.
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file (one line
-on stderr), 3 when numpy or matplotlib cannot be imported (run via postprocess/vmpy).
+on stderr), 3 when numpy or matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
@@ -27,22 +26,15 @@ import math
 import os
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_work_precision"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
 
-try:
-    import matplotlib
-
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    from vibromap_h5 import VibromapFileError, write_plot
-except ImportError as exc:
-    missing_module(PROG, exc)
+from .._io import VibromapFileError, write_plot
 
 FIGSIZE_IN = (8.0, 6.0)  # width, height in inches; at the default 150 dpi: 1200 x 900 px
 QUANTITIES = {"T_con": "T_con (impact duration)", "F_max": "F_max (peak contact force)", "k_con": "k_con = T/T_con"}
@@ -247,5 +239,3 @@ def main(argv: list[str] | None = None) -> int:
                       (StudyFileError, VibromapFileError))
 
 
-if __name__ == "__main__":
-    sys.exit(main())

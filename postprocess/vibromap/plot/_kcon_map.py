@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot the impact softness k_con over a 2-D slice of a vibromap map, with the soft region
 outlined.
 
@@ -20,49 +19,41 @@ from rest. The map must have stored k_con ([sweep] store = ["k_con", ...]).
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file, a map of
 another format version or a map without k_con (one line on stderr), 3 when numpy, h5py or
-matplotlib cannot be imported (run via postprocess/vmpy).
+matplotlib cannot be imported (run via vibromap-post).
 """
 
 from __future__ import annotations
 
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_kcon_map"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.colors
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.lines import Line2D
 
-try:
-    import matplotlib
+from .._io import (
+    FLAG_NO,
+    FLAG_YES,
+    HERTZ_KEY,
+    SOFT_KEY,
+    MapSlice,
+    MapSliceError,
+    SoftInfo,
+    SweepMap,
+    VibromapFileError,
+    add_soft_cells,
+    cell_boundary,
+    read_map,
+    save_figure,
+)
 
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.colors
-    import matplotlib.pyplot as plt
-    import numpy as np
-    from matplotlib.collections import LineCollection
-    from matplotlib.lines import Line2D
-
-    # vibromap_h5 (h5py) first, so that a missing module is reported under this script's name.
-    from vibromap_h5 import (
-        FLAG_NO,
-        FLAG_YES,
-        HERTZ_KEY,
-        SOFT_KEY,
-        MapSlice,
-        MapSliceError,
-        SoftInfo,
-        SweepMap,
-        VibromapFileError,
-        add_soft_cells,
-        cell_boundary,
-        read_map,
-        save_figure,
-    )
-
-    import plot_regime_map as maps
-except ImportError as exc:
-    missing_module(PROG, exc)
+from . import _regime_map as maps
 
 FIGSIZE_IN = (9.0, 6.5)  # width, height in inches; at the default 150 dpi: 1350 x 975 px
 STRIP_FIGSIZE_IN = (9.0, 3.5)  # a 1-D map: 1350 x 525 px
@@ -242,5 +233,3 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-if __name__ == "__main__":
-    sys.exit(main())

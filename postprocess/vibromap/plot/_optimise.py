@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot what `vibromap optimise` found: how each start converged, where the starts went over
 the regime map they were seeded from, and the best point's motion as the source paper shows it.
 
@@ -32,7 +31,7 @@ The optimisation file's layout is include/vibromap/io/optimise_file.hpp's.
 
 Exit status: 0 on success, 2 for a bad argument, an unreadable or invalid file, or one of another
 format version (one line on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via
-postprocess/vmpy).
+vibromap-post).
 """
 
 from __future__ import annotations
@@ -42,37 +41,29 @@ import dataclasses
 import os
 import sys
 
-from vibromap_guard import guarded_main
+from .._guard import guarded_main
 
 PROG = "plot_optimise"
 
-from vibromap_deps import missing_module
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.lines import Line2D
 
-try:
-    import matplotlib
+from .._io import (
+    HERTZ_LIMIT_DEFAULT,
+    MapSliceError,
+    VibromapFileError,
+    open_h5,
+    parse_fix,
+    read_map,
+    read_trajectory,
+    regime_labels,
+    save_figure,
+)
 
-    matplotlib.use("Agg")  # files only: no display needed on a cluster node
-    import matplotlib.pyplot as plt
-    import numpy as np
-    from matplotlib.lines import Line2D
-
-    # vibromap_h5 (h5py) first, so that a missing module is reported under this script's name.
-    from vibromap_h5 import (
-        HERTZ_LIMIT_DEFAULT,
-        MapSliceError,
-        VibromapFileError,
-        open_h5,
-        parse_fix,
-        read_map,
-        read_trajectory,
-        regime_labels,
-        save_figure,
-    )
-
-    import plot_regime_map as maps
-    import plot_trajectory
-except ImportError as exc:
-    missing_module(PROG, exc)
+from . import _regime_map as maps
+from . import _trajectory as plot_trajectory
 
 CONVERGENCE_FIGSIZE_IN = (9.0, 5.5)  # at the default 150 dpi: 1350 x 825 px
 ALGORITHM_COLORS = {
@@ -526,5 +517,3 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-if __name__ == "__main__":
-    sys.exit(main())
