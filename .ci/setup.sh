@@ -16,6 +16,7 @@ packages=(
   libgtest-dev googletest
   python3-numpy python3-h5py python3-matplotlib python3-pytest python3-xarray python3-netcdf4 python3-h5netcdf
   python3-pip python3-setuptools python3-dev pybind11-dev
+  python3-nbclient python3-ipykernel
 )
 for arg in "$@"; do
   case "$arg" in

@@ -5,6 +5,8 @@
 #   docs.keys_md                 docs/keys.md is what `vibromap keys` prints (make_keys_md.cmake)
 #   docs.exit_codes              every exit code docs/*.md states agrees with README.md's table
 #                                (check_exit_codes.py; needs Python)
+#   docs.notebook                docs/notebooks/tour.ipynb runs (nbclient, ipykernel) and every
+#                                number it prints is the command line's (check_notebook.py)
 # and the same checks on a made-up tree with one fault of each kind, which they must refuse.
 set(_vibromap_docs_check ${PROJECT_SOURCE_DIR}/tests/docs/check_docs.cmake)
 foreach(_what references readme links)
@@ -50,6 +52,33 @@ if(VibromapPython_FOUND)
     PASS_REGULAR_EXPRESSION "guide-x\\.md:3: states exit 2 for 'disk'.*guide-x\\.md:4: states exit 4 for 'sigterm'.*guide-x\\.md:4: exit 7 is not in.*3 disagreements")
   unset(_check_codes)
   unset(_bad_codes)
+endif()
+
+# The tour notebook, run in a kernel of the interpreter vibromap._core is built for, against
+# the built program; skipped (exit 77, the reason in its output) where that interpreter lacks
+# nbclient or ipykernel. The made-up notebook has one fault of each kind: an output committed,
+# a number one ulp off, a number missing and one unchecked, an unchecked cell, a picture
+# missing, a cell that raises.
+if(TARGET vibromap_python)
+  set(_check_notebook ${PROJECT_SOURCE_DIR}/tests/docs/check_notebook.py)
+  set(_notebook_env "PYTHONPATH=${PROJECT_BINARY_DIR}/python;PYTHONDONTWRITEBYTECODE=1;VIBROMAP_EXE=$<TARGET_FILE:vibromap>")
+  add_test(NAME docs.notebook COMMAND "${VIBROMAP_PYTHON_EXECUTABLE}" ${_check_notebook}
+           ${PROJECT_SOURCE_DIR}/docs/notebooks/tour.ipynb ${PROJECT_SOURCE_DIR})
+  add_test(NAME docs.notebook_refuses_a_bad_notebook COMMAND "${VIBROMAP_PYTHON_EXECUTABLE}" ${_check_notebook}
+           ${PROJECT_SOURCE_DIR}/tests/docs/wrong_notebook.ipynb ${PROJECT_SOURCE_DIR})
+  set_tests_properties(docs.notebook docs.notebook_refuses_a_bad_notebook PROPERTIES
+    LABELS "docs;python" TIMEOUT 300 SKIP_RETURN_CODE 77 ENVIRONMENT "${_notebook_env}")
+  set_tests_properties(docs.notebook_refuses_a_bad_notebook PROPERTIES PASS_REGULAR_EXPRESSION
+    "'untagged' is committed with outputs.*'point': does not show soft.*'point': shows extra = 1, which no reference covers.*'point': k_con = 8\\.96[0-9]+, the command line's is 8\\.96.*'untagged' shows output that no check covers.*'trajectory' draws no picture.*'boom' failed: ZeroDivisionError.*7 disagreement")
+  execute_process(COMMAND "${VIBROMAP_PYTHON_EXECUTABLE}" -c "import nbclient, ipykernel"
+                  RESULT_VARIABLE _notebook_rc OUTPUT_QUIET ERROR_QUIET)
+  if(NOT _notebook_rc EQUAL 0)
+    message(STATUS "docs.notebook will be skipped: ${VIBROMAP_PYTHON_EXECUTABLE} cannot import nbclient "
+                   "and ipykernel (Debian: python3-nbclient python3-ipykernel)")
+  endif()
+  unset(_check_notebook)
+  unset(_notebook_env)
+  unset(_notebook_rc)
 endif()
 unset(_bad)
 unset(_brief)
