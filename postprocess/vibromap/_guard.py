@@ -83,17 +83,25 @@ def check_in_child(check, path: str) -> tuple[bool, str]:
         os.write(write_end, answer)
         os._exit(code)
     os.close(write_end)
+    held, status = _wait(pid, read_end)
+    answer = held.decode("utf-8", "replace")
+    if os.WIFSIGNALED(status):
+        return False, crash_line(path, signal.Signals(os.WTERMSIG(status)))
+    return os.WEXITSTATUS(status) == 0, answer
+
+
+def _wait(pid: int, read_end: int):
+    """What the child `pid` wrote to the pipe `read_end` until it ended, and its wait status;
+    Ctrl-C kills the child (it may be stuck in the HDF5 library) and goes on as KeyboardInterrupt."""
     try:
         with os.fdopen(read_end, "rb") as pipe:
-            answer = pipe.read().decode("utf-8", "replace")
+            held = pipe.read()
         _, status = os.waitpid(pid, 0)
     except KeyboardInterrupt:
         os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
         raise
-    if os.WIFSIGNALED(status):
-        return False, crash_line(path, signal.Signals(os.WTERMSIG(status)))
-    return os.WEXITSTATUS(status) == 0, answer
+    return held, status
 
 
 def run_guarded(prog: str, work) -> int:
@@ -106,14 +114,7 @@ def run_guarded(prog: str, work) -> int:
         os.close(read_end)
         _child(work, write_end)
     os.close(write_end)
-    try:
-        with os.fdopen(read_end, "rb") as pipe:
-            held = pipe.read()
-        _, status = os.waitpid(pid, 0)
-    except KeyboardInterrupt:
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
-        raise
+    held, status = _wait(pid, read_end)
     if os.WIFSIGNALED(status):
         sig = signal.Signals(os.WTERMSIG(status))
         if sig in CRASHES:
