@@ -85,7 +85,21 @@ def open(path, group: str | None = None):  # noqa: A001 - vibromap.files.open, a
     except READ_ERRORS as exc:
         raise DamagedFileError(f"{path}: damaged or not a vibromap file: cannot read it ({exc})") from exc
     ds.attrs["vibromap_kind"] = kind
+    ds.encoding["source"] = path  # where vibromap.plot reads it again
     return ds
+
+
+def checked(path, kind: str | None = None) -> str:
+    """The kind of the HDF5 file at ``path`` after the check open() makes in a forked child
+    (version, checksum, every dataset read), checked as a file of ``kind`` when given;
+    DamagedFileError when it fails or crashes."""
+    path = os.fspath(path)
+    if not os.path.isfile(path):
+        raise DamagedFileError(f"{path}: no such file")
+    ok, answer = check_in_child(lambda p: _check_whole_file(p, kind), path)
+    if not ok:
+        raise DamagedFileError(answer)
+    return answer
 
 
 def kind_of(path) -> str:
@@ -139,11 +153,12 @@ def _title_kind(path: str) -> str:
                             f"{path}: not a file vibromap writes (no root attribute 'title')")
 
 
-def _check_whole_file(path: str) -> str:
-    """Run in a child: the file's kind, after its version, checksum and every dataset are read."""
+def _check_whole_file(path: str, kind: str | None = None) -> str:
+    """Run in a child: the file's kind (given, or found), after its version, checksum and every
+    dataset are read."""
     import h5py
 
-    kind = _root_kind(path)
+    kind = kind or _root_kind(path)
     with open_h5(path, kind) as f:
         datasets = []
         f.visititems(lambda name, item: datasets.append(item) if isinstance(item, h5py.Dataset) else None)

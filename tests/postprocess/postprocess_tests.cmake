@@ -41,11 +41,12 @@ if(TARGET test_map_file)
   list(APPEND _vibromap_pytest_env "VIBROMAP_SAMPLE_MAP=${_vibromap_sample_map}")
 endif()
 
-# -p no:cacheprovider: write nothing into the source tree. vibromap.files on files the program
-# makes (test_files.py) is a test of its own, so that the two run side by side.
+# -p no:cacheprovider: write nothing into the source tree. vibromap.files and vibromap.plot on
+# files the program makes (test_files.py, test_plot_functions.py) are a test of their own, so
+# that the two run side by side.
 add_test(NAME postprocess_pytest
          COMMAND "${VibromapPython_EXECUTABLE}" -m pytest -q -p no:cacheprovider postprocess/tests
-                 --ignore=postprocess/tests/test_files.py
+                 --ignore=postprocess/tests/test_files.py --ignore=postprocess/tests/test_plot_functions.py
          WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
 set_tests_properties(postprocess_pytest PROPERTIES
   ENVIRONMENT "${_vibromap_pytest_env}"
@@ -53,6 +54,7 @@ set_tests_properties(postprocess_pytest PROPERTIES
 if(TARGET vibromap)
   add_test(NAME postprocess_files
            COMMAND "${VibromapPython_EXECUTABLE}" -m pytest -q -p no:cacheprovider postprocess/tests/test_files.py
+                   postprocess/tests/test_plot_functions.py
            WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
   set_tests_properties(postprocess_files PROPERTIES ENVIRONMENT "${_vibromap_pytest_env}" TIMEOUT 600)
 endif()

@@ -23,7 +23,7 @@ PROG = "plot_basins"
 
 import matplotlib
 import matplotlib.colors
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 from matplotlib.patches import Patch
 
@@ -105,7 +105,7 @@ def plot(b: Basins):
     A = len(b.attractors)
     colours = [COLORS[i % len(COLORS)] for i in range(A)] + [COLOR_UNDECIDED, COLOR_BLANK]
     cmap = matplotlib.colors.ListedColormap(colours)
-    fig, ax = plt.subplots(figsize=FIGSIZE_IN, layout="constrained")
+    fig, ax = _figure.subplots(figsize=FIGSIZE_IN, layout="constrained")
     ax.pcolormesh(b.x, b.y, colour_index(b), cmap=cmap, vmin=-0.5, vmax=A + 1.5, shading="nearest")
     names = ["x1", "x2", "v1", "v2"]
     rest = b.fixed_state
@@ -129,6 +129,8 @@ def plot(b: Basins):
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    return write_plot(PROG, lambda: plot(read_basins(args.file)), args.output, args.dpi)
+    from . import basins
+
+    return write_plot(PROG, lambda: basins(args.file), args.output, args.dpi)
 
 

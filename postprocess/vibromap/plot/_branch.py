@@ -28,7 +28,7 @@ from .._guard import guarded_main
 PROG = "plot_branch"
 
 import matplotlib
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 
 from . import _orbit_diagram as plot_orbit_diagram
@@ -293,7 +293,7 @@ def title_text(branch: dict) -> str:
 
 def plot(branch: dict, diagram: str | None = None):
     """The figure: the bifurcation labels' strip, the branch, k_con along it; x shared."""
-    fig, (strip, ax, kax) = plt.subplots(3, 1, figsize=(9.0, 7.5), sharex=True, constrained_layout=True,
+    fig, (strip, ax, kax) = _figure.subplots(3, 1, figsize=(9.0, 7.5), sharex=True, constrained_layout=True,
                                          gridspec_kw={"height_ratios": [0.9, 3.2, 1.6]})
     if diagram:
         name, units, values, states, key = plot_orbit_diagram.read_diagram(diagram, "x1")
@@ -348,6 +348,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.dpi <= 0:
         parser.error("--dpi must be positive")
     output = args.output or os.path.splitext(args.branch)[0] + ".png"
-    return write_plot(PROG, lambda: plot(read_branch(args.branch), args.diagram), output, args.dpi)
+    from . import branch
+
+    return write_plot(PROG, lambda: branch(args.branch, args.diagram), output, args.dpi)
 
 

@@ -44,21 +44,12 @@ PROG = "plot_census_map"
 import matplotlib
 import matplotlib.colors
 import matplotlib.lines
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 from matplotlib.patches import Patch
 
-from .._io import (
-    FAMILY_LABEL_CHANGE,
-    REGIME_PERIODIC,
-    MapSliceError,
-    SweepMap,
-    VibromapFileError,
-    census_regimes,
-    parse_fix,
-    read_map,
-    write_plot,
-)
+from .._io import (FAMILY_LABEL_CHANGE, REGIME_PERIODIC, MapSliceError, SweepMap, VibromapFileError, census_regimes,
+                   parse_fix, read_map, write_plot)  # fmt: skip
 
 from . import _regime_map as maps
 
@@ -219,7 +210,7 @@ def plot_family(sweep: SweepMap, sl, chosen: int, fig, ax, x_edges, y_edges) -> 
     values = np.asarray(sl.data["_family_fraction"], dtype=float)
     absent = done & np.isnan(values)
     fraction = np.ma.masked_array(values, mask=~done | absent)
-    cmap = plt.get_cmap("viridis").copy()
+    cmap = _figure.colormap("viridis")
     cmap.set_bad((0.0, 0.0, 0.0, 0.0))  # the layer below shows: not computed, or the family not there
     below = np.ma.masked_array(np.where(absent, 1, 0), mask=done & ~absent)
     ax.pcolormesh(x_edges, y_edges, below, cmap=matplotlib.colors.ListedColormap([COLOR_NOT_COMPUTED, COLOR_ABSENT]),
@@ -329,7 +320,7 @@ def draw_shock(fig, ax, sl, what: str, x_edges, y_edges):
         lo, hi = float(values.min()), float(values.max())
         if hi <= lo:
             lo, hi = lo / 1.5, hi * 1.5
-        mesh = ax.pcolormesh(x_edges, y_edges, values, cmap=plt.get_cmap("viridis"),
+        mesh = ax.pcolormesh(x_edges, y_edges, values, cmap=_figure.colormap("viridis"),
                              norm=matplotlib.colors.LogNorm(vmin=lo, vmax=hi), shading="flat")
         fig.colorbar(mesh, ax=ax, pad=0.02).set_label("minimal critical shock (motion scales L, omega L)", fontsize=9)
     title = f"shock of {what}: found in {maps.cells_text(int(found.sum()))}"
@@ -340,7 +331,7 @@ def draw_shock(fig, ax, sl, what: str, x_edges, y_edges):
 
 def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = None, what: str = ""):
     done = np.asarray(sl.data["done"]) != 0
-    fig, ax = plt.subplots(figsize=FIGSIZE_IN if sl.y is not None else maps.STRIP_FIGSIZE_IN, constrained_layout=True)
+    fig, ax = _figure.subplots(figsize=FIGSIZE_IN if sl.y is not None else maps.STRIP_FIGSIZE_IN, constrained_layout=True)
     x_edges, y_edges = maps.setup_axes(ax, sl)
     handles = []
     if show == "families":
@@ -365,7 +356,7 @@ def plot_map(sweep: SweepMap, sl, show: str, curves=(), chosen: int | None = Non
         title, handles = draw_shock(fig, ax, sl, what, x_edges, y_edges)
     else:
         soft = np.ma.masked_array(np.asarray(sl.data["soft_fraction"], dtype=float), mask=~done)
-        cmap = plt.get_cmap("viridis").copy()
+        cmap = _figure.colormap("viridis")
         cmap.set_bad(COLOR_NOT_COMPUTED)
         mesh = ax.pcolormesh(x_edges, y_edges, soft, cmap=cmap, vmin=0.0, vmax=1.0, shading="flat")
         fig.colorbar(mesh, ax=ax, pad=0.02).set_label("soft basin fraction (stable periodic with impacts, Hertz-valid, "
@@ -408,7 +399,7 @@ def plot_cell(sweep: SweepMap, index: tuple):
             fractions.append(value)
             errors.append(0.0)
             colors.append(COLOR_UNDECIDED)
-    fig, ax = plt.subplots(figsize=(9.0, 0.6 * len(labels) + 2.2), constrained_layout=True)
+    fig, ax = _figure.subplots(figsize=(9.0, 0.6 * len(labels) + 2.2), constrained_layout=True)
     y = np.arange(len(labels))[::-1]
     ax.barh(y, fractions, xerr=errors, color=colors, edgecolor="0.3", capsize=4)
     ax.set_yticks(y, labels)
@@ -429,29 +420,34 @@ def cell_text(sweep: SweepMap, index: tuple) -> str:
 
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
+    from . import census_map
+
     args = parse_args(argv)
+    return write_plot(PROG, lambda: census_map(args.map, args.show, args.x, args.y, args.fixed, args.curves, args.family,
+                                               args.at_values, args.solved),
+                      args.output, args.dpi, (VibromapFileError, MapSliceError))
 
-    def figure():
-        sweep = read_map(args.map)
-        require_census(sweep)
-        if args.show == "cell":
-            return plot_cell(sweep, cell_index(sweep, args.at_values))
-        chosen, what = None, ""
-        if args.show == "families":  # per-cell arrays, sliced with the others
-            sweep.data["_rest_family"], sweep.data["_rest_change"] = rest_family(sweep)
-        elif args.show == "family":
-            chosen = args.family if args.family is not None else default_family(sweep)
-            sweep.data["_family_fraction"], sweep.data["_family_change"] = family_fraction(sweep, chosen)
-        elif args.show == "shock":
-            require_shock(sweep)
-            chosen = shock_family(sweep, args.family)
-            what = add_shock(sweep, chosen)
-        sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot_map(sweep, sl, args.show, maps.read_curve_files(args.curves), chosen, what)
-        if args.solved:
-            maps.mark_solved(fig, sweep, sl)
-        return fig
 
-    return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError))
+def figure(path: str, show: str, x, y, fixed: dict, curves: list, family, at: dict, solved: bool):
+    """The figure of --show SHOW (vibromap.plot.census_map)."""
+    sweep = read_map(path)
+    require_census(sweep)
+    if show == "cell":
+        return plot_cell(sweep, cell_index(sweep, at))
+    chosen, what = None, ""
+    if show == "families":  # per-cell arrays, sliced with the others
+        sweep.data["_rest_family"], sweep.data["_rest_change"] = rest_family(sweep)
+    elif show == "family":
+        chosen = family if family is not None else default_family(sweep)
+        sweep.data["_family_fraction"], sweep.data["_family_change"] = family_fraction(sweep, chosen)
+    elif show == "shock":
+        require_shock(sweep)
+        chosen = shock_family(sweep, family)
+        what = add_shock(sweep, chosen)
+    sl = maps.choose_slice(sweep, x, y, fixed)
+    fig = plot_map(sweep, sl, show, maps.read_curve_files(curves), chosen, what)
+    if solved:
+        maps.mark_solved(fig, sweep, sl)
+    return fig
 
 

@@ -32,26 +32,13 @@ PROG = "plot_kcon_map"
 
 import matplotlib
 import matplotlib.colors
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.lines import Line2D
 
-from .._io import (
-    FLAG_NO,
-    FLAG_YES,
-    HERTZ_KEY,
-    SOFT_KEY,
-    MapSlice,
-    MapSliceError,
-    SoftInfo,
-    SweepMap,
-    VibromapFileError,
-    add_soft_cells,
-    cell_boundary,
-    read_map,
-    save_figure,
-)
+from .._io import (FLAG_NO, FLAG_YES, HERTZ_KEY, SOFT_KEY, MapSlice, MapSliceError, SoftInfo, SweepMap,
+                   VibromapFileError, add_soft_cells, cell_boundary, read_map, save_figure)  # fmt: skip
 
 from . import _regime_map as maps
 
@@ -144,7 +131,7 @@ def draw_kcon(fig, ax, x_edges, y_edges, k_con: np.ma.MaskedArray, soft_kcon: fl
     low, high = float(k_con.min()), float(k_con.max())
     if high <= low * 1.0000001:
         low, high = low / 2.0, high * 2.0
-    cmap = plt.get_cmap(CMAP).copy()
+    cmap = _figure.colormap(CMAP)
     cmap.set_bad(alpha=0.0)  # masked cells: the grey layer below shows through
     mesh = ax.pcolormesh(x_edges, y_edges, k_con, cmap=cmap, norm=matplotlib.colors.LogNorm(low, high), shading="flat")
     colorbar = fig.colorbar(mesh, ax=ax, pad=0.02)
@@ -206,30 +193,15 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     for mask, color, what in counts:
         if mask.any():
             handles.append(maps.cell_patch(color, f"{what}: {maps.cells_text(int(mask.sum()))}"))
-    handles += maps.draw_fragile(ax, sl, x_edges, y_edges)
-    handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
-    maps.legend_row(fig, ax_legend, handles)
-    return fig
+    return maps.finish_map(fig, ax, ax_legend, sl, curves, handles, x_edges, y_edges)
 
 
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
+    from . import kcon_map
+
     args = parse_args(argv)
-    try:
-        sweep = read_map(args.map)
-        require_kcon(sweep)
-        info = add_soft_cells(sweep, args.threshold)
-        sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot(sweep, sl, info, maps.read_curve_files(args.curves))
-        if args.solved:
-            maps.mark_solved(fig, sweep, sl)
-        save_figure(fig, args.output, args.dpi)
-    except (VibromapFileError, MapSliceError) as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    for note in maps.snapped_notes(sl) + maps.soft_notes(info):
-        print(f"{PROG}: note: {note}")
-    print(f"{PROG}: wrote {args.output}")
-    return 0
+    return maps.write_map_figure(PROG, lambda: kcon_map(args.map, args.x, args.y, args.fixed, args.curves, args.solved,
+                                                        args.threshold), args.output, args.dpi)
 
 

@@ -46,21 +46,12 @@ from .._guard import guarded_main
 PROG = "plot_optimise"
 
 import matplotlib
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .._io import (
-    HERTZ_LIMIT_DEFAULT,
-    MapSliceError,
-    VibromapFileError,
-    open_h5,
-    parse_fix,
-    read_map,
-    read_trajectory,
-    regime_labels,
-    save_figure,
-)
+from .._io import (HERTZ_LIMIT_DEFAULT, MapSliceError, VibromapFileError, open_h5, parse_fix, read_map,
+                   read_trajectory, regime_labels, save_figure)  # fmt: skip
 
 from . import _regime_map as maps
 from . import _trajectory as plot_trajectory
@@ -309,7 +300,7 @@ def contact_text(opt: Optimisation) -> str:
 
 def plot_convergence(opt: Optimisation):
     """Objective against evaluation number, per start."""
-    fig, ax = plt.subplots(figsize=CONVERGENCE_FIGSIZE_IN, constrained_layout=True)
+    fig, ax = _figure.subplots(figsize=CONVERGENCE_FIGSIZE_IN, constrained_layout=True)
     shown = []
     for position, s in enumerate(opt.starts):
         color = start_color(position)
@@ -472,6 +463,31 @@ def output_stem(output: str | None, optimisation: str) -> str:
     return root if ext.lower() == ".png" else output
 
 
+def figure(path: str, show: str, x, y, fixed: dict, periods=None, map_path=None):
+    """The figure of vibromap.plot.optimise: "convergence", "map" or "best"."""
+    opt = read_optimise(path)
+    if show == "convergence":
+        return plot_convergence(opt)
+    if show == "map":
+        map_path = map_path or find_sibling(opt.path, opt.seeds_from)
+        if map_path is None:
+            raise VibromapFileError(f"{path}: no seeding map beside it (seeds from {opt.seeds_from or 'unknown'})")
+        fig, sl = plot_on_map(opt, read_map(map_path), x, y, fixed)
+        fig.vibromap_notes = maps.snapped_notes(sl)
+        return fig
+    traj_path = find_sibling(opt.path, opt.trajectory)
+    if traj_path is None:
+        raise VibromapFileError(f"{path}: no trajectory of the best point beside it")
+    return best_figure(opt, read_trajectory(traj_path), periods)
+
+
+def best_figure(opt: Optimisation, traj, periods):
+    fig = plot_trajectory.plot(traj, plot_trajectory.select_periods(traj, periods))
+    hertz = hertz_text(opt)
+    fig.suptitle(f"best point: {plot_trajectory.title(traj)}\n{contact_text(opt)}" + (f"\n{hertz}" if hertz else ""))
+    return fig
+
+
 def write_figures(args: argparse.Namespace) -> tuple[list[str], list[str]]:
     """The figures that have their inputs: (files written, notes)."""
     opt = read_optimise(args.optimisation)
@@ -492,10 +508,7 @@ def write_figures(args: argparse.Namespace) -> tuple[list[str], list[str]]:
     if traj_path is None:
         notes.append("no trajectory of the best point: best-point figure skipped")
     else:
-        traj = read_trajectory(traj_path)
-        fig = plot_trajectory.plot(traj, plot_trajectory.select_periods(traj, args.periods))
-        hertz = hertz_text(opt)
-        fig.suptitle(f"best point: {plot_trajectory.title(traj)}\n{contact_text(opt)}" + (f"\n{hertz}" if hertz else ""))
+        fig = best_figure(opt, read_trajectory(traj_path), args.periods)
         out = f"{args.output}_best.png"
         save_figure(fig, out, args.dpi)
         written.append(out)

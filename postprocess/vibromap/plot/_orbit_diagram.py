@@ -21,7 +21,7 @@ from .._guard import guarded_main
 PROG = "plot_orbit_diagram"
 
 import matplotlib
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 
 from .._io import VibromapFileError, open_h5, read_dataset, write_plot, _text
@@ -49,7 +49,7 @@ def read_diagram(path: str, var: str):
 
 def plot(path: str, var: str):
     name, units, values, states, key = read_diagram(path, var)
-    fig, ax = plt.subplots(figsize=(9.0, 5.5), constrained_layout=True)
+    fig, ax = _figure.subplots(figsize=(9.0, 5.5), constrained_layout=True)
     keep = states.shape[2]
     for d, (color, label, marker) in enumerate(((COLOR_UP, "sweep up", "o"), (COLOR_DOWN, "sweep down", "x"))):
         x = np.repeat(values, keep)
@@ -75,6 +75,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.dpi <= 0:
         parser.error("--dpi must be positive")
     output = args.output or os.path.splitext(args.file)[0] + ".png"
-    return write_plot(PROG, lambda: plot(args.file, args.var), output, args.dpi)
+    from . import orbit_diagram
+
+    return write_plot(PROG, lambda: orbit_diagram(args.file, args.var), output, args.dpi)
 
 

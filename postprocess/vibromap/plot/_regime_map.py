@@ -32,31 +32,15 @@ import matplotlib
 import matplotlib.colors
 import matplotlib.legend
 import matplotlib.patheffects
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .._io import (
-    NOT_COMPUTED,
-    SOFT_FROM_MAP,
-    STABLE_NO,
-    MapAxis,
-    MapSlice,
-    MapSliceError,
-    SoftInfo,
-    SweepMap,
-    VibromapFileError,
-    axis_name,
-    cell_edges,
-    parse_fix,
-    read_curves,
-    read_map,
-    regime_counts,
-    slice2d,
-    save_figure,
-)
+from .._io import (NOT_COMPUTED, SOFT_FROM_MAP, STABLE_NO, MapAxis, MapSlice, MapSliceError, SoftInfo, SweepMap,
+                   VibromapFileError, axis_name, cell_edges, parse_fix, read_curves, read_map, regime_counts,
+                   slice2d, save_figure, write_plot)  # fmt: skip
 
 FIGSIZE_IN = (9.0, 6.0)  # width, height in inches; at the default 150 dpi: 1350 x 900 px
 STRIP_FIGSIZE_IN = (9.0, 3.0)  # a 1-D map: 1350 x 450 px
@@ -317,7 +301,7 @@ def figure_with_legend_row(sl: MapSlice, figsize, strip_figsize):
     """(fig, ax, ax_legend): a figure of figsize (strip_figsize for a 1-D map), the map above a
     row of its own for the legend (legend_row fills it), so that constrained layout keeps the
     legend clear of the x label and the data (matplotlib < 3.7 does not lay out figure legends)."""
-    fig, (ax, ax_legend) = plt.subplots(2, 1, figsize=strip_figsize if sl.y is None else figsize, constrained_layout=True)
+    fig, (ax, ax_legend) = _figure.subplots(2, 1, figsize=strip_figsize if sl.y is None else figsize, constrained_layout=True)
     ax_legend.axis("off")
     return fig, ax, ax_legend
 
@@ -426,7 +410,7 @@ def plot(sweep: SweepMap, sl: MapSlice, curves=()):
     cmap = matplotlib.colors.ListedColormap(colors)
     norm = matplotlib.colors.BoundaryNorm(np.arange(len(categories) + 1) - 0.5, len(categories))
 
-    fig, ax = plt.subplots(figsize=FIGSIZE_IN if sl.y is not None else STRIP_FIGSIZE_IN, constrained_layout=True)
+    fig, ax = _figure.subplots(figsize=FIGSIZE_IN if sl.y is not None else STRIP_FIGSIZE_IN, constrained_layout=True)
     x_edges, y_edges = setup_axes(ax, sl)
     ax.pcolormesh(x_edges, y_edges, index, cmap=cmap, norm=norm, shading="flat")
     ax.set_title(slice_title("regime map", sweep, sl), fontsize=10)
@@ -480,20 +464,30 @@ def cells_text(count: int) -> str:
 
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
+    from . import regime_map
+
     args = parse_args(argv)
-    try:
-        sweep = read_map(args.map)
-        sl = choose_slice(sweep, args.x, args.y, args.fixed)
-        fig = plot(sweep, sl, read_curve_files(args.curves))
-        if args.solved:
-            mark_solved(fig, sweep, sl)
-        save_figure(fig, args.output, args.dpi)
-    except (VibromapFileError, MapSliceError) as exc:
-        print(f"{PROG}: error: {exc}", file=sys.stderr)
-        return 2
-    for note in snapped_notes(sl):
-        print(f"{PROG}: note: {note}")
-    print(f"{PROG}: wrote {args.output}")
-    return 0
+    return write_map_figure(PROG, lambda: regime_map(args.map, args.x, args.y, args.fixed, args.curves, args.solved),
+                            args.output, args.dpi)
+
+
+def finish_map(fig, ax, ax_legend, sl: MapSlice, curves, handles: list, x_edges, y_edges):
+    """A map picture's last layers: the fragile cells, the curves, the legend row of handles."""
+    handles = handles + draw_fragile(ax, sl, x_edges, y_edges)
+    handles += draw_curves(ax, sl, list(curves), x_edges, y_edges)
+    legend_row(fig, ax_legend, handles)
+    return fig
+
+
+def write_map_figure(prog: str, make_figure, output: str, dpi: int) -> int:
+    """A map script's end: write_plot with the figure's notes (vibromap_notes) printed."""
+    notes = []
+
+    def figure():
+        fig = make_figure()
+        notes.extend(fig.vibromap_notes)
+        return fig
+
+    return write_plot(prog, figure, output, dpi, (VibromapFileError, MapSliceError), notes)
 
 

@@ -24,7 +24,7 @@ from .._guard import guarded_main
 PROG = "plot_restitution"
 
 import matplotlib
-import matplotlib.pyplot as plt
+from . import _figure
 
 FIGSIZE_IN = (9.0, 4.5)  # width, height in inches; at the default 150 dpi: 1350 x 675 px
 FIELDS = ("law", "e", "chi", "e_effective")
@@ -60,7 +60,7 @@ def read_rows(path: str) -> dict[str, list[tuple[float, float]]]:
 
 
 def make_figure(laws: dict[str, list[tuple[float, float]]]):
-    fig, (ax, diff) = plt.subplots(1, 2, figsize=FIGSIZE_IN, constrained_layout=True)
+    fig, (ax, diff) = _figure.subplots(1, 2, figsize=FIGSIZE_IN, constrained_layout=True)
     ax.plot([0, 1], [0, 1], color="0.6", linestyle="--", linewidth=1, label="e_effective = e")
     diff.axhline(0.0, color="0.6", linestyle="--", linewidth=1)
     for law, points in laws.items():
@@ -100,8 +100,6 @@ def main(argv: list[str] | None = None) -> int:
             fig.savefig(args.output, dpi=args.dpi)
         except OSError as exc:
             raise InputError(f"{args.output}: cannot write ({exc.strerror or exc})") from exc
-        finally:
-            plt.close(fig)
     except InputError as exc:
         print(f"{PROG}: error: {exc}", file=sys.stderr)
         return 2

@@ -33,27 +33,12 @@ PROG = "plot_soft_map"
 
 import matplotlib
 import matplotlib.colors
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 
-from .._io import (
-    FLAG_NO,
-    FLAG_YES,
-    HERTZ_KEY,
-    REGIME_PERIODIC,
-    SOFT_KEY,
-    STABLE_NO,
-    STABLE_YES,
-    MapSlice,
-    MapSliceError,
-    SoftInfo,
-    SweepMap,
-    VibromapFileError,
-    add_soft_cells,
-    periodic_with_impacts,
-    read_map,
-    write_plot,
-)
+from .._io import (FLAG_NO, FLAG_YES, HERTZ_KEY, REGIME_PERIODIC, SOFT_KEY, STABLE_NO, STABLE_YES, MapSlice,
+                   MapSliceError, SoftInfo, SweepMap, VibromapFileError, add_soft_cells, periodic_with_impacts,
+                   read_map, write_plot)  # fmt: skip
 
 from . import _regime_map as maps
 
@@ -172,27 +157,15 @@ def plot(sweep: SweepMap, sl: MapSlice, info: SoftInfo, curves=()):
     if invalid.any():
         maps.hatch_cells(ax, x_edges, y_edges, invalid, INVALID_HATCH, INVALID_HATCH_COLOR, gid="hertz-invalid")
     ax.set_title(maps.slice_title("where the motion is soft", sweep, sl) + "\n" + caption(info), fontsize=10)
-    handles += maps.draw_fragile(ax, sl, x_edges, y_edges)
-    handles += maps.draw_curves(ax, sl, list(curves), x_edges, y_edges)
-    maps.legend_row(fig, ax_legend, handles)
-    return fig
+    return maps.finish_map(fig, ax, ax_legend, sl, curves, handles, x_edges, y_edges)
 
 
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
+    from . import soft_map
+
     args = parse_args(argv)
-    notes = []
-
-    def figure():
-        sweep = read_map(args.map)
-        info = add_soft_cells(sweep)
-        sl = maps.choose_slice(sweep, args.x, args.y, args.fixed)
-        notes.extend(maps.snapped_notes(sl) + maps.soft_notes(info))
-        fig = plot(sweep, sl, info, maps.read_curve_files(args.curves))
-        if args.solved:
-            maps.mark_solved(fig, sweep, sl)
-        return fig
-
-    return write_plot(PROG, figure, args.output, args.dpi, (VibromapFileError, MapSliceError), notes)
+    return maps.write_map_figure(PROG, lambda: soft_map(args.map, args.x, args.y, args.fixed, args.curves, args.solved),
+                                 args.output, args.dpi)
 
 

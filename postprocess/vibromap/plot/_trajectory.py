@@ -20,7 +20,7 @@ from .._guard import guarded_main
 PROG = "plot_trajectory"
 
 import matplotlib
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 
 from .._io import Trajectory, VibromapFileError, read_trajectory, write_plot
@@ -74,7 +74,7 @@ def title(traj: Trajectory) -> str:
 def plot(traj: Trajectory, mask: np.ndarray):
     """The figure: displacements on top, contact force against external force below."""
     phase = traj.phase[mask]
-    fig, (ax_x, ax_f) = plt.subplots(2, 1, sharex=True, figsize=FIGSIZE_IN, constrained_layout=True)
+    fig, (ax_x, ax_f) = _figure.subplots(2, 1, sharex=True, figsize=FIGSIZE_IN, constrained_layout=True)
 
     ax_x.plot(phase, traj.x1[mask], color=COLOR_X1, label="x1 (main body)")
     ax_x.plot(phase, traj.x2[mask], color=COLOR_X2, label="x2 (attached body)")
@@ -99,17 +99,35 @@ def plot(traj: Trajectory, mask: np.ndarray):
     return fig
 
 
+def read(path: str) -> Trajectory:
+    """The trajectory file, refused when it has no samples or no positive period."""
+    traj = read_trajectory(path)
+    if traj.t.size == 0:
+        raise VibromapFileError(f"{path}: the trajectory has no samples")
+    if not traj.T > 0:
+        raise VibromapFileError(f"{path}: attribute 'T' is not a positive period")
+    return traj
+
+
+def from_dataset(ds) -> Trajectory:
+    """A Trajectory from a Dataset with the trajectory file's variables and attributes
+    (vibromap.trajectory(scene))."""
+    columns = {name: np.asarray(ds[name].values) for name in ("t", "x1", "x2", "v1", "v2", "Fc", "F")}
+    units = {name: str(ds[name].attrs.get("units", "")) for name in columns}
+    a = ds.attrs
+    return Trajectory(path="", units=units, T=float(a["T"]), regime=str(a.get("regime", "")), n=int(a.get("n", 0)),
+                      k=int(a.get("k", 0)), T_con=float(a.get("T_con", 0.0)), k_con=float(a.get("k_con", 0.0)),
+                      scene=str(a.get("scene", "")), vibromap_version=str(a.get("vibromap_version", "")), **columns)
+
+
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
+    from . import trajectory
+
     args = parse_args(argv)
 
     def figure():
-        traj = read_trajectory(args.trajectory)
-        if traj.t.size == 0:
-            raise VibromapFileError(f"{args.trajectory}: the trajectory has no samples")
-        if not traj.T > 0:
-            raise VibromapFileError(f"{args.trajectory}: attribute 'T' is not a positive period")
-        return plot(traj, select_periods(traj, args.periods))
+        return trajectory(args.trajectory, args.periods)
 
     return write_plot(PROG, figure, args.output, args.dpi)
 

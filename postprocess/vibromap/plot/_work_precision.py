@@ -31,7 +31,7 @@ from .._guard import guarded_main
 PROG = "plot_work_precision"
 
 import matplotlib
-import matplotlib.pyplot as plt
+from . import _figure
 import numpy as np
 
 from .._io import VibromapFileError, write_plot
@@ -210,7 +210,7 @@ def plot(study: Study, quantity: str):
     """The figure: one line per method; raises StudyFileError when nothing can be drawn."""
     if not any(plottable(c, quantity) for c in study.cases):
         raise StudyFileError(f"{study.path}: no case has a finite positive error of {quantity} and a solve time")
-    fig, ax = plt.subplots(figsize=FIGSIZE_IN, constrained_layout=True)
+    fig, ax = _figure.subplots(figsize=FIGSIZE_IN, constrained_layout=True)
     free = iter(f"C{i}" for i in range(4, 10))
     for method in methods_in_order(study):
         cases = [c for c in study.cases if c.method == method]
@@ -235,7 +235,9 @@ def plot(study: Study, quantity: str):
 @guarded_main(PROG)
 def main(argv: list[str] | None = None) -> int:
     args = parse_args(argv)
-    return write_plot(PROG, lambda: plot(read_study(args.csv), args.quantity), args.output, args.dpi,
+    from . import work_precision
+
+    return write_plot(PROG, lambda: work_precision(args.csv, args.quantity), args.output, args.dpi,
                       (StudyFileError, VibromapFileError))
 
 
