@@ -169,5 +169,10 @@ def _no_file(source) -> bool:
 
 
 def _is_hdf5(path: str) -> bool:
-    with open(path, "rb") as f:
-        return f.read(8) == b"\x89HDF\r\n\x1a\n"
+    """Whether path starts with HDF5's signature; a file that cannot be opened is left to the
+    reader, which names it in its one line."""
+    try:
+        with open(path, "rb") as f:
+            return f.read(8) == b"\x89HDF\r\n\x1a\n"
+    except OSError:
+        return False

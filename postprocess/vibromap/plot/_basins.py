@@ -14,7 +14,6 @@ Exit status: 0 on success, 2 for a bad argument or an unreadable file (one line 
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from .._guard import guarded_main
@@ -23,7 +22,7 @@ PROG = "plot_basins"
 
 import matplotlib
 import matplotlib.colors
-from . import _figure
+from . import _args, _figure
 import numpy as np
 from matplotlib.patches import Patch
 
@@ -50,14 +49,8 @@ POINT_KEYS = (("system", "m2", "m2 = {:g} kg"), ("system", "omega2", "omega2 = {
 def parse_args(argv: list[str] | None):
     p = argparse.ArgumentParser(prog=PROG, description="Plot the basins of attraction of a vibromap basins file.")
     p.add_argument("file", help="basins file (HDF5) of vibromap basins")
-    p.add_argument("-o", "--output", help="PNG to write (default: FILE with .png)")
-    p.add_argument("--dpi", type=int, default=150, help="resolution, dots per inch (default 150)")
-    args = p.parse_args(argv)
-    if args.dpi < 20 or args.dpi > 1200:
-        p.error(f"--dpi {args.dpi}: must be from 20 to 1200")
-    if not args.output:
-        args.output = os.path.splitext(args.file)[0] + ".png"
-    return args
+    _args.add_image(p, "FILE with .png")
+    return _args.finish(p, argv, "file")
 
 
 def legend_text(a) -> str:

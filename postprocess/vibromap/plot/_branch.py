@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import re
 import sys
 import textwrap
@@ -28,7 +27,7 @@ from .._guard import guarded_main
 PROG = "plot_branch"
 
 import matplotlib
-from . import _figure
+from . import _args, _figure
 import numpy as np
 
 from . import _orbit_diagram as plot_orbit_diagram
@@ -342,14 +341,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog=PROG, description="Plot a branch of vibromap continue.")
     parser.add_argument("branch", help="branch file of vibromap continue -o (HDF5), or its --format json output")
     parser.add_argument("--diagram", help="orbit-diagram file (HDF5) of the same key to draw underneath")
-    parser.add_argument("-o", "--output", help="PNG to write (default: BRANCH with .png)")
-    parser.add_argument("--dpi", type=int, default=150, help="resolution, dots per inch (default 150)")
-    args = parser.parse_args(argv)
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
-    output = args.output or os.path.splitext(args.branch)[0] + ".png"
+    _args.add_image(parser, "BRANCH with .png")
+    args = _args.finish(parser, argv, "branch")
     from . import branch
 
-    return write_plot(PROG, lambda: branch(args.branch, args.diagram), output, args.dpi)
+    return write_plot(PROG, lambda: branch(args.branch, args.diagram), args.output, args.dpi)
 
 

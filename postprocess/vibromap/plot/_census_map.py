@@ -35,6 +35,7 @@ vibromap-post).
 
 from __future__ import annotations
 
+import os
 import sys
 
 from .._guard import guarded_main
@@ -44,7 +45,7 @@ PROG = "plot_census_map"
 import matplotlib
 import matplotlib.colors
 import matplotlib.lines
-from . import _figure
+from . import _args, _figure
 import numpy as np
 from matplotlib.patches import Patch
 
@@ -70,37 +71,23 @@ COLOR_ABSENT = "#fbe3d6"
 
 
 def parse_args(argv: list[str] | None):
-    parser = maps.make_parser(
-        prog=PROG,
-        description=(
-            "Plot a census map of vibromap (a sweep whose scene had [census]): the number of attractors "
-            "per cell (--show attractors), the soft basin fraction per cell (--show soft), the soft "
-            "attractor's minimal critical shock per cell (--show shock), or the basin "
-            "fractions of one cell (--show cell --at NAME=VALUE ...)."
-        ),
-        suffix="_attractors",
-    )
+    parser = maps.make_parser(PROG, __doc__, "_attractors")
     parser.add_argument("--show", choices=("attractors", "soft", "shock", "cell", "families", "family"), default="attractors",
                         help="what to draw (default: attractors)")
     parser.add_argument("--family", type=int, metavar="ID",
                         help="--show family, --show shock: the family's id (default: the family with the most soft cells)")
     parser.add_argument("--at", metavar="NAME=VALUE", nargs="+", action="extend", default=[],
                         help="--show cell: the cell nearest these axis values (SI units; default: the middle of every axis)")
-    args = parser.parse_args(argv)
+    args = _args.finish(parser, argv)
     try:
-        args.fixed = parse_fix(args.fix)
         args.at_values = parse_fix([a.replace("--fix", "--at") for a in args.at])
     except ValueError as exc:
-        parser.error(str(exc).replace("--fix", "--at" if args.at else "--fix"))
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
+        parser.error(str(exc).replace("--fix", "--at"))
     if args.solved and args.show == "cell":
         parser.error("--solved marks the solved points of a map: not with --show cell")
     if args.curves and args.show == "cell":
         parser.error("--curves draws over a map: not with --show cell")
     if args.output is None:
-        import os
-
         args.output = os.path.splitext(args.map)[0] + SUFFIX[args.show] + ".png"
     return args
 

@@ -13,9 +13,9 @@ A red line outlines the soft region by the one definition (periodic with impacts
 Hertz-valid, k_con <= the map's soft_kcon): the map's /soft, or for another --threshold computed
 from regime, stable, hertz_valid and k_con; an invalid cell is never inside it. A map made with
 analysis.fragility cross-hatches its fragile cells in red (a perturbation of the initial state
-ends on another attractor), as plot_regime_map does. Other axes are held fixed as in plot_regime_map (--fix); the title names their values
-and, for a map made by shooting, that each cell is some stable orbit, not necessarily the motion
-from rest. The map must have stored k_con ([sweep] store = ["k_con", ...]).
+ends on another attractor), as plot_regime_map does. Other axes are held fixed as in
+plot_regime_map (--fix); the title names their values and, for a map made by shooting, that each
+cell is some stable orbit, not necessarily the motion from rest. The map must have stored k_con ([sweep] store = ["k_con", ...]).
 
 Exit status: 0 on success, 2 for a bad argument or an unreadable or invalid file, a map of
 another format version or a map without k_con (one line on stderr), 3 when numpy, h5py or
@@ -66,20 +66,7 @@ NO_KCON_GID = "no-kcon"  # gid of the cells drawn by why they have no k_con
 
 
 def parse_args(argv: list[str] | None):
-    parser = maps.make_parser(
-        prog=PROG,
-        description=(
-            "Plot k_con = T/T_con (forcing period over impact duration) over a 2-D slice of a vibromap "
-            "map file, on a log colour scale, with the soft region outlined: periodic with impacts, "
-            "stable, Hertz-valid and k_con <= the map's soft_kcon (10 by default). k_con ~1000 is a "
-            "rigid impact, ~1-10 a soft one. Cells beyond the Hertz limit (z_max/R* > hertz_limit) are "
-            "greyed and hatched; cells without a k_con are coloured by why (no contact, permanent contact, "
-            "not periodic, unresolved or failed, other) and named in the legend, apart from cells not "
-            "computed. The map must store "
-            "k_con ([sweep] store = [\"k_con\", ...])."
-        ),
-        suffix="_kcon",
-    )
+    parser = maps.make_parser(PROG, __doc__, "_kcon")
     parser.add_argument(
         "--threshold",
         metavar="K",

@@ -46,11 +46,11 @@ from .._guard import guarded_main
 PROG = "plot_optimise"
 
 import matplotlib
-from . import _figure
+from . import _args, _figure
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .._io import (HERTZ_LIMIT_DEFAULT, MapSliceError, VibromapFileError, open_h5, parse_fix, read_map,
+from .._io import (HERTZ_LIMIT_DEFAULT, MapSliceError, VibromapFileError, open_h5, read_map,
                    read_trajectory, regime_labels, save_figure)  # fmt: skip
 
 from . import _regime_map as maps
@@ -419,10 +419,8 @@ def plot_on_map(opt: Optimisation, sweep, x: str | None, y: str | None, fixed: d
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog=PROG,
-        description=(
-            "Plot a vibromap optimisation: convergence of every start, the starts and best points over the "
-            "regime map they were seeded from, and the best point's displacements and contact force."
-        ),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description=__doc__,
         epilog=(
             "Writes STEM_convergence.png, STEM_on_map.png and STEM_best.png (STEM: -o without a trailing .png, "
             "default OPT without .h5). "
@@ -432,25 +430,14 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     )
     parser.add_argument("optimisation", metavar="OPT.h5", help="file written by vibromap optimise")
     parser.add_argument("--map", metavar="MAP.h5", help="seeding map (default: the file named in OPT.h5's seeds_from)")
-    parser.add_argument("--x", metavar="AXIS", help="map axis along x (default: the free parameter with the most grid points)")
-    parser.add_argument("--y", metavar="AXIS", help="map axis along y (default: the free parameter with the most points after x)")
-    parser.add_argument("--fix", metavar="NAME=VALUE", nargs="+", action="extend", default=[],
-                        help="hold map axis NAME at the grid value nearest VALUE (default: the best point's value)")  # fmt: skip
-    parser.add_argument("--periods", metavar="N", type=float, help="plot only N forcing periods of the best motion")
-    parser.add_argument("-o", "--output", metavar="STEM",
-                        help="stem of the images: STEM_convergence.png, STEM_on_map.png, STEM_best.png; "
-                             "a trailing .png is dropped (-o law.png: law_convergence.png, ...) "
-                             "(default: OPT without .h5)")  # fmt: skip
-    parser.add_argument("--dpi", type=int, default=150, help="resolution of the images (default: 150)")
-    args = parser.parse_args(argv)
-    try:
-        args.fixed = parse_fix(args.fix)
-    except ValueError as exc:
-        parser.error(str(exc))
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
-    if args.periods is not None and not args.periods > 0:
-        parser.error("--periods must be positive")
+    _args.add_slice(parser, x="map axis along x (default: the free parameter with the most grid points)",
+                    y="map axis along y (default: the free parameter with the most points after x)",
+                    fix="hold map axis NAME at the grid value nearest VALUE (default: the best point's value)")  # fmt: skip
+    _args.add_periods(parser, "plot only N forcing periods of the best motion")
+    _args.add_image(parser, "OPT without .h5", metavar="STEM",
+                    what="stem of the images: STEM_convergence.png, STEM_on_map.png, STEM_best.png; "
+                         "a trailing .png is dropped (-o law.png: law_convergence.png, ...)")  # fmt: skip
+    args = _args.finish(parser, argv)
     args.output = output_stem(args.output, args.optimisation)
     return args
 

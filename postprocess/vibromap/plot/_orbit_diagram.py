@@ -21,7 +21,7 @@ from .._guard import guarded_main
 PROG = "plot_orbit_diagram"
 
 import matplotlib
-from . import _figure
+from . import _args, _figure
 import numpy as np
 
 from .._io import VibromapFileError, open_h5, read_dataset, write_plot, _text
@@ -69,14 +69,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog=PROG, description="Plot a vibromap orbit-diagram file (sweep up and down).")
     parser.add_argument("file", help="orbit-diagram file (HDF5) of vibromap orbit-diagram -o")
     parser.add_argument("--var", choices=("x1", "x2", "v1", "v2"), default="x1", help="state to draw (default x1)")
-    parser.add_argument("-o", "--output", help="PNG to write (default: FILE with .png)")
-    parser.add_argument("--dpi", type=int, default=150, help="resolution, dots per inch (default 150)")
-    args = parser.parse_args(argv)
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
-    output = args.output or os.path.splitext(args.file)[0] + ".png"
+    _args.add_image(parser, "FILE with .png")
+    args = _args.finish(parser, argv, "file")
     from . import orbit_diagram
 
-    return write_plot(PROG, lambda: orbit_diagram(args.file, args.var), output, args.dpi)
+    return write_plot(PROG, lambda: orbit_diagram(args.file, args.var), args.output, args.dpi)
 
 

@@ -32,14 +32,14 @@ import matplotlib
 import matplotlib.colors
 import matplotlib.legend
 import matplotlib.patheffects
-from . import _figure
+from . import _args, _figure
 import numpy as np
 from matplotlib.collections import PolyCollection
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from .._io import (NOT_COMPUTED, SOFT_FROM_MAP, STABLE_NO, MapAxis, MapSlice, MapSliceError, SoftInfo, SweepMap,
-                   VibromapFileError, axis_name, cell_edges, parse_fix, read_curves, read_map, regime_counts,
+                   VibromapFileError, axis_name, cell_edges, read_curves, read_map, regime_counts,
                    slice2d, save_figure, write_plot)  # fmt: skip
 
 FIGSIZE_IN = (9.0, 6.0)  # width, height in inches; at the default 150 dpi: 1350 x 900 px
@@ -83,9 +83,12 @@ CURVE_WIDTH = 1.8
 
 
 def make_parser(prog: str = PROG, description: str | None = None, suffix: str = "_regime") -> argparse.ArgumentParser:
-    """The options both map plots share (plot_kcon_map adds its own to this parser)."""
+    """The options the map plots share (plot_kcon_map, plot_soft_map and plot_census_map add their
+    own to this parser; description: their docstring)."""
     parser = argparse.ArgumentParser(
         prog=prog,
+        # A script's own description is its module's docstring, laid out as written.
+        formatter_class=argparse.RawDescriptionHelpFormatter if description else argparse.HelpFormatter,
         description=description
         or (
             "Plot the regime map of a 2-D slice of a vibromap map file: one colour per regime "
@@ -102,17 +105,11 @@ def make_parser(prog: str = PROG, description: str | None = None, suffix: str = 
         ),
     )
     parser.add_argument("map", metavar="MAP.h5", help="map file written by a vibromap sweep")
-    parser.add_argument("--x", metavar="AXIS", help="axis along x (default: the map's first axis)")
-    parser.add_argument(
-        "--y", metavar="AXIS", help="axis along y (default: the map's first axis other than x; none for a 1-D map)"
-    )
-    parser.add_argument(
-        "--fix",
-        metavar="NAME=VALUE",
-        nargs="+",
-        action="extend",
-        default=[],
-        help="hold axis NAME at the grid value nearest VALUE (SI units), e.g. --fix R1=0.5 m2=310; "
+    _args.add_slice(
+        parser,
+        x="axis along x (default: the map's first axis)",
+        y="axis along y (default: the map's first axis other than x; none for a 1-D map)",
+        fix="hold axis NAME at the grid value nearest VALUE (SI units), e.g. --fix R1=0.5 m2=310; "
         "may be repeated; give MAP.h5 before it (default: the middle grid value of every axis not plotted)",
     )
     parser.add_argument(
@@ -124,8 +121,7 @@ def make_parser(prog: str = PROG, description: str | None = None, suffix: str = 
         "style per kind, codim-2 points as markers; their two keys must be the plot's x and y axes (either way "
         "round); may be repeated",
     )
-    parser.add_argument("-o", "--output", metavar="OUT.png", help=f"image to write (default: MAP{suffix}.png)")
-    parser.add_argument("--dpi", type=int, default=150, help="resolution of the image (default: 150)")
+    _args.add_image(parser, f"MAP{suffix}.png")
     parser.add_argument(
         "--solved",
         action="store_true",
@@ -137,16 +133,7 @@ def make_parser(prog: str = PROG, description: str | None = None, suffix: str = 
 
 def finish_args(parser: argparse.ArgumentParser, argv: list[str] | None, suffix: str) -> argparse.Namespace:
     """Parses argv, turns --fix into args.fixed {name: value}, defaults the output name."""
-    args = parser.parse_args(argv)
-    try:
-        args.fixed = parse_fix(args.fix)
-    except ValueError as exc:
-        parser.error(str(exc))
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
-    if args.output is None:
-        args.output = os.path.splitext(args.map)[0] + suffix + ".png"
-    return args
+    return _args.finish(parser, argv, "map", suffix + ".png")
 
 
 def parse_args(argv: list[str] | None) -> argparse.Namespace:

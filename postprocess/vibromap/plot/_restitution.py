@@ -24,7 +24,7 @@ from .._guard import guarded_main
 PROG = "plot_restitution"
 
 import matplotlib
-from . import _figure
+from . import _args, _figure
 
 FIGSIZE_IN = (9.0, 4.5)  # width, height in inches; at the default 150 dpi: 1350 x 675 px
 FIELDS = ("law", "e", "chi", "e_effective")
@@ -90,9 +90,8 @@ def main(argv: list[str] | None = None) -> int:
         "`vibromap restitution --format json`.",
     )
     parser.add_argument("input", help="JSON file of vibromap restitution --format json, or - for stdin")
-    parser.add_argument("-o", "--output", required=True, help="PNG file to write")
-    parser.add_argument("--dpi", type=int, default=150, help="resolution (default 150)")
-    args = parser.parse_args(argv)
+    _args.add_image(parser, None, what="PNG file to write")
+    args = _args.finish(parser, argv)
     try:
         laws = read_rows(args.input)
         fig = make_figure(laws)

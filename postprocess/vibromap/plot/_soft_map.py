@@ -65,17 +65,7 @@ NO_IMPACT_REGIMES = ("no_contact", "permanent_contact")
 
 
 def parse_args(argv: list[str] | None):
-    parser = maps.make_parser(
-        prog=PROG,
-        description=(
-            "Plot where the motion of a 2-D slice of a vibromap map file is soft: periodic with impacts, "
-            "stable, Hertz-valid (z_max/R* <= the map's hertz_limit, 0.05 by default) and k_con <= the "
-            "map's soft_kcon (10 by default). Categories: soft; rigid (k_con > soft_kcon); Hertz-invalid "
-            "(hatched; would be soft or not); unstable orbit; no impact; not periodic; not computed; each "
-            "with its cell count in the legend."
-        ),
-        suffix="_soft",
-    )
+    parser = maps.make_parser(PROG, __doc__, "_soft")
     return maps.finish_args(parser, argv, "_soft")
 
 

@@ -12,7 +12,6 @@ on stderr), 3 when numpy, h5py or matplotlib cannot be imported (run via vibroma
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 
 from .._guard import guarded_main
@@ -20,7 +19,7 @@ from .._guard import guarded_main
 PROG = "plot_trajectory"
 
 import matplotlib
-from . import _figure
+from . import _args, _figure
 import numpy as np
 
 from .._io import Trajectory, VibromapFileError, read_trajectory, write_plot
@@ -35,22 +34,9 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
         description="Plot displacements and contact/external force of a vibromap trajectory file.",
     )
     parser.add_argument("trajectory", metavar="TRAJ.h5", help="trajectory file written by vibromap")
-    parser.add_argument("-o", "--output", metavar="OUT.png", help="image to write (default: TRAJ.png)")
-    parser.add_argument(
-        "--periods",
-        metavar="N",
-        type=float,
-        help="plot only the first N forcing periods of the kept window (default: all)",
-    )
-    parser.add_argument("--dpi", type=int, default=150, help="resolution of the image (default: 150)")
-    args = parser.parse_args(argv)
-    if args.periods is not None and not args.periods > 0:
-        parser.error("--periods must be positive")
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
-    if args.output is None:
-        args.output = os.path.splitext(args.trajectory)[0] + ".png"
-    return args
+    _args.add_image(parser, "TRAJ.png")
+    _args.add_periods(parser, "plot only the first N forcing periods of the kept window (default: all)")
+    return _args.finish(parser, argv, "trajectory")
 
 
 def select_periods(traj: Trajectory, periods: float | None) -> np.ndarray:

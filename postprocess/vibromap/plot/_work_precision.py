@@ -23,7 +23,6 @@ import argparse
 import csv
 import dataclasses
 import math
-import os
 import sys
 
 from .._guard import guarded_main
@@ -31,7 +30,7 @@ from .._guard import guarded_main
 PROG = "plot_work_precision"
 
 import matplotlib
-from . import _figure
+from . import _args, _figure
 import numpy as np
 
 from .._io import VibromapFileError, write_plot
@@ -71,16 +70,9 @@ class Study:
 
 
 def parse_args(argv: list[str] | None) -> argparse.Namespace:
-    parser = argparse.ArgumentParser(
-        prog=PROG,
-        description=(
-            "Plot the CSV of 'vibromap accuracy SCENE --csv FILE.csv' as relative error against solve "
-            "time (log-log), one line per method (rk4, dopri5, hybrid+shooting), each point annotated "
-            "with its tolerance or steps per period."
-        ),
-    )
+    parser = argparse.ArgumentParser(prog=PROG, formatter_class=argparse.RawDescriptionHelpFormatter, description=__doc__)
     parser.add_argument("csv", metavar="CSV", help="accuracy study written by vibromap accuracy --csv")
-    parser.add_argument("-o", "--output", metavar="OUT.png", help="image to write (default: CSV's name with .png)")
+    _args.add_image(parser, "CSV's name with .png")
     parser.add_argument(
         "--quantity",
         choices=tuple(QUANTITIES),
@@ -88,13 +80,7 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
         help="whose relative error to plot: T_con (impact duration), F_max (peak contact force) or "
         "k_con = T/T_con (default: T_con)",
     )
-    parser.add_argument("--dpi", type=int, default=150, help="resolution of the image (default: 150)")
-    args = parser.parse_args(argv)
-    if args.dpi <= 0:
-        parser.error("--dpi must be positive")
-    if args.output is None:
-        args.output = os.path.splitext(args.csv)[0] + ".png"
-    return args
+    return _args.finish(parser, argv, "csv")
 
 
 def number(row: dict[str, str], column: str, where: str) -> float:
