@@ -37,11 +37,12 @@ PathLike = Union[str, "os.PathLike[str]"]
 from ._program import _SceneArgs, _Progress, _CENSUS_K, _execute, _answer
 
 def _open(path: PathLike, group: Optional[str] = None) -> "xarray.Dataset":
-    """A file vibromap wrote as an xarray Dataset, read into memory (the file is closed)."""
-    import xarray
+    """A file vibromap wrote, as vibromap.files.open gives it: read into memory (the file is
+    closed), its codes named beside them (``soft_name``, ``regime_name``, ...), checked whole
+    first (a damaged file raises vibromap.files.DamagedFileError, a ValueError)."""
+    from . import files
 
-    with xarray.open_dataset(os.fspath(path), engine="h5netcdf", group=group, phony_dims="access") as ds:
-        return ds.load()
+    return files.open(path, group)
 
 
 def _output(output: Optional[PathLike], scene: Scene, suffix: str) -> str:
