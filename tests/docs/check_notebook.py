@@ -11,7 +11,7 @@ the notebook's folder as Jupyter would start it. Then:
     check reads the lines the cell prints, each one or more "name = value" (optionally after
     "label: ", separated by ", "), and wants exactly the names it knows, each value as Python
     prints the number the command line gives for the same scene (repr of a float: bit for bit);
-  - a cell that draws shows an image.
+  - a cell that draws shows an image; a cell that runs the farm shows its progress bar, ended full.
 --images DIR writes each cell's pictures to DIR/tour_<cell id>.png (the pictures of the docs).
 
 Exit status: 0 when every cell ran and every number agrees; 1 otherwise (one line each);
@@ -134,27 +134,71 @@ def check_census(ref: Reference) -> Dict[str, object]:
     return want
 
 
+MAP_AXES = ('sweep.E2={from = 1e5, to = 1e9, n = 8, scale = "log"}', "sweep.omega={from = 6, to = 8, n = 8}")
+
+
+def check_map(ref: Reference) -> Dict[str, object]:
+    """The notebook's map made on 2 ranks; this reference on 1 (the cells are independent: the
+    rank count changes no cell, so agreeing also checks that)."""
+    import h5py
+    import numpy as np
+
+    path = ref.scratch / "map.h5"
+    args = ["sweep", TABLE2, "-o", str(path), "--quiet"]
+    for s in MAP_AXES:
+        args += ["--set", s]
+    ref.run(*args)
+    with h5py.File(path, "r") as f:
+        k_con, soft = f["k_con"][...], f["soft"][...]
+    return {"cells": int(k_con.size), "soft": int(np.count_nonzero(soft == 1)), "k_con_max": float(np.nanmax(k_con))}
+
+
+def check_branch(ref: Reference) -> Dict[str, object]:
+    """The first branch's points and folds (the doubled branches are under "branches")."""
+    d = json.loads(ref.run("continue", TABLE2, "--param", "omega", "--from", "7.23", "--to", "9",
+                           "--format", "json", "-o", str(ref.scratch / "branch.h5")).stdout)
+    folds = [b["param"] for b in d["bifurcations"] if b["type"] == "fold"]
+    if not folds:
+        raise RuntimeError("the branch has no fold: the cell has nothing to show")
+    want: Dict[str, object] = {"points": len(d["points"])}
+    for i, p in enumerate(folds):
+        want[f"fold {i}.omega"] = p
+    return want
+
+
+# The cells that run the farm, whose progress bar must end full.
+SHOWS_PROGRESS = ("map",)
+
 # A tag's check: the names and values its cell must show, and whether it draws.
 CHECKS: Dict[str, tuple[Callable[[Reference], Dict[str, object]], bool]] = {
     "point": (check_point, False),
     "changed": (check_changed, False),
     "trajectory": (check_trajectory, True),
     "census": (check_census, False),
+    "map": (check_map, True),
+    "branch": (check_branch, True),
 }
 
 
-def cell_text(cell) -> tuple[str, str, List[bytes]]:
-    """The cell's printed text (stdout and results), its stderr and its PNG pictures."""
-    text, err, images = [], [], []
+PROGRESS = re.compile(r'^<progress value="(\d+)" max="(\d+)"')
+
+
+def cell_text(cell) -> tuple[str, str, List[bytes], List[tuple[int, int]]]:
+    """The cell's printed text (stdout and results), its stderr, its PNG pictures and its
+    progress bars as (done, total) where they ended (vibromap.sweep's, updated in place)."""
+    text, err, images, bars = [], [], [], []
     for o in cell.get("outputs", []):
         if o.output_type == "stream":
             (text if o.name == "stdout" else err).append(o.text)
         elif o.output_type in ("execute_result", "display_data"):
-            if "image/png" in o.data:
+            bar = PROGRESS.match(o.data.get("text/html", ""))
+            if bar:
+                bars.append((int(bar.group(1)), int(bar.group(2))))
+            elif "image/png" in o.data:
                 images.append(base64.b64decode(o.data["image/png"]))
             elif "text/plain" in o.data:
                 text.append(o.data["text/plain"] + "\n")
-    return "".join(text), "".join(err), images
+    return "".join(text), "".join(err), images, bars
 
 
 def stored_outputs(nb, name: str, errors: List[str]) -> None:
@@ -199,7 +243,7 @@ def check_cells(nb, name: str, ref: Reference, images_dir: Path | None, errors: 
         if failed:
             errors.append(f"{where} failed: {failed[0].ename}: {failed[0].evalue}")
             continue
-        text, err, images = cell_text(cell)
+        text, err, images, bars = cell_text(cell)
         if err:
             errors.append(f"{where} writes to stderr: {err.strip().splitlines()[-1]}")
         tags = [t for t in cell.metadata.get("tags", []) if t in CHECKS]
@@ -214,6 +258,8 @@ def check_cells(nb, name: str, ref: Reference, images_dir: Path | None, errors: 
             errors.append(f"{where}: reference: {e}")
         if draws and not images:
             errors.append(f"{where} draws no picture")
+        if tags[0] in SHOWS_PROGRESS and (not bars or bars[-1][0] != bars[-1][1]):
+            errors.append(f"{where} shows no progress bar that ends full (shown: {bars})")
         if images_dir is not None:
             for i, png in enumerate(images):
                 suffix = f"_{i}" if i else ""

@@ -68,6 +68,7 @@ if(TARGET vibromap_python)
            ${PROJECT_SOURCE_DIR}/tests/docs/wrong_notebook.ipynb ${PROJECT_SOURCE_DIR})
   set_tests_properties(docs.notebook docs.notebook_refuses_a_bad_notebook PROPERTIES
     LABELS "docs;python" TIMEOUT 300 SKIP_RETURN_CODE 77 ENVIRONMENT "${_notebook_env}")
+  set_tests_properties(docs.notebook PROPERTIES PROCESSORS 2)  # its map runs on 2 MPI ranks
   set_tests_properties(docs.notebook_refuses_a_bad_notebook PROPERTIES PASS_REGULAR_EXPRESSION
     "'untagged' is committed with outputs.*'point': does not show soft.*'point': shows extra = 1, which no reference covers.*'point': k_con = 8\\.96[0-9]+, the command line's is 8\\.96.*'untagged' shows output that no check covers.*'trajectory' draws no picture.*'boom' failed: ZeroDivisionError.*7 disagreement")
   execute_process(COMMAND "${VIBROMAP_PYTHON_EXECUTABLE}" -c "import nbclient, ipykernel"
