@@ -136,3 +136,12 @@ def inside(segments, point) -> bool:
         if x0 == x1 and x0 > x and min(y0, y1) <= y < max(y0, y1):
             crossings += 1
     return crossings % 2 == 1
+
+
+@pytest.fixture(scope="session")
+def made(tmp_path_factory):
+    """{name: path}: one file of each kind vibromap writes, made once by the built program
+    (real_files.py; the tests that use it skip where VIBROMAP_EXE is not set)."""
+    import real_files
+
+    return real_files.make_all(tmp_path_factory.mktemp("real-files"))

@@ -69,7 +69,8 @@ def vibromap(*args) -> None:
 
 
 def make_all(tmp) -> dict:
-    """{name: path} of one file of each kind, made in the folder tmp."""
+    """{name: path} of one file of each kind, made in the folder tmp (conftest's session
+    fixture `made`: once for all the tests that read them)."""
     def scene(name, text):
         (tmp / name).write_text(text)
         return tmp / name
@@ -91,4 +92,6 @@ def make_all(tmp) -> dict:
     proc = subprocess.run([exe(), "restitution", "--format", "json"], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     out["restitution"].write_text(proc.stdout)
+    out["accuracy"] = tmp / "accuracy.csv"
+    vibromap("accuracy", TABLE2, "-q", "--csv", out["accuracy"])
     return out

@@ -13,14 +13,8 @@ import h5py
 import numpy as np
 import pytest
 
-import real_files
 from stamp import set_version
 from vibromap import _guard, files
-
-
-@pytest.fixture(scope="module")
-def made(tmp_path_factory):
-    return real_files.make_all(tmp_path_factory.mktemp("files"))
 
 
 def raw(path, name):
@@ -36,7 +30,7 @@ def flag_table(attrs) -> dict[int, str]:
                                         ("trajectory", "trajectory file"), ("basins", "basins file"),
                                         ("optimise", "optimisation file"), ("branch", "branch file"),
                                         ("orbit", "orbit-diagram file"), ("curves", "curve file"),
-                                        ("restitution", "restitution JSON")])  # fmt: skip
+                                        ("restitution", "restitution JSON"), ("accuracy", "accuracy CSV")])  # fmt: skip
 def test_every_kind_opens_and_is_named(made, name, kind):
     ds = files.open(made[name])
     assert ds.attrs["vibromap_kind"] == kind
@@ -129,6 +123,20 @@ def test_restitution_json_is_a_table_of_rows(made):
     rows = json.loads(open(made["restitution"]).read())
     assert ds.law.values.tolist() == [r["law"] for r in rows]
     np.testing.assert_array_equal(ds.e_effective.values, [r["e_effective"] for r in rows])
+
+
+def test_the_accuracy_csv_is_a_table_of_cases(made):
+    """One case a row, the numbers as numbers (an empty cell NaN), the words as words."""
+    import csv
+
+    ds = files.open(made["accuracy"])
+    with open(made["accuracy"], newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert ds.sizes["case"] == len(rows) and rows[0]["method"] == "reference"
+    assert ds.method.values.tolist() == [r["method"] for r in rows]
+    assert ds.k_con.dtype == np.float64
+    np.testing.assert_array_equal(ds.k_con.values, [float(r["k_con"]) for r in rows])
+    assert ds.rel_err_k_con.values[0] == 0.0 and np.all(ds.rel_err_k_con.values[1:] > 0.0)
 
 
 # ---- files that cannot be read --------------------------------------------------------------

@@ -9,13 +9,7 @@ import numpy as np
 import pytest
 from matplotlib.figure import Figure
 
-import real_files
 from vibromap import files, plot
-
-
-@pytest.fixture(scope="module")
-def made(tmp_path_factory):
-    return real_files.make_all(tmp_path_factory.mktemp("pictures"))
 
 
 def texts(fig) -> list[str]:
@@ -93,6 +87,14 @@ def test_restitution_draws_one_line_per_law(made):
     fig = figure_of(plot.restitution, made["restitution"])
     laws = sorted(set(ds.law.values.tolist()))
     assert all(any(law in entry for entry in legend_entries(fig)) for law in laws)
+
+
+def test_work_precision_draws_one_line_per_method_of_the_study(made):
+    ds = files.open(made["accuracy"])
+    fig = figure_of(plot.work_precision, made["accuracy"], quantity="k_con")
+    methods = sorted(set(ds.method.values.tolist()) - {"reference"})
+    assert methods and all(any(entry.startswith(m) for entry in legend_entries(fig)) for m in methods)
+    assert any(f"k_con = {ds.k_con.values[0]:.6g}" in t for t in texts(fig))  # the reference's, in the title
 
 
 def test_a_damaged_file_raises_one_value_error(made, tmp_path):

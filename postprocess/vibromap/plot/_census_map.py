@@ -390,10 +390,13 @@ def plot_cell(sweep: SweepMap, index: tuple):
     y = np.arange(len(labels))[::-1]
     ax.barh(y, fractions, xerr=errors, color=colors, edgecolor="0.3", capsize=4)
     ax.set_yticks(y, labels)
-    ax.set_xlim(0.0, 1.0)
+    # Each fraction's number right of its error bar, never on it: the axis runs past 1 when a
+    # bar and its error reach near 1, its ticks stay those of a fraction.
+    ax.set_xlim(0.0, max([1.0] + [f + e + 0.1 for f, e in zip(fractions, errors)]))
+    ax.set_xticks(np.linspace(0.0, 1.0, 6))
     ax.set_xlabel("basin fraction (error bars: one standard error sqrt(p(1-p)/K))")
     for yy, f, e in zip(y, fractions, errors):
-        ax.text(min(f + e + 0.02, 0.92), yy, f"{f:.3f}", va="center", fontsize=9)
+        ax.text(f + e + 0.015, yy, f"{f:.3f}", va="center", fontsize=9)
     soft = float(sweep.data["soft_fraction"][index])
     warning = sweep.answer_warning()  # the from-rest attractor's datasets of a shooting map
     ax.set_title(f"basins of the cell {cell_text(sweep, index)}  ({sweep.path.rsplit('/', 1)[-1]})\n"

@@ -322,7 +322,7 @@ def plot_convergence(opt: Optimisation):
                    label=f"best {opt.quantity} = {level:.5g}{soft_check_text(opt.best[0])}")
     ax.set_xlabel("evaluation (point solves of the start, in order)")
     ax.set_ylabel(f"{opt.quantity} ({opt.sense}d)")
-    ax.set_title(f"{os.path.basename(opt.path)}: convergence of {len(opt.starts)} starts, keeping {opt.regime}\n"
+    ax.set_title(f"{os.path.basename(opt.path)}: convergence of {len(opt.starts)} start{'s' if len(opt.starts) != 1 else ''}, keeping {opt.regime}\n"
                  "dots: feasible evaluations; grey crosses: outside the kept regime; lines: best feasible so far",
                  fontsize=10)  # fmt: skip
     ax.grid(True, alpha=0.3)
