@@ -24,11 +24,14 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from campaign_helpers import ENV, EXE, TABLE2_POINT  # noqa: E402
+from campaign_helpers import ENV, EXE  # noqa: E402
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
 sys.path.insert(0, os.path.join(REPO, "postprocess"))
 from vibromap._io.h5io import FORMAT_VERSIONS, open_h5  # noqa: E402
+
+sys.path.insert(0, os.path.join(REPO, "postprocess", "tests"))
+import real_files  # noqa: E402
 
 # The format kind (file_format.hpp) of each file written.
 KINDS = {"sweep": "regime map", "census": "regime map", "optimise_map": "regime map", "trajectory": "trajectory file",
@@ -36,52 +39,6 @@ KINDS = {"sweep": "regime map", "census": "regime map", "optimise_map": "regime 
          "branch": "branch file", "orbit": "orbit-diagram file", "curves": "curve file"}
 
 ENGINES = {"netcdf4": "netCDF4", "h5netcdf": "h5netcdf"}
-
-SWEEP = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[sweep]
-E2 = { from = 1e6, to = 2e6, n = 2 }
-"""
-
-# Table 2's bistable region (tests/campaigns/sweep/test_census_map.py), 2 x 2 cells of 4 states.
-CENSUS = """
-[system]
-m2 = 310.0
-omega2 = 3.606
-
-[census]
-initial_conditions = 4
-seed = 3
-max_attractors = 3
-
-[sweep]
-E1 = { from = 1e9, to = 2.1e11, n = 2, scale = "log" }
-E2 = { from = 2e4, to = 1e7, n = 2, scale = "log" }
-store = ["k_con"]
-"""
-
-# The bistable Table 2 point, seeded from a 2-cell map, a soft-fraction re-check of the best
-# point (tests/campaigns/multistart/test_optimise_mpi.py's ROBUST, smaller).
-OPTIMISE = TABLE2_POINT + """
-[census]
-initial_conditions = 4
-
-[sweep]
-E2 = { from = 8e5, to = 1.2e6, n = 2, scale = "log" }
-store = ["k_con", "T_con", "F_max"]
-
-[optimise]
-E2 = { min = 8e5, max = 1.2e6, scale = "log" }
-seeds = 1
-algorithm = "bobyqa"
-max_evaluations = 4
-best = 1
-min_soft_fraction = 0.1
-soft_check_initial_conditions = 8
-"""
 
 
 def vibromap(*args, timeout=600):
@@ -98,24 +55,9 @@ def scene(tmp_path, name, text):
 
 @pytest.fixture(scope="module")
 def files(tmp_path_factory):
-    """Every file kind, written once: {kind: path}."""
-    tmp = tmp_path_factory.mktemp("xarray")
-    out = {kind: tmp / f"{kind}.h5" for kind in ("sweep", "census", "trajectory", "basins", "optimise", "branch",
-                                                  "orbit", "curves")}
-    vibromap("sweep", scene(tmp, "sweep.toml", SWEEP), "-q", "-o", out["sweep"])
-    vibromap("sweep", scene(tmp, "census.toml", CENSUS), "-q", "-o", out["census"])
-    vibromap("run", "jobs/paper/table1.toml", "-t", out["trajectory"])
-    vibromap("basins", "jobs/paper/table2.toml", "--grid", "3x2", "-q", "-o", out["basins"])
-    vibromap("optimise", scene(tmp, "optimise.toml", OPTIMISE), "-q", "-o", out["optimise"])
-    out["optimise_map"] = tmp / "optimise_map.h5"
-    out["optimise_trajectory"] = tmp / "optimise_trajectory.h5"
-    vibromap("continue", "jobs/paper/table1.toml", "-p", "forcing.omega", "--from", "7.2", "--to", "7.25", "-o",
-             out["branch"])
-    vibromap("orbit-diagram", "jobs/paper/table1.toml", "-p", "omega", "--from", "7.2", "--to", "7.25", "-n", "3",
-             "--transient", "5", "--keep", "2", "-q", "-o", out["orbit"])
-    vibromap("continue", "jobs/paper/table2.toml", "-p", "omega", "--from", "11", "--to", "7.3", "--pd-depth", "0",
-             "--curve", "grazing", "--param2", "F0", "--from2", "300", "--to2", "700", "-o", out["curves"])
-    return out
+    """Every file kind, written once: {kind: path} (postprocess/tests/real_files.py's files)."""
+    made = real_files.make_all(tmp_path_factory.mktemp("xarray"), EXE, ENV, text_files=False)
+    return dict(made, sweep=made["map"])
 
 
 def groups(path):
@@ -182,11 +124,13 @@ def dims_of(path, engine, group, names):
 
 @pytest.mark.parametrize("engine", list(ENGINES))
 def test_maps_have_their_axes_and_the_census_its_attractor_dimension(files, engine):
-    assert sizes(files["sweep"], engine) == {"E2": 2}
+    assert sizes(files["sweep"], engine) == {"E1": 2, "E2": 3}
     ds = open_with(files["sweep"], engine)
-    for name in ("done", "status", "regime", "stable", "soft", "n", "k", "wall_s", "steady_residual", "hertz_valid"):
-        assert ds[name].dims == ("E2",), name
-    np.testing.assert_array_equal(ds["E2"].values, [1e6, 2e6])
+    for name in ("done", "status", "regime", "stable", "soft", "n", "k", "wall_s", "steady_residual", "hertz_valid",
+                 "k_con", "T_con", "F_max"):
+        assert ds[name].dims == ("E1", "E2"), name
+    np.testing.assert_array_equal(ds["E2"].values, [1e6, 1.5e6, 2e6])
+    np.testing.assert_allclose(ds["E1"].values, [1e9, 2.1e11], rtol=1e-15)
     assert sizes(files["census"], engine) == {"E1": 2, "E2": 2, "attractor": 3, "period_start": 4, "state": 4}
     census = dims_of(files["census"], engine, None, ["k_con", "attractors", "attractor_fraction", "attractor_x1",
                                                      "attractor_strobe", "family"])
@@ -218,7 +162,8 @@ def test_basins_has_its_plane_attractors_and_strobe_dimensions(files, engine):
         attractors = int(f.attrs["attractors"])
         longest = int(f["strobe_points"][()].max())
     assert attractors >= 1 and longest >= 1
-    assert sizes(path, engine) == {"x1": 3, "v1": 2, "attractor": attractors, "period_start": longest, "state": 4}
+    x1, v1 = map(int, real_files.BASINS_GRID.split("x"))
+    assert sizes(path, engine) == {"x1": x1, "v1": v1, "attractor": attractors, "period_start": longest, "state": 4}
     ds = open_with(path, engine)
     assert ds["label"].dims == ("v1", "x1") and ds["done"].dims == ("v1", "x1")
     assert ds["strobe"].dims == ("attractor", "period_start", "state")
@@ -281,8 +226,8 @@ def test_every_file_carries_its_format_version_and_passes_its_attribute_checksum
 
 def test_basins_and_sweeps_resume_from_their_files(files, tmp_path):
     """--resume verifies the seal and reads the layout back (C++ readers): nothing left to do."""
-    vibromap("basins", "jobs/paper/table2.toml", "--grid", "3x2", "-q", "--resume", "-o", files["basins"])
-    vibromap("sweep", scene(tmp_path, "sweep.toml", SWEEP), "-q", "--resume", "-o", files["sweep"])
-    vibromap("sweep", scene(tmp_path, "census.toml", CENSUS), "-q", "--resume", "-o", files["census"])
+    vibromap("basins", "jobs/paper/table2.toml", "--grid", real_files.BASINS_GRID, "-q", "--resume", "-o", files["basins"])
+    vibromap("sweep", scene(tmp_path, "sweep.toml", real_files.SWEEP), "-q", "--resume", "-o", files["sweep"])
+    vibromap("sweep", scene(tmp_path, "census.toml", real_files.CENSUS), "-q", "--resume", "-o", files["census"])
     with h5py.File(files["basins"], "r") as f:
         assert int(f.attrs["complete"]) == 1 and f["done"][()].all()
