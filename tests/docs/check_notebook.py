@@ -44,27 +44,24 @@ class Reference:
         self.scratch = scratch
         self.exe = os.environ.get("VIBROMAP_EXE", str(source_dir / "build" / "vibromap"))
 
-    def run(self, *args: str) -> subprocess.CompletedProcess:
+    def run(self, *args: str, sets: tuple = ()) -> subprocess.CompletedProcess:
+        """The program run with args and a --set for each of sets; RuntimeError unless it succeeds."""
+        for s in sets:
+            args = (*args, "--set", s)
         p = subprocess.run([self.exe, *args], cwd=self.top, capture_output=True, text=True)
         if p.returncode != 0:
             raise RuntimeError(f"{self.exe} {' '.join(args)}: exit {p.returncode}: {p.stderr.strip()}")
         return p
 
     def json(self, scene: str, *sets: str, flags: tuple = ()) -> dict:
-        args = ["run", scene, "--format", "json", *flags]
-        for s in sets:
-            args += ["--set", s]
-        return json.loads(self.run(*args).stdout)
+        return json.loads(self.run("run", scene, "--format", "json", *flags, sets=sets).stdout)
 
     def trajectory(self, scene: str, *sets: str) -> Dict[str, object]:
         import h5py
         import numpy as np
 
         path = self.scratch / "trajectory.h5"
-        args = ["run", scene, "--trajectory", str(path), "--overwrite"]
-        for s in sets:
-            args += ["--set", s]
-        self.run(*args)
+        self.run("run", scene, "--trajectory", str(path), "--overwrite", sets=sets)
         with h5py.File(path, "r") as f:
             return {"samples": int(f["t"].shape[0]), "T": float(f.attrs["T"]),
                     "Fc_max": float(np.max(f["Fc"][...]))}
@@ -144,10 +141,7 @@ def check_map(ref: Reference) -> Dict[str, object]:
     import numpy as np
 
     path = ref.scratch / "map.h5"
-    args = ["sweep", TABLE2, "-o", str(path), "--quiet"]
-    for s in MAP_AXES:
-        args += ["--set", s]
-    ref.run(*args)
+    ref.run("sweep", TABLE2, "-o", str(path), "--quiet", sets=MAP_AXES)
     with h5py.File(path, "r") as f:
         k_con, soft = f["k_con"][...], f["soft"][...]
     return {"cells": int(k_con.size), "soft": int(np.count_nonzero(soft == 1)), "k_con_max": float(np.nanmax(k_con))}
