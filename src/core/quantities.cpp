@@ -77,6 +77,32 @@ constexpr std::array kQuantities = {
              &CellResult::energy_dissipated, kFinite),
     int_row<&CellResult::clipped_impacts>(Quantity::clipped_impacts, "clipped_impacts",
                                           "impacts of the steady cycle where the damped force was clipped at 0"),
+    // A cell's solve by phase: the long_names end in what a reader must know (the tests read them).
+    real_row(Quantity::t_transient, "t_transient", "s",
+             "solve time in the transients before shooting (a timing: differs run to run; 0 where the phase did not run)",
+             &CellResult::t_transient, kNonNegative),
+    int_row<&CellResult::rhs_transient>(Quantity::rhs_transient, "rhs_transient",
+                                    "right-hand side evaluations in the transients before shooting (0 where the phase did not run)"),
+    real_row(Quantity::t_newton, "t_newton", "s",
+             "solve time in shooting (Newton, its checks, the cycle measured) (a timing: differs run to run; 0 where the phase did not run)",
+             &CellResult::t_newton, kNonNegative),
+    int_row<&CellResult::rhs_newton>(Quantity::rhs_newton, "rhs_newton",
+                                    "right-hand side evaluations in shooting (Newton, its checks, the cycle measured) (0 where the phase did not run)"),
+    real_row(Quantity::t_integrate, "t_integrate", "s",
+             "solve time following the motion by brute force (a timing: differs run to run; 0 where the phase did not run)",
+             &CellResult::t_integrate, kNonNegative),
+    int_row<&CellResult::rhs_integrate>(Quantity::rhs_integrate, "rhs_integrate",
+                                    "right-hand side evaluations following the motion by brute force (0 where the phase did not run)"),
+    real_row(Quantity::t_floquet, "t_floquet", "s",
+             "solve time for the Floquet multipliers of brute force's orbit (a timing: differs run to run; 0 where the phase did not run)",
+             &CellResult::t_floquet, kNonNegative),
+    int_row<&CellResult::rhs_floquet>(Quantity::rhs_floquet, "rhs_floquet",
+                                    "right-hand side evaluations for the Floquet multipliers of brute force's orbit (0 where the phase did not run)"),
+    real_row(Quantity::t_classify, "t_classify", "s",
+             "solve time classifying the motion and measuring its impacts (a timing: differs run to run; 0 where the phase did not run)",
+             &CellResult::t_classify, kNonNegative),
+    int_row<&CellResult::rhs_classify>(Quantity::rhs_classify, "rhs_classify",
+                                    "right-hand side evaluations classifying the motion and measuring its impacts (0 where the phase did not run)"),
 };
 
 // Row i describes Quantity(i) and has exactly one way in, so info() can index the table.
@@ -168,6 +194,16 @@ CellResult summarize(const PointSummary& s) {
   c.periods = s.periods;
   c.rhs_evals = s.counters.rhs_evals;
   c.wall_s = s.wall_s;
+  c.t_transient = s.phases.transient.seconds;
+  c.rhs_transient = s.phases.transient.rhs_evals;
+  c.t_newton = s.phases.newton.seconds;
+  c.rhs_newton = s.phases.newton.rhs_evals;
+  c.t_integrate = s.phases.integrate.seconds;
+  c.rhs_integrate = s.phases.integrate.rhs_evals;
+  c.t_floquet = s.phases.floquet.seconds;
+  c.rhs_floquet = s.phases.floquet.rhs_evals;
+  c.t_classify = s.phases.classify.seconds;
+  c.rhs_classify = s.phases.classify.rhs_evals;
   c.steady_residual = s.steady_residual;
   c.T_con = s.T_con;
   c.k_con = s.k_con;

@@ -107,6 +107,7 @@ void write_accuracy_table(std::ostream& out, const AccuracyReport& report, const
   out << table_head(kColumns) << "  note\n";
   write_table_line(out, table_cells(ref), ref.note);
   for (const AccuracyRow& r : report.rows) write_table_line(out, table_cells(r), r.note);
+  if (!report.unsolved.empty()) out << "\n" << report.unsolved << "\n";
 }
 
 void write_accuracy_json(std::ostream& out, const AccuracyReport& report, const Scene& scene) {
@@ -115,7 +116,7 @@ void write_accuracy_json(std::ostream& out, const AccuracyReport& report, const 
   write_row_json(w, report.reference);
   w.key("rows").begin_array();
   for (const AccuracyRow& r : report.rows) write_row_json(w, r);
-  w.end_array().end_object();
+  w.end_array().field("unsolved", report.unsolved).end_object();
   out << "\n";
 }
 

@@ -214,5 +214,21 @@ TEST(AccuracyStudy, LooserToleranceGivesALargerErrorOnTable2) {
   EXPECT_LT(loose.rhs_evals, tight.rhs_evals);  // and costs less
 }
 
+// Without forcing the bodies rest apart: the reference has no impact, so no case has an error
+// to measure and none is solved (each would only spend its budget); the report says why.
+TEST(AccuracyStudy, AReferenceWithoutAnImpactLeavesTheCasesUnsolved) {
+  Parameters p = table2();
+  p.F0 = 0.0;
+  const AccuracyCase reference = default_accuracy_reference(PointOptions{});
+  const std::vector<AccuracyCase> cases = {dopri5_case(1e-6), dopri5_case(1e-10)};
+  std::size_t calls = 0;
+  const AccuracyReport r =
+      run_accuracy(p, cases, reference, [&](const AccuracyRow&, std::size_t, std::size_t) { ++calls; });
+  EXPECT_EQ(calls, 1u);  // the reference alone
+  EXPECT_EQ(r.reference.regime, "no-contact");
+  EXPECT_TRUE(r.rows.empty());
+  EXPECT_EQ(r.unsolved, "2 cases not solved: the reference has no impact, so there is no error to measure");
+}
+
 }  // namespace
 }  // namespace vibromap

@@ -37,6 +37,13 @@ enum class Quantity {
   e_effective,  // effective restitution |v_out / v_in| of the longest impact, 1
   energy_dissipated,  // energy the contact dissipates in the longest impact, J
   clipped_impacts,    // impacts of the steady cycle whose damped force was clipped at 0
+  // The cell's solve by phase (PhaseTimes, point_solver.hpp): seconds and right-hand side
+  // evaluations; 0 in a census map.
+  t_transient, rhs_transient,  // the transients before shooting
+  t_newton, rhs_newton,        // shooting: Newton, its checks, the cycle measured
+  t_integrate, rhs_integrate,  // brute force: the motion followed until it repeats or the budget ends
+  t_floquet, rhs_floquet,      // brute force's orbit: its Floquet multipliers
+  t_classify, rhs_classify,    // the motion classified (chaos included) and its impacts measured
 };
 // One table in quantities.cpp (kQuantities) holds, per Quantity, its name, units, description
 // (the map's long_name, ending in "(NaN where not computed)" exactly when a default CellResult
@@ -74,6 +81,8 @@ struct CellResult {
   double wall_s = 0.0, steady_residual = 0.0;
   double T_con = 0.0, k_con = 0.0, F_max = 0.0, z_max = 0.0, z_ratio = 0.0, v_in = 0.0, impulse = 0.0;
   double e_effective = 0.0, energy_dissipated = 0.0;
+  double t_transient = 0.0, t_newton = 0.0, t_integrate = 0.0, t_floquet = 0.0, t_classify = 0.0;
+  std::int64_t rhs_transient = 0, rhs_newton = 0, rhs_integrate = 0, rhs_floquet = 0, rhs_classify = 0;
   double max_multiplier = std::numeric_limits<double>::quiet_NaN();
   double lyapunov = std::numeric_limits<double>::quiet_NaN();
   // The census (sweeps with [census]; empty and NaN otherwise).

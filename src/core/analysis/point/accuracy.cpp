@@ -7,6 +7,8 @@
 #include <limits>
 #include <string>
 
+#include "vibromap/core/text.hpp"
+
 namespace vibromap {
 namespace {
 
@@ -175,6 +177,12 @@ AccuracyReport run_accuracy(const Parameters& p, const std::vector<AccuracyCase>
   const PointSummary ref = solve_point(p, reference.options);
   report.reference = accuracy_row(reference, ref, ref);
   if (progress) progress(report.reference, 1, total);
+  if (!usable(ref) || !has_impact(ref)) {
+    report.unsolved = cat(std::to_string(cases.size()), " cases not solved: the reference ",
+                          usable(ref) ? "has no impact" : "ended " + to_string(ref.status) + " " + ref.regime.label(),
+                          ", so there is no error to measure");
+    return report;
+  }
   for (const AccuracyCase& c : cases) {
     report.rows.push_back(accuracy_row(c, solve_point(p, c.options), ref));
     if (progress) progress(report.rows.back(), report.rows.size() + 1, total);

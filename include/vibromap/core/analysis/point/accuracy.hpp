@@ -63,6 +63,9 @@ struct AccuracyRow {
 struct AccuracyReport {
   AccuracyRow reference;          // the reference against itself: errors 0 (or NaN without impact)
   std::vector<AccuracyRow> rows;  // the cases, in the order given
+  // Why the cases were not solved (empty when they were): a reference without an impact, or
+  // that did not settle, leaves no error to measure, and each case would only spend its budget.
+  std::string unsolved;
 };
 
 // Relative error |value - reference| / |reference|; NaN when either is not finite or the

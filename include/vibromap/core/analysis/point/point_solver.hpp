@@ -9,6 +9,7 @@
 // defaults to 100 * rtol: an adaptive integrator's step-size jitter shows in the samples, so
 // the test must not be tighter than the integration (docs/numerics.md).
 
+#include <chrono>
 #include <complex>
 #include <limits>
 #include <string>
@@ -85,6 +86,44 @@ struct TrajectorySample {
   double F;        // external force, N
 };
 
+// What one phase of a point's solve cost: seconds (steady_clock) and right-hand side evaluations.
+struct PhaseCost {
+  double seconds = 0.0;
+  long rhs_evals = 0;
+};
+
+// Where a point's solve went, phase by phase: the profile of a map (tests/benchmarks/profile_map.py).
+// The phases and the setup before them make up wall_s; their evaluations make up counters.rhs_evals.
+struct PhaseTimes {
+  PhaseCost transient;  // the transients integrated before each shooting attempt
+  PhaseCost newton;     // shooting: Newton on the period map, the follow checks, the cycle measured
+  PhaseCost integrate;  // brute force: the motion followed until it repeats or the budget ends
+  PhaseCost floquet;    // brute force's orbit: the Newton iterations that give its multipliers
+  PhaseCost classify;   // the motion classified (chaos, by its Lyapunov exponent, included), its
+                        // open contact settled and its impacts measured
+};
+
+// Adds what its scope costs to a phase: the seconds it lasts and the evaluations `evals()`
+// counts over it.
+template <class Evals>
+class PhaseClock {
+ public:
+  PhaseClock(PhaseCost& cost, Evals evals)
+      : cost_(cost), evals_(evals), first_(evals()), start_(std::chrono::steady_clock::now()) {}
+  ~PhaseClock() {
+    cost_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    cost_.rhs_evals += evals_() - first_;
+  }
+  PhaseClock(const PhaseClock&) = delete;
+  PhaseClock& operator=(const PhaseClock&) = delete;
+
+ private:
+  PhaseCost& cost_;
+  Evals evals_;
+  long first_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 struct PointSummary {
   SolveStatus status = SolveStatus::invalid_input;
   std::string message;          // why, when status != ok
@@ -110,6 +149,7 @@ struct PointSummary {
   long periods = 0;             // forcing periods integrated
   IntegrationCounters counters;
   double wall_s = 0.0;          // solve time, s
+  PhaseTimes phases;            // where wall_s went
   Eigen::Vector4d final_state = Eigen::Vector4d::Zero();  // (x1, x2, v1, v2) at the last period end
   std::vector<TrajectorySample> trajectory;  // only when trajectory_periods > 0
   Fragility fragility;          // analysis.fragility > 0: what perturbations of the initial state reach
