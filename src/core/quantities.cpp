@@ -50,6 +50,15 @@ constexpr QuantityInfo int_row(Quantity q, std::string_view name, std::string_vi
   return {q, name, "1", description, nullptr, &get_member<Member>, &set_member<Member>, max};
 }
 
+// The two rows of one phase of a cell's solve (PhaseTimes, point_solver.hpp): its seconds and
+// its right-hand side evaluations.
+#define VIBROMAP_PHASE_ROWS(phase, what)                                                              \
+  real_row(Quantity::t_##phase, "t_" #phase, "s",                                                    \
+           "solve time " what " (a timing: differs run to run; 0 where the phase did not run)",      \
+           &CellResult::t_##phase, kNonNegative),                                                     \
+      int_row<&CellResult::rhs_##phase>(Quantity::rhs_##phase, "rhs_" #phase,                         \
+                                        "right-hand side evaluations " what " (0 where the phase did not run)")
+
 // Rows in enum order (checked below). The descriptions are the maps' long_name attributes.
 constexpr std::array kQuantities = {
     real_row(Quantity::T_con, "T_con", "s", "duration of the longest impact", &CellResult::T_con, kPositive),
@@ -78,31 +87,11 @@ constexpr std::array kQuantities = {
     int_row<&CellResult::clipped_impacts>(Quantity::clipped_impacts, "clipped_impacts",
                                           "impacts of the steady cycle where the damped force was clipped at 0"),
     // A cell's solve by phase: the long_names end in what a reader must know (the tests read them).
-    real_row(Quantity::t_transient, "t_transient", "s",
-             "solve time in the transients before shooting (a timing: differs run to run; 0 where the phase did not run)",
-             &CellResult::t_transient, kNonNegative),
-    int_row<&CellResult::rhs_transient>(Quantity::rhs_transient, "rhs_transient",
-                                    "right-hand side evaluations in the transients before shooting (0 where the phase did not run)"),
-    real_row(Quantity::t_newton, "t_newton", "s",
-             "solve time in shooting (Newton, its checks, the cycle measured) (a timing: differs run to run; 0 where the phase did not run)",
-             &CellResult::t_newton, kNonNegative),
-    int_row<&CellResult::rhs_newton>(Quantity::rhs_newton, "rhs_newton",
-                                    "right-hand side evaluations in shooting (Newton, its checks, the cycle measured) (0 where the phase did not run)"),
-    real_row(Quantity::t_integrate, "t_integrate", "s",
-             "solve time following the motion by brute force (a timing: differs run to run; 0 where the phase did not run)",
-             &CellResult::t_integrate, kNonNegative),
-    int_row<&CellResult::rhs_integrate>(Quantity::rhs_integrate, "rhs_integrate",
-                                    "right-hand side evaluations following the motion by brute force (0 where the phase did not run)"),
-    real_row(Quantity::t_floquet, "t_floquet", "s",
-             "solve time for the Floquet multipliers of brute force's orbit (a timing: differs run to run; 0 where the phase did not run)",
-             &CellResult::t_floquet, kNonNegative),
-    int_row<&CellResult::rhs_floquet>(Quantity::rhs_floquet, "rhs_floquet",
-                                    "right-hand side evaluations for the Floquet multipliers of brute force's orbit (0 where the phase did not run)"),
-    real_row(Quantity::t_classify, "t_classify", "s",
-             "solve time classifying the motion and measuring its impacts (a timing: differs run to run; 0 where the phase did not run)",
-             &CellResult::t_classify, kNonNegative),
-    int_row<&CellResult::rhs_classify>(Quantity::rhs_classify, "rhs_classify",
-                                    "right-hand side evaluations classifying the motion and measuring its impacts (0 where the phase did not run)"),
+    VIBROMAP_PHASE_ROWS(transient, "in the transients before shooting"),
+    VIBROMAP_PHASE_ROWS(newton, "in shooting (Newton, its checks, the cycle measured)"),
+    VIBROMAP_PHASE_ROWS(integrate, "following the motion by brute force"),
+    VIBROMAP_PHASE_ROWS(floquet, "for the Floquet multipliers of brute force's orbit"),
+    VIBROMAP_PHASE_ROWS(classify, "classifying the motion and measuring its impacts"),
 };
 
 // Row i describes Quantity(i) and has exactly one way in, so info() can index the table.
@@ -116,6 +105,7 @@ constexpr bool rows_in_enum_order() {
   return true;
 }
 static_assert(rows_in_enum_order(), "kQuantities: one row per Quantity, in enum order, float or integer");
+#undef VIBROMAP_PHASE_ROWS
 
 const QuantityInfo& info(Quantity q) {
   const auto i = static_cast<std::size_t>(q);
