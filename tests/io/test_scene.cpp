@@ -143,7 +143,7 @@ rtol = 1e-8
 atol = 1e-12
 max_step = 0.5
 rk4_steps = 4096
-max_steps = 1000
+max_steps = 100000
 [analysis]
 steady = "integrate"
 transient_periods = 12
@@ -164,7 +164,7 @@ trajectory_samples = 500
   EXPECT_EQ(o.integrator.atol, 1e-12);
   EXPECT_EQ(o.integrator.max_step, 0.5);
   EXPECT_EQ(o.integrator.rk4_steps, 4096);
-  EXPECT_EQ(o.integrator.max_steps, 1000);
+  EXPECT_EQ(o.integrator.max_steps, 100000);
   EXPECT_EQ(o.analysis.steady, SteadyMethod::integrate);
   EXPECT_EQ(o.analysis.transient_periods, 12);
   EXPECT_EQ(o.analysis.newton_tol, 1e-9);
@@ -345,6 +345,14 @@ const std::vector<BadScene>& bad_scenes() {
       // issue #28: budgets with a ceiling, a forcing the springs can follow, a census box of finite span
       {"step budget", "[solver]\nmax_steps = 1e11\n", {}, {"max_steps = 1e+11", "must be an integer in [1, 1e+10]"}},
       {"period budget", "", {"analysis.max_periods=1000000000"}, {"must be an integer in [1, 1e+08]"}},
+      // a period must fit in the step budget at the largest step (fuzz seed 161803, case 1364)
+      {"largest step below the budget's", "", {"solver.max_step=1e-300"},
+       {"jobs/x.toml: --set solver.max_step=1e-300: [solver] max_step = 1e-300: a forcing period at this largest "
+        "step takes more steps than the whole step budget (solver.max_steps = 2e+07): it must be at least "
+        "1/max_steps = 5e-08"}},
+      {"rk4 period over the budget", "[solver]\nmethod = \"rk4\"\nmax_steps = 1000\n", {"solver.rk4_steps=2048"},
+       {"--set solver.rk4_steps=2048: [solver] rk4_steps = 2048: one forcing period takes more steps than the whole "
+        "step budget (solver.max_steps = 1000)"}},
       {"forcing too slow", "", {"forcing.omega=1e-9"},
        {"jobs/x.toml: --set forcing.omega=1e-9: forcing.omega = 1e-09 rad/s is 1.43e-10 times omega_n = 6.98 rad/s",
         "omega/omega_n must be in [0.0001, 1e+04], i.e. forcing.omega in [0.000698, 6.98e+04] rad/s"}},

@@ -7,6 +7,7 @@
 #include "vibromap/core/integrate/free_flight.hpp"
 #include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/model/keys.hpp"
+#include "vibromap/core/text.hpp"
 
 namespace vibromap {
 
@@ -33,7 +34,25 @@ std::string validate(const IntegratorOptions& o) {
   PointOptions options;
   options.integrator = o;
   const std::vector<std::string> r = refusals(Parameters{}, options, "solver");
-  return r.empty() ? std::string() : r.front();
+  return r.empty() ? step_budget_error(o) : r.front();
+}
+
+std::string step_budget_error(const IntegratorOptions& o) {
+  const auto budget = static_cast<double>(o.max_steps);
+  if (o.method == Method::rk4) {
+    if (o.rk4_steps <= budget) return {};
+    return Key::find("solver.rk4_steps")
+        ->info()
+        .refusal(value_text(o.rk4_steps), cat("one forcing period takes more steps than the whole step budget "
+                                              "(solver.max_steps = ", value_text(budget), ")"));
+  }
+  if (o.max_step * budget >= 1.0) return {};
+  return Key::find("solver.max_step")
+      ->info()
+      .refusal(value_text(o.max_step),
+               cat("a forcing period at this largest step takes more steps than the whole step budget "
+                   "(solver.max_steps = ", value_text(budget), "): it must be at least 1/max_steps = ",
+                   value_text(1.0 / budget)));
 }
 
 namespace {

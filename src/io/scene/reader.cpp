@@ -430,6 +430,8 @@ Scene finish(Scene scene, const toml::table& table, const Context& ctx) {
   const bool rule_only = errors.size() == 1 && errors.front() == combined_rule_error(scene.params);
   if (rule_only && !scene.sweep) fail(cat(rule_origin(ctx, errors.front()), ": ", errors.front()));
   if (!errors.empty() && !rule_only) fail(ctx.path + ": " + errors.front());
+  if (const std::string err = step_budget_error(scene.options.integrator); !err.empty())
+    fail(cat(rule_origin(ctx, err), ": ", err));
   check_grid_corners(scene, ctx);
   check_optimise_corners(scene, ctx);
   scene.path = ctx.path;

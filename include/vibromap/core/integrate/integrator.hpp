@@ -54,6 +54,11 @@ inline constexpr long kMaxStepBudget = 10'000'000'000;
 
 // Returns an empty string when the options are valid, else what is wrong.
 std::string validate(const IntegratorOptions& o);
+// The rule that combines the solver's keys (validate() applies it after each key's own check):
+// one forcing period must fit in the step budget at the largest step allowed (max_step, a
+// fraction of T; rk4: rk4_steps). A smaller step spends any point's whole budget in its first
+// period of contact: minutes for a map or an optimisation that end unresolved. Empty when it holds.
+std::string step_budget_error(const IntegratorOptions& o);
 
 enum class IntegrationStatus {
   ok,              // period completed
