@@ -95,6 +95,17 @@ TEST(Extremes, InvalidParametersAreAStatusNotACrash) {
   EXPECT_NE(s.message.find("nu2"), std::string::npos);
 }
 
+// One period leaves the steady-state test nothing to compare: its residual is NaN ("not
+// computed", as the map declares it), never the detector's infinity (fuzz seed 577215, case 739).
+TEST(Extremes, OnePeriodLeavesTheResidualNotComputed) {
+  PointOptions o;
+  o.analysis.max_periods = 1;
+  o.analysis.steady = SteadyMethod::integrate;
+  const PointSummary s = solve_point(Parameters{}, o);
+  EXPECT_EQ(s.status, SolveStatus::budget);
+  EXPECT_TRUE(std::isnan(s.steady_residual)) << s.steady_residual;
+}
+
 TEST(Extremes, StepBudgetEndsTheRunWithBudgetStatus) {
   PointOptions o;
   o.integrator.max_steps = 300;  // less than the shooting transient needs

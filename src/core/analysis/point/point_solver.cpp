@@ -453,6 +453,13 @@ void add_stability(PointSummary& s, Run& r) {
   if (sh.converged) record_shooting(s, sh);
 }
 
+// The steady-state test's residual; NaN when it was never computed (fewer than two period ends
+// to compare, as with analysis.max_periods = 1), where the detector holds infinity.
+double residual_of(const SteadyStateDetector& steady) {
+  const double r = steady.residual();
+  return std::isfinite(r) ? r : std::numeric_limits<double>::quiet_NaN();
+}
+
 void fail(PointSummary& s, IntegrationStatus status, long period) {
   s.status = SolveStatus::failed;
   s.message = to_string(status) + " in forcing period " + std::to_string(period);
@@ -474,7 +481,7 @@ void solve_by_integration(PointSummary& s, Run& r, ObserverList& observers, Peri
       const PhaseClock clock(s.phases.classify, evals_of(r));
       classify_cycle(s, r, r.steady.period_n(), r.steady.detected_at());
     }
-    s.steady_residual = r.steady.residual();
+    s.steady_residual = residual_of(r.steady);
     if (r.options.integrator.method != Method::rk4) {
       const PhaseClock clock(s.phases.floquet, evals_of(r));
       add_stability(s, r);
@@ -487,7 +494,7 @@ void solve_by_integration(PointSummary& s, Run& r, ObserverList& observers, Peri
       const PhaseClock clock(s.phases.classify, evals_of(r));
       classify_unsettled(s, r);
     }
-    s.steady_residual = r.steady.residual();
+    s.steady_residual = residual_of(r.steady);
   }
 }
 

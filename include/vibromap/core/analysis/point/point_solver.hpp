@@ -137,7 +137,8 @@ struct PointSummary {
   bool hertz_valid = true;      // z_ratio <= hertz_limit
   bool soft = false;            // is_soft (regime.hpp): periodic with impacts, stable, Hertz-valid, k_con <= soft_kcon
   std::vector<Impact> impacts;  // impacts of one steady cycle (nT), in time order
-  double steady_residual = 0.0; // scaled ||y_j - y_{j-n}|| at the end (shooting: Newton residual), -
+  double steady_residual = 0.0; // scaled ||y_j - y_{j-n}|| at the end (shooting: Newton residual; NaN where
+                                // never computed: fewer than two period ends), -
   SteadyMethod steady_method = SteadyMethod::integrate;  // what produced the answer: follow (Newton's orbit, seen
                                                         // reached from the initial state), shooting or integrate
   int newton_iterations = 0;    // shooting: Newton iterations spent (0 when not used)
