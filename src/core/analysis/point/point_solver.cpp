@@ -128,9 +128,12 @@ IntegratorOptions budgeted(const Run& r) {
   o.max_steps = std::max(0L, steps_left(r));  // 0: the integrator stops before its first step
   return o;
 }
-// The right-hand side evaluations of the run so far (its integrator's and Newton's), for PhaseClock.
-auto evals_of(const Run& r) {
-  return [&r] { return r.integrator.counters().rhs_evals + r.shooting.rhs_evals; };
+// Runs work() charging its seconds and right-hand side evaluations (the run's integrator's and
+// Newton's) to phase; returns what work() returns.
+template <class Work>
+auto timed(PhaseCost& phase, const Run& r, Work work) {
+  const PhaseClock clock(phase, [&r] { return r.integrator.counters().rhs_evals + r.shooting.rhs_evals; });
+  return work();
 }
 void charge_shooting(Run& r) {
   r.integrator.set_max_steps(std::max(0L, r.options.integrator.max_steps - shooting_steps(r)));
@@ -469,31 +472,21 @@ void fail(PointSummary& s, IntegrationStatus status, long period) {
 // Integrates (more) periods until the motion repeats or the budget runs out, then classifies.
 void solve_by_integration(PointSummary& s, Run& r, ObserverList& observers, PeriodRun run) {
   const long budget = r.options.analysis.max_periods;
-  if (run.status == IntegrationStatus::ok && !run.stopped && r.integrator.period() < budget) {
-    const PhaseClock clock(s.phases.integrate, evals_of(r));
-    run = integrate_periods(r.integrator, r.u, budget - r.integrator.period(), observers);
-  }
+  if (run.status == IntegrationStatus::ok && !run.stopped && r.integrator.period() < budget)
+    run = timed(s.phases.integrate, r,
+                [&] { return integrate_periods(r.integrator, r.u, budget - r.integrator.period(), observers); });
   if (run.status == IntegrationStatus::step_underflow || run.status == IntegrationStatus::non_finite) {
     fail(s, run.status, r.integrator.period());
   } else if (run.stopped) {
     s.status = SolveStatus::ok;
-    {
-      const PhaseClock clock(s.phases.classify, evals_of(r));
-      classify_cycle(s, r, r.steady.period_n(), r.steady.detected_at());
-    }
+    timed(s.phases.classify, r, [&] { classify_cycle(s, r, r.steady.period_n(), r.steady.detected_at()); });
     s.steady_residual = residual_of(r.steady);
-    if (r.options.integrator.method != Method::rk4) {
-      const PhaseClock clock(s.phases.floquet, evals_of(r));
-      add_stability(s, r);
-    }
+    if (r.options.integrator.method != Method::rk4) timed(s.phases.floquet, r, [&] { add_stability(s, r); });
   } else {
     s.status = SolveStatus::budget;
     s.message = run.status == IntegrationStatus::step_limit ? "step budget (solver.max_steps) exhausted"
                                                             : "no period <= n_max within analysis.max_periods";
-    {
-      const PhaseClock clock(s.phases.classify, evals_of(r));
-      classify_unsettled(s, r);
-    }
+    timed(s.phases.classify, r, [&] { classify_unsettled(s, r); });
     s.steady_residual = residual_of(r.steady);
   }
 }
@@ -570,30 +563,21 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
       if (periods <= 0) break;
       charge_shooting(r);
       integrator->set_rtol(transient_rtol(options));
-      {
-        const PhaseClock clock(s.phases.transient, evals_of(r));
-        run = integrate_periods(*integrator, r.u, periods, observers);
-      }
+      run = timed(s.phases.transient, r, [&] { return integrate_periods(*integrator, r.u, periods, observers); });
       // Shooting, its measurement and brute force, when it takes over, integrate at the
       // scene's tolerance; a steady state seen at the transient's tolerance is not one there.
       integrator->set_rtol(options.integrator.rtol);
       const bool settled = run.stopped;
       run.stopped = false;
       if (run.status != IntegrationStatus::ok) break;
-      {
-        const PhaseClock clock(s.phases.newton, evals_of(r));
-        solved = solve_by_shooting(s, r);
-      }
+      solved = timed(s.phases.newton, r, [&] { return solve_by_shooting(s, r); });
       if (settled) break;  // Newton had the best start a transient can give
     }
   }
   charge_shooting(r);
   if (!solved) solve_by_integration(s, r, observers, run);
 
-  {
-    const PhaseClock clock(s.phases.classify, evals_of(r));
-    measure_impacts(s, model, options.analysis.hertz_limit);
-  }
+  timed(s.phases.classify, r, [&] { measure_impacts(s, model, options.analysis.hertz_limit); });
   s.soft = is_soft(s.regime, s.stable, s.hertz_valid, s.k_con, options.analysis.soft_kcon);
   if (options.analysis.trajectory_periods > 0 && s.status != SolveStatus::failed) record_trajectory(s, r);
   s.periods = integrator->period();
