@@ -138,6 +138,9 @@ MapWriter MapWriter::open_new(const std::string& path, const MapLayout& layout) 
 }
 
 MapWriter MapWriter::resume(const std::string& path, const std::function<void(std::uint64_t, const CellResult&)>& visit_done) {
+  // The attributes are checked read-only first: a map refused for them is left as it was
+  // (HDF5 rewrites the superblock of a file it closes after opening it for writing).
+  (void)read_map_layout(path);
   auto impl = open_for_writing(path);
   impl->layout = detail::read_layout(impl->file);
   const Shape shape = impl->layout.grid.shape();

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """The fuzzer's check of written HDF5 files (fuzz_run.nonfinite_in_h5) on made-up files with a
 known answer: each must be flagged exactly where it holds a number the file does not declare.
+And its count of the cells a scene asks for (fuzz_run.asked_cells: a sweep that large stopped by
+the time bound with exit 3 is a large job, not a timeout), on scenes with a known count.
 
   tests/fuzz/test_fuzz_checks.py          # the ctest fuzz.checks; exit 0 when every case holds
 """
@@ -13,7 +15,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 
-from fuzz_run import nonfinite_in_h5  # noqa: E402
+from fuzz_run import asked_cells, nonfinite_in_h5  # noqa: E402
 
 NAN, INF = float("nan"), float("inf")
 
@@ -51,8 +53,23 @@ CASES = (
 )
 
 
+# (scene, the cells it asks for)
+SCENES = (
+    (b'[sweep]\nE1 = { from = 2e4, to = 2.1e11, n = 1e6, scale = "log" }\nE2 = { from = 1, to = 2, n = 3 }\n', 3e6),
+    (b'[sweep]\nE1 = { values = [1.0, 2.0] }\nm2 = { from = 1, to = 2, n = 4 }\nstore = ["k_con"]\n', 8),
+    (b'[system]\nm1 = 1.0\n', 0),           # no [sweep]
+    (b'[sweep]\nE1 = { from = 1, to = \n', 0),  # not TOML
+    (b'[sweep]\nE1 = { from = 1, to = 2, n = "x" }\n', 0),
+)
+
+
 def main():
     failures = 0
+    for scene, cells in SCENES:
+        got = asked_cells(scene)
+        ok = got == cells
+        failures += not ok
+        print(f"{'ok  ' if ok else 'FAIL'} asked_cells of {scene[:50]!r}: {got} (expected {cells})")
     with tempfile.TemporaryDirectory() as d:
         for i, (what, write, expected) in enumerate(CASES):
             path = os.path.join(d, f"case{i}.h5")
@@ -62,7 +79,8 @@ def main():
             ok = len(found) == len(expected) and all(e in got for e, got in zip(expected, found))
             failures += not ok
             print(f"{'ok  ' if ok else 'FAIL'} {what}: found {found or 'nothing'}")
-    print(f"test_fuzz_checks: {len(CASES) - failures} of {len(CASES)} cases as expected")
+    total = len(CASES) + len(SCENES)
+    print(f"test_fuzz_checks: {total - failures} of {total} cases as expected")
     return 1 if failures else 0
 
 

@@ -79,8 +79,11 @@ def reference(tmp_path_factory):
     return reference_map(tmp_path_factory.mktemp("attributes"), SCENE)
 
 
-def assert_damage_refused(proc, path, reason):
+def assert_damage_refused(proc, path, reason, before):
+    """Refused in one line, and the file left byte for byte as it was (issue 43: the resume once
+    opened it for writing before checking it, and HDF5 rewrote its superblock on closing)."""
     context = f"exit {proc.returncode}\nstdout: {proc.stdout}\nstderr: {proc.stderr}"
+    assert path.read_bytes() == before, "the refused map was changed\n" + context
     assert proc.returncode == 4, context
     assert proc.stdout == "", context
     assert proc.stderr.count("\n") == 1 and proc.stderr.startswith(f"vibromap: error: {path}: damaged: {reason}"), context
@@ -98,8 +101,14 @@ def test_a_flipped_byte_inside_an_attribute_is_refused_as_damage(reference, tmp_
     where = data.find(needle)
     assert where >= 0, needle
     data[where + 1] ^= 0x01
+    # And a byte of the superblock's root entry that nothing reads (its scratch pad, unused with
+    # cache type 0), which HDF5 writes back as 0 on closing a file opened for writing (fuzz seed
+    # 662607, damage case 182): the refusal must leave it flipped.
+    assert data[:9] == b"\x89HDF\r\n\x1a\n\x00" and data[72:76] == bytes(4)  # superblock version 0, no cache
+    data[81] ^= 0x01
     damaged.write_bytes(bytes(data))
-    assert_damage_refused(resume(scene, damaged), damaged, "its attributes fail their checksum (attribute_checksum says crc32 ")
+    assert_damage_refused(resume(scene, damaged), damaged, "its attributes fail their checksum (attribute_checksum says crc32 ",
+                          bytes(data))
     assert damaged.exists()  # refused, not removed
 
 
@@ -126,7 +135,7 @@ def test_the_map_of_issue_28_is_refused_as_damage(reference, tmp_path):
     damaged.write_bytes(bytes(data))
     with h5py.File(damaged, "r") as f:  # what the damage does, unseen by HDF5 and h5py
         assert (f.attrs["title"], f.attrs["Conventions"], f.attrs["vibromap_version"]) == ("", "", "")
-    assert_damage_refused(resume(scene, damaged), damaged, "its attribute")
+    assert_damage_refused(resume(scene, damaged), damaged, "its attribute", bytes(data))
 
 
 def test_a_heap_that_hdf5_would_read_for_ever_is_refused_as_damage(reference, tmp_path):
@@ -140,7 +149,8 @@ def test_a_heap_that_hdf5_would_read_for_ever_is_refused_as_damage(reference, tm
     struct.pack_into("<HHIQ", data, first, 0, 0, 0, 0)
     damaged.write_bytes(bytes(data))
     assert_damage_refused(resume(scene, damaged), damaged,
-                          f"a global heap (HDF5's store of string attributes) has a free-space object of size 0 at byte {first}")
+                          f"a global heap (HDF5's store of string attributes) has a free-space object of size 0 at byte {first}",
+                          bytes(data))
     with pytest.raises(vibromap_h5.VibromapFileError,
                        match="free-space object of size 0"):
         vibromap_h5.read_map(str(damaged))
@@ -169,6 +179,7 @@ def test_metadata_flips_are_refused_or_harmless(reference, tmp_path, seed):
             outcomes.append("resumed")
         else:
             assert proc.stderr.count("\n") == 1 and proc.stderr.startswith("vibromap: error: "), context
+            assert damaged.read_bytes() == bytes(data), "the refused map was changed\n" + context
             outcomes.append("refused")
     print(f"seed {seed}: {outcomes}")
 
