@@ -137,6 +137,8 @@ int basins_command(const BasinsArgs& args, std::ostream& out) {
       throw SceneError(cat(args.scene, ": [census] ", e));
     if (const std::string e = census_box_error(scene.params, scene.census.value_or(CensusOptions{})); !e.empty())
       throw SceneError(cat(args.scene, ": ", e));
+    if (const std::string e = census_method_error(scene.options.integrator); !e.empty())
+      throw SceneError(cat(args.scene, ": ", e));
     plane = make_basins_plane(scene, spec);
   }, exit_status_of);
   if (mpi.rank() != 0) plane = make_basins_plane(scene, spec);

@@ -360,6 +360,11 @@ const std::vector<BadScene>& bad_scenes() {
        {"jobs/x.toml: forcing.omega = 7.23 rad/s is 3.37e-09 times omega_n = 2.15e+09 rad/s"}},
       {"census span", "", {"census.x1=[-1e308,1e308]"}, {"--set census.x1=[-1e308,1e308]: [census] x1 = [-1e+308, 1e+308]: must be an array [lo, hi]",
                                                         "a finite hi - lo"}},
+      // issue #43 (fuzz seed 141421): a census with rk4 was every cell failed (sweep) or exit 1 (basins);
+      // a grid cell of 1e-300 motion scales made every state's cell index overflow
+      {"census with rk4", "[census]\ninitial_conditions = 4\n", {"solver.method=rk4"},
+       {"jobs/x.toml: [solver] method = \"rk4\": a census needs an adaptive method (hybrid or dopri5)"}},
+      {"census cell too fine", "[census]\ncell = 1e-300\n", {}, {"[census] cell = 1e-300", "must be in [1e-06, 1000]"}},
   };
   return cases;
 }

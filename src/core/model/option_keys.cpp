@@ -34,7 +34,7 @@ void add_census_options(std::vector<KeyInfo>& rows) {
                         "transient chaos: a state the budget leaves on a non-periodic set that states were seen "
                         "to leave is followed on in rounds of analysis.max_periods, until at most sqrt(K)/4 "
                         "such states (and not rest) remain, up to this many periods in all; 0: not at all"));
-  rows.push_back(option(s, "cell", KeyType::real, B::above(0), "-",
+  rows.push_back(option(s, "cell", KeyType::real, B::between(1e-6, 1e3), "-",
                         "cell of the non-periodic recurrence grid, in motion scales (L, omega L)"));
   rows.push_back(option(s, "rtol", KeyType::real, B::between(1e-14, 1e-3), "-",
                         "tolerance initial states are followed at (orbits are refined at [solver] rtol); the "

@@ -302,6 +302,8 @@ Scene read_values(const toml::table& table, const Context& ctx) {
   scene.sweep = read_sweep(table, ctx);
   scene.optimise = read_optimise(table, ctx);
   scene.census = read_census(table, ctx);
+  if (scene.census)
+    if (const std::string e = census_method_error(scene.options.integrator); !e.empty()) fail(cat(ctx.path, ": ", e));
   if (scene.census && scene.census->seed_from_neighbour && scene.sweep && scene.sweep->refine > 0)
     fail(cat(ctx.path, ": [census] seed_from_neighbour = true: needs a uniform map (sweep.refine = 0), whose lines "
                        "along the last axis are followed cell by cell"));

@@ -167,8 +167,14 @@ void AttractorSet::observe_stay(std::size_t i, std::optional<std::size_t> outcom
 
 Cell AttractorSet::cell(const State& u) const {
   Cell c;
-  for (int i = 0; i < 4; ++i)
-    c[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(std::floor(u[i] / (unit_[i] * census_.cell)));
+  constexpr double kFar = 9e18;  // within std::int64_t
+  for (int i = 0; i < 4; ++i) {
+    // A state beyond the grid's range (diverging, or NaN) is one far cell, never the undefined
+    // value of a cast out of range.
+    const double q = std::floor(u[i] / (unit_[i] * census_.cell));
+    c[static_cast<std::size_t>(i)] = std::abs(q) < kFar ? static_cast<std::int64_t>(q)
+                                                        : static_cast<std::int64_t>(q > 0.0 ? kFar : -kFar);
+  }
   return c;
 }
 

@@ -405,13 +405,19 @@ std::vector<std::size_t> states_to_follow_on(std::vector<std::size_t> pending, s
   return pending;
 }
 
+std::string census_method_error(const IntegratorOptions& o) {
+  if (o.method != Method::rk4) return {};
+  return "[solver] method = \"rk4\": a census needs an adaptive method (hybrid or dopri5): it follows its initial "
+         "states at an adaptive tolerance and finds their orbits by shooting";
+}
+
 std::string census_input_error(const Parameters& p, const PointOptions& o, const CensusOptions& c) {
   std::string msg;
   for (const auto& e : validate(p)) msg += (msg.empty() ? "" : "; ") + e;
   for (const auto& e : {validate(o.integrator), validate(o.analysis), validate(c)})
     if (!e.empty()) msg += (msg.empty() ? "" : "; ") + e;
   if (msg.empty()) msg = census_box_error(p, c);
-  if (msg.empty() && o.integrator.method == Method::rk4) msg = "a census needs an adaptive method (solver.method hybrid or dopri5)";
+  if (msg.empty()) msg = census_method_error(o.integrator);
   return msg;
 }
 

@@ -86,6 +86,9 @@ std::array<std::array<double, 2>, 4> census_box(const Parameters& p, const Censu
 // "[forcing] F0 = 1e+308: makes the census box, the rest state +- L in positions and +- omega L
 // in velocities (m, m/s), not finite; ...". A side the scene gives is checked by validate().
 std::string census_box_error(const Parameters& p, const CensusOptions& o);
+// Empty for an adaptive method, else the refusal of solver.method = "rk4": a census follows its
+// initial states at an adaptive tolerance and finds its orbits by shooting, which rk4 offers neither.
+std::string census_method_error(const IntegratorOptions& o);
 // The K initial states (physical), the rest state first.
 std::vector<Eigen::Vector4d> census_initial_conditions(const Parameters& p, const CensusOptions& o);
 
@@ -186,7 +189,7 @@ struct CensusSummary {
 CensusSummary census_point(const Parameters& p, const PointOptions& options, const CensusOptions& census,
                            const std::vector<Eigen::Vector4d>& seeds = {});
 // What census_point reports as invalid input: the point, its options or the census options
-// failing validation, the census box not finite (census_box_error), or rk4; empty when they pass. The box is checked by drawing the states:
+// failing validation, the census box not finite (census_box_error), or rk4 (census_method_error); empty when they pass. The box is checked by drawing the states:
 // census_initial_conditions then gives fewer than K, and kCensusBoxOverlaps says why.
 std::string census_input_error(const Parameters& p, const PointOptions& options, const CensusOptions& census);
 inline constexpr const char* kCensusBoxOverlaps =
