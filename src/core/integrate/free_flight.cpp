@@ -104,6 +104,19 @@ Eigen::Matrix4d FreeFlight::transition(double dt) const {
   return (V_ * modal_exp(dt).asDiagonal() * V_inv_).real();
 }
 
+bool FreeFlight::never_enters(double tau0, const State& u0) const {
+  const Vec4c alpha = modes(tau0, u0);
+  double bound = constant_[1] + std::abs(amp_[1]);
+  double size = std::abs(constant_[1]) + std::abs(amp_[1]);
+  for (int j = 0; j < 4; ++j) {
+    const double a = std::abs(V_(1, j) * alpha[j]);
+    bound += a;
+    size += a;
+  }
+  // Below the entry tolerance by more than the rounding of the sum.
+  return bound + sys_.z_tol + 1e-12 * size < 0.0;
+}
+
 std::optional<double> FreeFlight::find_entry(double tau0, const State& u0, double tau1) const {
   Search last;
   return search_entry(tau0, u0, tau1, last);

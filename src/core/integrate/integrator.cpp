@@ -55,8 +55,6 @@ std::string step_budget_error(const IntegratorOptions& o) {
                    value_text(1.0 / budget)));
 }
 
-namespace {
-
 // The free-flight decomposition (an eigen-decomposition and two complex LU factorisations,
 // ~4 us) costs as much as a forcing period of a rigid contact, and shooting makes a fresh
 // integrator for every Newton evaluation of the same model. The last one made is therefore
@@ -68,8 +66,6 @@ std::shared_ptr<const FreeFlight> free_flight_of(const Model& model) {
   if (!last || !last->describes(model)) last = std::make_shared<const FreeFlight>(model);
   return last;
 }
-
-}  // namespace
 
 std::unique_ptr<Integrator> make_integrator(const Model& model, const IntegratorOptions& options) {
   if (options.method == Method::rk4) return std::make_unique<detail::ClassicalRk4>(model, options);

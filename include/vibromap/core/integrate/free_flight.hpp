@@ -54,6 +54,14 @@ class FreeFlight {
     Modes alpha;  // modes(tau0, u0): what propagate(alpha, tau0, tau) needs for any tau of the flight
   };
   Flight fly(double tau0, const State& u0, double tau1) const;
+  // Whether the contact-free motion through (tau0, u0) stays clear of contact for ever after:
+  // z never comes within the entry tolerance of 0. A bound, not a search: z's largest value is
+  // at most its constant part plus its forced part's amplitude plus every mode's amplitude
+  // (|e^{lambda s}| <= 1), so false only says that the bound does not decide.
+  bool never_enters(double tau0, const State& u0) const;
+  // The T-periodic motion the contact-free motion tends to (the particular solution), at tau.
+  State orbit(double tau) const { return particular(tau); }
+
   // Whether this is the free flight of `model`: the same linear part, forcing and entry
   // tolerance (so it can be shared by every integrator of that model).
   bool describes(const Model& model) const;

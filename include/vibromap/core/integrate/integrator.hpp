@@ -121,6 +121,11 @@ class VariationalIntegrator : public Integrator {
   virtual void reset_jacobian() = 0;
 };
 
+class FreeFlight;
+// The closed-form free flight of `model` (free_flight.hpp), shared: the last one made on this
+// thread while the model's linear part, forcing and tolerance stay the same.
+std::shared_ptr<const FreeFlight> free_flight_of(const Model& model);
+
 // The integrator of options.method; hybrid falls back to dopri5 when the free flight has no
 // usable closed form (FreeFlight::valid()).
 std::unique_ptr<Integrator> make_integrator(const Model& model, const IntegratorOptions& options);

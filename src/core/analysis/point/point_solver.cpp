@@ -11,6 +11,7 @@
 #include "vibromap/core/analysis/point/section.hpp"
 #include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/analysis/point/steady_state.hpp"
+#include "vibromap/core/integrate/free_flight.hpp"
 #include "vibromap/core/model/keys.hpp"
 
 namespace vibromap {
@@ -334,10 +335,13 @@ struct ShootingSection {
 // passes: M^J holds the rotation). A round that moves away from the orbit refuses it; a
 // round that neither follows nor moves away (still far, nonlinear) defers to the next, up
 // to kCheckRounds; undecided means refused, and brute force takes over.
+// A transient that ends on the orbit (within Newton's tolerance, as close as Newton itself
+// puts it) is on it: nothing to check (every no-contact cell at rest, a settled transient).
 bool transient_approaches(Run& r, const ShootingSection& section, const ShootingResult& sh, int n, double tol) {
+  const StateScale scale(section.model);
+  if (scale.distance(section.transient_end, sh.y) <= tol) return true;
   const std::vector<State> cycle = cycle_points(r, section.model, sh.y, n);
   if (static_cast<int>(cycle.size()) != n) return false;
-  const StateScale scale(section.model);
   const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
   auto size = [&](const State& d) { return (d.array() / unit).abs().maxCoeff(); };
   int phase = 0;
@@ -447,6 +451,33 @@ bool solve_by_shooting(PointSummary& s, Run& r) {
   return false;
 }
 
+// A motion that never reaches contact is the linear system's, decided in closed form without
+// integrating: from the initial state it tends to the forcing's T-periodic response, which
+// is the (1,0) orbit, with Floquet multipliers e^{lambda_j T} (the eigenvalues of e^{A T}).
+// Taken only where the closed form is the integrator's own (hybrid) and the motion certainly
+// never enters contact (FreeFlight::never_enters, a bound on z) and tends to the orbit (every
+// multiplier inside the unit circle); otherwise the motion is followed as always. The cell
+// then integrates nothing: periods, steps and Newton iterations are 0.
+bool solve_without_contact(PointSummary& s, Run& r) {
+  if (r.options.integrator.method != Method::hybrid) return false;
+  const std::shared_ptr<const FreeFlight> flight = free_flight_of(r.model);
+  if (!flight->valid() || !flight->never_enters(0.0, r.u)) return false;
+  const double T = r.model.period();
+  const Eigen::Matrix4d monodromy = flight->transition(T);
+  const std::vector<std::complex<double>> mu = floquet_multipliers(monodromy);
+  if (!(std::abs(mu.front()) < 1.0)) return false;
+  const State y = flight->orbit(0.0);
+  s.status = SolveStatus::ok;
+  s.steady_method = r.options.analysis.steady;
+  s.regime = {RegimeKind::no_contact, 1, 0};
+  s.steady_residual = StateScale(r.model).distance(flight->propagate(0.0, y, T), y);
+  s.floquet = mu;
+  s.stable = 1;
+  r.u = y;
+  r.integrator.reset(r.u);
+  return true;
+}
+
 // After brute force found an n-periodic motion: a few Newton iterations from it give the
 // Floquet multipliers (stability) without changing the answer.
 void add_stability(PointSummary& s, Run& r) {
@@ -554,8 +585,8 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
 
   // Shooting: a short transient, then Newton; brute force continues where it does not settle.
   PeriodRun run;
-  bool solved = false;
-  if (shooting_enabled(options)) {
+  bool solved = shooting_enabled(options) && timed(s.phases.classify, r, [&] { return solve_without_contact(s, r); });
+  if (shooting_enabled(options) && !solved) {
     long transient = options.analysis.transient_periods;
     const int tries = follows(options) ? kFollowTries : kTransientTries;
     for (int attempt = 0; attempt < tries && !solved; ++attempt, transient *= 3) {
