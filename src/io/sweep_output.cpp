@@ -39,6 +39,9 @@ void write_refine_json(JsonWriter& w, const FarmFigures& f, const SweepTotals& t
 
 // The counts and the rate: of cells for a uniform map; for an adaptive map of points, by how
 // each got its values, and the rate per point solved.
+// The cells of a kind one core solves a second (0 when none took time).
+double class_rate(const ClassCost& c) { return c.solve_s > 0.0 ? static_cast<double>(c.cells) / c.solve_s : 0.0; }
+
 void write_counts(std::ostream& out, const FarmFigures& f, const SweepTotals& t) {
   if (t.refine_levels == 0) {
     out << "cells          " << f.items << " (" << f.items_resumed << " from the resumed map, " << f.items_computed
@@ -144,6 +147,10 @@ void write_sweep_json(std::ostream& out, const FarmFigures& f, const SweepTotals
   if (t.families) write_families_json(w, *t.families);
   w.key("regimes").begin_object();
   for (const auto& [label, count] : t.regimes) w.field(label, count);
+  w.end_object();
+  w.key("classes").begin_object();
+  for (const auto& [kind, cost] : t.classes)
+    w.key(kind).begin_object().field("cells", cost.cells).field("solve_s", cost.solve_s).field("cells_per_s", class_rate(cost)).end_object();
   w.end_object().end_object();
   out << "\n";
 }
@@ -169,6 +176,14 @@ void write_sweep_table(std::ostream& out, const FarmFigures& f, const SweepTotal
   out << "regimes       ";
   for (const auto& [label, count] : t.regimes) out << " " << label << " " << count;
   out << "\n";
+  if (t.classes.empty()) return;
+  out << "speed         ";
+  const char* sep = " ";
+  for (const auto& [kind, cost] : t.classes) {
+    out << sep << kind << " " << std::setprecision(3) << class_rate(cost) << " cells/s";
+    sep = ", ";
+  }
+  out << " (one core: each kind's solved cells over their solve time)\n";
 }
 
 }  // namespace vibromap

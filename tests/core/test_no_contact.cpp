@@ -68,7 +68,9 @@ TEST(NoContact, NeverEntersOnlyWhereTheExactMotionStaysClear) {
       } else if (zmax < 0.0) {
         ++refused_but_clear;  // a bound: it may leave a clear motion to the integrator
       }
-      if (zmax >= 0.0) EXPECT_FALSE(flight.never_enters(0.0, u0)) << "D " << D << ", kick " << kick;
+      if (zmax >= 0.0) {
+        EXPECT_FALSE(flight.never_enters(0.0, u0)) << "D " << D << ", kick " << kick;
+      }
     }
   }
   // Not vacuous: of the 14 clear motions the bound certifies 10 (it leaves the 4 that pass within

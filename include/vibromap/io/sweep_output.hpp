@@ -11,11 +11,13 @@
 //   refine_solved, refine_inherited, refine_audited, refine_mismatches, refine_mismatch_bound,
 //   refine_whole_cells; a finished census map families (count, distance, wall_s, nodes, and top:
 //   the largest five by cells, each id, regimes, cells, soft_cells, fraction_min, fraction_max,
-//   edge_cells, label_changes); regimes: {label: cells, ...}.
+//   edge_cells, label_changes); regimes: {label: cells, ...}; classes: {regime kind: {cells,
+//   solve_s, cells_per_s}, ...}, the cells solved (wall_s > 0) of each kind, their solve time
+//   summed over ranks and the cells one core solves a second.
 //
 // Table: the map, its cells (or an adaptive map's points by how each got its values), ranks,
 // time, checkpoints, the census's budget, the soft and Hertz-invalid cells, the refinement, the
-// families (the largest five) and the regimes.
+// families (the largest five), the regimes and the speed of each kind of cell.
 
 #include <cstdint>
 #include <iosfwd>
@@ -29,10 +31,21 @@
 
 namespace vibromap {
 
+// The cells of one regime kind that were solved (wall_s > 0) and the seconds their solves took.
+struct ClassCost {
+  long cells = 0;
+  double solve_s = 0.0;
+  void add(double wall_s) {
+    ++cells;
+    solve_s += wall_s;
+  }
+};
+
 // What a sweep's summary says of the whole map (the cells it already held on resume included),
 // as rank 0 counted it.
 struct SweepTotals {
   std::map<std::string, long> regimes;   // regime label -> cells
+  std::map<std::string, ClassCost> classes;  // regime kind ("periodic", "no-contact", ...) -> its solved cells' cost
   int census_initial_conditions = 0;     // K of each cell's census (0: no census)
   long census_budget_states = 0;         // census: initial states followed to analysis.max_periods
   long soft = 0;                         // cells whose motion is soft (is_soft)

@@ -10,6 +10,7 @@ std::string regime_label(const CellResult& c) { return Regime{static_cast<Regime
 
 void MapTally::add(const CellResult& c) {
   ++regimes[regime_label(c)];
+  if (c.regime >= 0 && c.wall_s > 0.0) classes[to_string(static_cast<RegimeKind>(c.regime))].add(c.wall_s);
   soft += c.soft == 1 ? 1 : 0;
   fragile += c.fragile == 1 ? 1 : 0;
   fragility_assessed += c.fragile >= 0 ? 1 : 0;

@@ -8,6 +8,7 @@
 #include "cell_codec.hpp"
 #include "refine_plan.hpp"
 #include "vibromap/io/map_file.hpp"
+#include "vibromap/io/sweep_output.hpp"
 
 namespace vibromap::detail {
 
@@ -15,6 +16,7 @@ namespace vibromap::detail {
 struct MapTally {
   int census_k = 0;                     // K of each cell's census (0: no census)
   std::map<std::string, long> regimes;  // regime label -> cells
+  std::map<std::string, ClassCost> classes;  // regime kind -> its solved cells and their solve time
   long census_budget_states = 0;        // census: initial states followed to analysis.max_periods
   long soft = 0;                        // cells whose motion is soft (is_soft)
   long impacting = 0;                   // cells with impacts in their motion (k > 0 or T_con > 0)

@@ -252,6 +252,7 @@ SweepReport run_sweep(const MpiSession& mpi, const Scene& scene, const SweepRunC
   }
   if (sink) {
     totals.regimes = sink->tally().regimes;
+    totals.classes = sink->tally().classes;
     totals.census_budget_states = sink->tally().census_budget_states;
     totals.soft = sink->tally().soft;
     totals.impacting = sink->tally().impacting;

@@ -2,7 +2,9 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace vibromap {
 
@@ -70,6 +72,11 @@ FreeFlight::FreeFlight(const Model& m) : sys_(m) {
     constant_ = -lu_a.solve(c);
   }
   forcing_z2_ = sys_.omega * sys_.omega * std::abs(amp_[1]);
+  const Vec4c mu = modal_exp(2.0 * std::numbers::pi / sys_.omega);  // Parameters::period()
+  multipliers_.assign(mu.data(), mu.data() + 4);
+  std::sort(multipliers_.begin(), multipliers_.end(), [](cd x, cd y) {
+    return std::abs(x) != std::abs(y) ? std::abs(x) > std::abs(y) : x.imag() > y.imag();
+  });
   valid_ = amp_.allFinite() && constant_.allFinite() && V_inv_.allFinite();
 }
 

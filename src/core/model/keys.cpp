@@ -7,6 +7,7 @@
 #include "vibromap/core/model/keys.hpp"
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -405,10 +406,26 @@ double Key::value(const Parameters& p) const {
   return derive(p);
 }
 
+namespace {
+
+// The keys of one section, in table order: refusals() runs for every point a sweep solves, and
+// a pass over the whole table comparing section names cost ~15 % of a trivial cell.
+const std::vector<Key>& keys_of_section(std::string_view section) {
+  static const std::map<std::string_view, std::vector<Key>, std::less<>> by_section = [] {
+    std::map<std::string_view, std::vector<Key>, std::less<>> m;
+    for (const Key k : Key::all()) m[k.info().section].push_back(k);
+    return m;
+  }();
+  static const std::vector<Key> none;
+  const auto it = by_section.find(section);
+  return it == by_section.end() ? none : it->second;
+}
+
+}  // namespace
+
 std::vector<std::string> refusals(const Parameters& p, const PointOptions& o, std::string_view section) {
   std::vector<std::string> out;
-  for (const Key k : Key::all()) {
-    if (k.info().section != section) continue;
+  for (const Key k : keys_of_section(section)) {
     if (const std::optional<double> v = k.stored(p, o))
       if (std::string r = k.check(*v); !r.empty()) out.push_back(std::move(r));
   }

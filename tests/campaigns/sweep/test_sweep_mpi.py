@@ -70,6 +70,35 @@ def test_map_does_not_depend_on_rank_count(tmp_path):
         assert int(f.attrs["ranks"]) == 3
 
 
+def test_the_report_gives_each_kind_of_cells_speed(tmp_path):
+    """The report's classes (JSON) and speed line (table): per regime kind, the cells solved and
+    their summed solve time, against the map's own regime and wall_s (issue 42)."""
+    scene = write_scene(tmp_path)
+    out, table = tmp_path / "map.h5", tmp_path / "table.h5"
+    report = json.loads(sweep(2, scene, out, "--format", "json").stdout)
+    expected = {}
+    with h5py.File(out, "r") as f:
+        regime, wall = f["regime"][()], f["wall_s"][()]
+        meanings = f["regime"].attrs["flag_meanings"]
+        meanings = (meanings.decode() if isinstance(meanings, bytes) else meanings).split()
+        for code, name in zip(f["regime"].attrs["flag_values"], meanings):
+            solved = (regime == code) & (wall > 0)
+            if solved.any():
+                expected[name.replace("_", "-")] = (int(solved.sum()), float(wall[solved].sum()))
+    assert expected and sorted(report["classes"]) == sorted(expected)
+    for kind, (cells, seconds) in expected.items():
+        got = report["classes"][kind]
+        assert got["cells"] == cells, kind
+        assert got["solve_s"] == pytest.approx(seconds, rel=1e-9), kind
+        assert got["cells_per_s"] == pytest.approx(cells / seconds, rel=1e-9), kind
+    text = subprocess.run([EXE, "sweep", str(scene), "-o", str(table)], env=ENV, capture_output=True, text=True,
+                          timeout=600).stdout
+    speed = [line for line in text.splitlines() if line.startswith("speed ")]
+    assert len(speed) == 1, text
+    for kind in expected:
+        assert f" {kind} " in speed[0] and "cells/s" in speed[0], speed[0]
+
+
 def test_killed_sweep_resumes_to_the_same_map(tmp_path):
     scene = write_scene(tmp_path, n1=8, n2=6, checkpoint=0.3)
     reference = tmp_path / "reference.h5"

@@ -19,6 +19,7 @@
 #include <array>
 #include <complex>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -61,6 +62,10 @@ class FreeFlight {
   bool never_enters(double tau0, const State& u0) const;
   // The T-periodic motion the contact-free motion tends to (the particular solution), at tau.
   State orbit(double tau) const { return particular(tau); }
+  // Its Floquet multipliers e^{lambda_j T} (T = 2 pi / omega), largest |mu| first and, of a
+  // complex pair, the one with the positive imaginary part first (as the eigenvalues of e^{A T}
+  // come); computed with the decomposition.
+  const std::vector<std::complex<double>>& multipliers() const { return multipliers_; }
 
   // Whether this is the free flight of `model`: the same linear part, forcing and entry
   // tolerance (so it can be shared by every integrator of that model).
@@ -102,6 +107,7 @@ class FreeFlight {
   Vec4c amp_;          // (i omega I - A)^{-1} b
   double forcing_z2_ = 0.0;  // omega^2 |amp_z|: the bound on the forced part of |z''|
   State constant_;     // -A^{-1} c
+  std::vector<std::complex<double>> multipliers_;
   bool valid_ = false;
 };
 
