@@ -151,8 +151,10 @@ def main() -> int:
         if not m.any():
             continue
         n, s = int(m.sum()), float(wall[m].sum())
+        # A class that evaluates nothing (no-contact cells decided in closed form) has no ns/eval.
+        per_eval = f"{1e9 * s / evals[m].sum():8.1f}" if evals[m].sum() > 0 else f"{'-':>8}"
         print(f"{name:14} {n:7d} {s:9.3f} {1e3 * s / n:9.3f} {evals[m].mean():11.0f} {periods[m].mean():13.1f} "
-              f"{1e9 * s / max(evals[m].sum(), 1):8.1f}")
+              f"{per_eval}")
     return 0
 
 
