@@ -13,6 +13,7 @@
 #include "vibromap/core/analysis/point/steady_state.hpp"
 #include "vibromap/core/integrate/free_flight.hpp"
 #include "vibromap/core/model/keys.hpp"
+#include "trajectory_recorder.hpp"
 
 namespace vibromap {
 
@@ -61,49 +62,6 @@ constexpr int kCheckRounds = 6;               // rounds before an undecided chec
 // beyond the motion's scale: a transient passing the orbit from farther off is not taken as
 // following it (with a large basin Newton also finds orbits the transient only passes by).
 constexpr double kLinearOffset = 1.0;
-
-// Keeps uniform samples of each period plus extra samples inside contact steps (a rigid
-// contact lasts ~1e-3 T and would fall between uniform samples) and the event points.
-class TrajectoryRecorder final : public Observer {
- public:
-  TrajectoryRecorder(const Model& model, long first_period, int samples_per_period,
-                     std::vector<TrajectorySample>& out)
-      : model_(model), first_(first_period), dt_(model.period() / samples_per_period), out_(out) {}
-
-  void on_step(const StepView& step) override {
-    const double offset = static_cast<double>(step.period - first_) * model_.period();
-    // Uniform grid points in (tau0, tau1].
-    for (double tau = std::floor(step.tau0 / dt_ + 1.0) * dt_; tau <= step.tau1; tau += dt_) {
-      if (step.mode == ContactMode::contact) break;  // contact steps are sampled densely below
-      add(offset + tau, step.eval(tau), tau);
-    }
-    if (step.mode == ContactMode::contact) {
-      constexpr int kPerStep = 8;
-      for (int i = 1; i <= kPerStep; ++i) {
-        const double tau = step.tau0 + (step.tau1 - step.tau0) * i / kPerStep;
-        add(offset + tau, step.eval(tau), tau);
-      }
-    }
-  }
-  void on_event(const ContactEvent& e) override {
-    if (e.kind == ContactEvent::Kind::entry) v_in_ = model_.entry_speed(e.u);
-    add(static_cast<double>(e.period - first_) * model_.period() + e.tau, e.u, e.tau);
-  }
-
- private:
-  void add(double t, const State& u, double tau) {
-    if (!out_.empty() && t <= out_.back().t) return;
-    const Eigen::Vector4d x = Model::to_physical(u);
-    if (v_in_ <= 0.0) v_in_ = model_.entry_speed(u);  // the window opened inside a contact
-    out_.push_back({t, x[0], x[1], x[2], x[3], model_.contact().force(u[1], u[3], v_in_), model_.forcing(tau)});
-  }
-  double v_in_ = 0.0;  // the current contact's entry speed (a dissipative law's force reads it)
-  const Model& model_;
-  long first_;
-  double dt_;
-  std::vector<TrajectorySample>& out_;
-};
-
 
 // Everything solve_point needs while it runs.
 struct Run {
@@ -233,7 +191,7 @@ void classify_unsettled(PointSummary& s, Run& r) {
 
 void record_trajectory(PointSummary& s, Run& r) {
   const int periods = r.options.analysis.trajectory_periods;
-  TrajectoryRecorder rec(r.model, r.integrator.period(), r.options.analysis.trajectory_samples, s.trajectory);
+  detail::TrajectoryRecorder rec(r.model, r.integrator.period(), r.options.analysis.trajectory_samples, s.trajectory);
   rec.on_event({ContactEvent::Kind::exit, r.integrator.period(), 0.0, r.u});  // the first sample, t = 0
   for (int i = 0; i < periods; ++i)
     if (r.integrator.advance_period(r.u, rec) != IntegrationStatus::ok) break;
