@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "problems/linear_oscillator.hpp"
+#include "support/paper_points.hpp"
 #include "vibromap/core/analysis/point/point_solver.hpp"
 #include "vibromap/core/integrate/free_flight.hpp"
 
@@ -17,11 +18,7 @@ namespace {
 
 // Table 2's system, its clearance D (m) and its force amplitude F0 (N) given, from rest.
 Parameters table2(double D, double F0) {
-  Parameters p;
-  p.m2 = 310.0;
-  p.spring2 = {Spring::Form::frequency, 3.606};
-  p.E1 = 1.4e10;
-  p.E2 = 1.0e6;
+  Parameters p = test::table2();
   p.D = D;
   p.F0 = F0;
   return p;

@@ -9,15 +9,14 @@
 
 #include "vibromap/core/analysis/point/point_solver.hpp"
 #include "support/monodromy_testing.hpp"
+#include "support/paper_points.hpp"
 #include "vibromap/core/analysis/point/shooting.hpp"
 
 using namespace vibromap;
 
 namespace {
 Parameters table2_base(double E1, double E2) {
-  Parameters p;
-  p.m2 = 310.0;
-  p.spring2 = {Spring::Form::frequency, 3.606};
+  Parameters p = test::table2();
   p.E1 = E1;
   p.E2 = E2;
   return p;
