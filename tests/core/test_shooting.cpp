@@ -86,6 +86,22 @@ TEST(Shooting, TheDefaultFollowAgreesWithBruteForceOnAGridOfThePaperBox) {
   EXPECT_GE(compared, 15);
 }
 
+TEST(Shooting, TheDefaultFollowsPastATransientThatPassesByAnOrbit) {
+  // The demo plane's cell E1 = 2.55e9, E2 = 2.09e10 Pa: after 90 periods the transient closes in
+  // on the stable (1,1) orbit for one 20-period round, 4x nearer and as its linearisation says,
+  // then leaves it; brute force from rest settles into (3,3) after 816 periods. The default
+  // once took (1,1) from that one round.
+  const Parameters p = table2_base(2554756341.802426, 20854138427.293682);
+  PointOptions brute;
+  brute.analysis.steady = SteadyMethod::integrate;
+  const PointSummary b = solve_point(p, brute), d = solve_point(p, PointOptions{});
+  ASSERT_EQ(b.status, SolveStatus::ok);
+  ASSERT_EQ(d.status, SolveStatus::ok);
+  EXPECT_EQ(b.regime.label(), "(3,3)");
+  EXPECT_EQ(d.regime.label(), b.regime.label());
+  EXPECT_NEAR(d.k_con, b.k_con, 1e-6 * b.k_con);
+}
+
 TEST(Shooting, CoexistingAttractorsAreBothStable) {
   // Table 2's system at E1 = 1e9, E2 = 1e10 Pa: from rest the motion settles on a stable
   // (3,3) orbit; Newton from a short transient finds a stable (1,1) orbit. Two attractors,

@@ -58,6 +58,10 @@ constexpr std::size_t kExtrapolationIterates = 7;  // samples used to extrapolat
 constexpr double kShorterPeriodFactor = 100;  // P^d(y) = y within this many Newton tolerances
 constexpr int kCheckPeriods = 20;             // periods per round of the check that the transient heads for the orbit
 constexpr int kCheckRounds = 6;               // rounds before an undecided check refuses the orbit
+// Rounds in a row the transient must follow the orbit's linearisation: one round can be a
+// transient passing by (on the demo plane, E1 = 2.55e9, E2 = 2.09e10 Pa: a 4x approach to
+// (1,1) over 20 periods at 0.12 motion scales, then (3,3), as brute force finds).
+constexpr int kFollowingRounds = 2;
 // The check compares with the orbit's linearisation, which says nothing about offsets
 // beyond the motion's scale: a transient passing the orbit from farther off is not taken as
 // following it (with a large basin Newton also finds orbits the transient only passes by).
@@ -290,9 +294,10 @@ struct ShootingSection {
 // rounds of kCheckPeriods, each compared with the orbit's linearisation: with delta_0 its
 // offset from the orbit at the same phase of the cycle and M the monodromy, the offset J
 // cycles later must be M^J delta_0 to within a quarter of |delta_0| (a spiral approach
-// passes: M^J holds the rotation). A round that moves away from the orbit refuses it; a
-// round that neither follows nor moves away (still far, nonlinear) defers to the next, up
-// to kCheckRounds; undecided means refused, and brute force takes over.
+// passes: M^J holds the rotation), in kFollowingRounds rounds in a row. A round that moves
+// away from the orbit refuses it; a round that neither follows nor moves away (still far,
+// nonlinear) defers to the next, up to kCheckRounds; undecided means refused, and brute force
+// takes over.
 // A transient that ends on the orbit (within Newton's tolerance, as close as Newton itself
 // puts it) is on it: nothing to check (every no-contact cell at rest, a settled transient).
 bool transient_approaches(Run& r, const ShootingSection& section, const ShootingResult& sh, int n, double tol) {
@@ -317,11 +322,14 @@ bool transient_approaches(Run& r, const ShootingSection& section, const Shooting
   Eigen::Matrix4d power = Eigen::Matrix4d::Identity();
   for (int i = 0; i < cycles; ++i) power = sh.monodromy * power;
   bool accepted = false, refused = false;
+  int following = 0;  // rounds in a row that followed the linearisation
   for (int round = 0; round < kCheckRounds && ok && !accepted && !refused; ++round) {
     const State delta0 = u - sh.y;
     for (int i = 0; i < cycles * n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-    accepted = size(delta0) <= kLinearOffset &&
-               size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
+    const bool follows_round = size(delta0) <= kLinearOffset &&
+                               size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
+    following = follows_round ? following + 1 : 0;
+    accepted = following >= kFollowingRounds;
     refused = size(u - sh.y) > size(delta0);
   }
   r.shooting += integ->counters();
