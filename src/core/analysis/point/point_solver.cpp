@@ -550,8 +550,9 @@ PointSummary solve_point(const Parameters& p, const PointOptions& options) {
 
   // Shooting: a short transient, then Newton; brute force continues where it does not settle.
   PeriodRun run;
-  bool solved = shooting_enabled(options) && timed(s.phases.classify, r, [&] { return solve_without_contact(s, r); });
-  if (shooting_enabled(options) && !solved) {
+  bool solved = false;
+  if (shooting_enabled(options)) {
+    solved = timed(s.phases.classify, r, [&] { return solve_without_contact(s, r); });
     long transient = options.analysis.transient_periods;
     const int tries = follows(options) ? kFollowTries : kTransientTries;
     for (int attempt = 0; attempt < tries && !solved; ++attempt, transient *= 3) {
