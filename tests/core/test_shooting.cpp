@@ -99,7 +99,12 @@ TEST(Shooting, TheDefaultFollowsPastATransientThatPassesByAnOrbit) {
   ASSERT_EQ(d.status, SolveStatus::ok);
   EXPECT_EQ(b.regime.label(), "(3,3)");
   EXPECT_EQ(d.regime.label(), b.regime.label());
-  EXPECT_NEAR(d.k_con, b.k_con, 1e-6 * b.k_con);
+  EXPECT_NEAR(d.k_con, b.k_con, 1e-8 * b.k_con);
+  // After 810 periods the transient is 5e-8 motion scales from the (3,3) orbit: the check
+  // integrates such an offset at the scene's tolerance and follows it in. At its usual 1e-6
+  // the round's own error (~1e-5) looked like moving away, and brute force took over.
+  EXPECT_EQ(d.steady_method, SteadyMethod::follow);
+  EXPECT_LT(d.periods, b.periods);
 }
 
 TEST(Shooting, CoexistingAttractorsAreBothStable) {

@@ -260,12 +260,19 @@ bool measure_cycle(PointSummary& s, Run& r, const State& y, int n) {
 
 // The check that the transient closes in on an orbit (transient_approaches) starts from the
 // state brute force itself reaches (the transient runs at the scene's tolerance) and compares
-// offsets of 1e-3..1 motion scales with a 25 % margin: integrating the check at this
-// tolerance (or the scene's, when looser) moves them by far less than the margin.
+// offsets with a 25 % margin: an offset of 1e-3..1 motion scales is integrated at this
+// tolerance (or the scene's, when looser), which moves it by far less than the margin.
 constexpr double kCheckRtol = 1e-6;
+// A smaller offset is integrated at this fraction of it, down to the scene's tolerance: at
+// 1e-6 a 20-period round errs by ~1e-5 motion scales, and an offset of 5e-8 to a stable (3,3)
+// (demo plane, E1 = 2.55e9, E2 = 2.09e10 Pa) seemed to move away, so brute force took 800 periods.
+constexpr double kCheckResolution = 1e-3;
+double check_rtol(const Run& r, double offset) {
+  return std::max(r.options.integrator.rtol, std::min(kCheckRtol, kCheckResolution * offset));
+}
 IntegratorOptions check_options(const Run& r) {
   IntegratorOptions o = budgeted(r);
-  o.rtol = std::max(o.rtol, kCheckRtol);
+  o.rtol = check_rtol(r, 1.0);
   return o;
 }
 
@@ -325,6 +332,11 @@ bool transient_approaches(Run& r, const ShootingSection& section, const Shooting
   int following = 0;  // rounds in a row that followed the linearisation
   for (int round = 0; round < kCheckRounds && ok && !accepted && !refused; ++round) {
     const State delta0 = u - sh.y;
+    if (scale.distance(u, sh.y) <= tol) {  // on the orbit, as at the transient's end
+      accepted = true;
+      break;
+    }
+    integ->set_rtol(check_rtol(r, size(delta0)));
     for (int i = 0; i < cycles * n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
     const bool follows_round = size(delta0) <= kLinearOffset &&
                                size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
@@ -400,12 +412,27 @@ bool solve_by_shooting(PointSummary& s, Run& r) {
   if (steps_left(r) <= 0) return false;
   const std::optional<ShootingSection> section = choose_section(r);
   if (!section) return false;
+  // Orbits the check refused from this transient: two candidate periods often reduce to one
+  // orbit (n = 2 to its least period 1), and the same transient gives it the same verdict.
+  std::vector<std::pair<int, State>> refused;
+  auto was_refused = [&](int n, const State& y, double tol) {
+    const StateScale scale(section->model);
+    return std::any_of(refused.begin(), refused.end(), [&](const auto& o) {
+      return o.first == n && scale.distance(o.second, y) <= kShorterPeriodFactor * tol;
+    });
+  };
   for (int n : r.steady.candidate_periods(kShootingCandidates)) {
     if (steps_left(r) <= 0) return false;
     ShootingOptions so = shooting_options(r.options, n);
     const ShootingResult sh = find_orbit(s, r, *section, so);
     if (!sh.converged || !sh.stable()) continue;
-    if (follows(r.options) && !transient_approaches(r, *section, sh, so.n, so.tol)) continue;
+    if (follows(r.options)) {
+      if (was_refused(so.n, sh.y, so.tol)) continue;
+      if (!transient_approaches(r, *section, sh, so.n, so.tol)) {
+        refused.emplace_back(so.n, sh.y);
+        continue;
+      }
+    }
     const std::optional<State> y = from_section(r, *section, sh.y);
     if (!y || !measure_cycle(s, r, *y, so.n)) return false;
     s.status = SolveStatus::ok;
