@@ -15,30 +15,22 @@ transient: which attractor it ends on, and when, moves with the rounding).
 Prints the cells where the brute-force maps differ pair by pair, the robust cells, and where
 the map differs from brute force on them (label against label, with counts); then the map's
 labels on the coin-toss cells."""
-import argparse
 import collections
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 
 import h5py
 import numpy as np
 
-
-def run(args):
-    p = subprocess.run(args, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"label_robustness: {' '.join(map(str, args))}: exit {p.returncode}: {p.stderr.strip()[-500:]}")
+from map_script import mpi_prefix, parser as map_parser, regime_names, run
 
 
 def labels(path: str) -> np.ndarray:
     """Each cell's label, 'chaotic', '(3,3)', ... from the map's regime, n and k."""
     with h5py.File(path, "r") as f:
-        meanings = f["regime"].attrs["flag_meanings"]
-        meanings = meanings.decode() if isinstance(meanings, bytes) else str(meanings)
-        names = dict(zip(np.atleast_1d(f["regime"].attrs["flag_values"]).tolist(), meanings.split()))
+        names = regime_names(f)
         regime, n, k = (f[q][...].ravel().astype(int) for q in ("regime", "n", "k"))
     def label(r, nn, kk):
         name = names.get(r, str(r)).replace("_", "-")
@@ -51,12 +43,7 @@ def counted(pairs) -> str:
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--exe", default="build/vibromap")
-    parser.add_argument("--ranks", type=int, default=2)
-    parser.add_argument("--scene", default="jobs/demo/e1_e2.toml")
-    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    parser = map_parser(__doc__, "label_robustness.py")
     parser.add_argument("--budget", type=int, default=10000, help="brute force's analysis.max_periods")
     parser.add_argument("--rtols", default="1e-9,1e-10,1e-11", help="brute force's solver.rtol values")
     parser.add_argument("--map", help="the map to judge (default: the scene's default map, made here)")
@@ -65,14 +52,14 @@ def main() -> int:
     exe = os.path.abspath(args.exe)
     rtols = args.rtols.split(",")
     work = tempfile.mkdtemp(prefix="label-robustness-")
-    mpi = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(args.ranks)] if args.ranks > 1 else []
+    mpi = mpi_prefix(args.ranks)
 
     def make(name, sets):
         out = os.path.join(work, name + ".h5")
         command = [*mpi, exe, "sweep", args.scene, "-o", out, "--overwrite", "-q"]
         for s in ["sweep.refine=0", *args.set, *sets]:
             command += ["--set", s]
-        run(command)
+        run("label_robustness", command)
         return out
 
     brute = {r: labels(make(f"brute_{r}", ["analysis.steady=integrate", f"analysis.max_periods={args.budget}",
@@ -94,12 +81,12 @@ def main() -> int:
             d = brute[a] != brute[b]
             print(f"  rtol {a} against {b}: {int(d.sum())} labels differ ({counted(zip(brute[a][d], brute[b][d]))})")
     robust = np.logical_and.reduce([brute[r] == reference for r in rtols]) & (reference != "unresolved")
-    print(f"robust cells (one label at every rtol, not unresolved): {int(robust.sum())}; coin tosses: "
-          f"{int((~robust).sum())}")
+    print(f"robust cells (one label at every rtol, not unresolved): {int(robust.sum())}; the rest, coin tosses "
+          f"or unresolved: {int((~robust).sum())}")
     d = robust & (judged != reference)
     print(f"the map against brute force on the robust cells: {int(d.sum())} differ "
           f"({counted(zip(judged[d], reference[d]))})")
-    print(f"the map's labels on the coin tosses: {counted((x, 'coin toss') for x in judged[~robust])}")
+    print(f"the map's labels on the rest: {counted((x, 'not decided') for x in judged[~robust])}")
     return 0
 
 

@@ -21,17 +21,17 @@ multipliers, classification) and prints:
     write and fsync here); and each phase's ratio to its floor.
 
 The map is made in a temporary folder (or kept at --keep)."""
-import argparse
 import json
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
 
 import h5py
 import numpy as np
+
+from map_script import mpi_prefix, parser as map_parser, regime_names, run as run_named
 
 PHASES = ("transient", "newton", "integrate", "floquet", "classify")
 PHASE_NAMES = {"transient": "transients before shooting", "newton": "shooting (Newton, checks, cycle)",
@@ -43,10 +43,7 @@ CLASSES = {"no-contact": "no-contact", "periodic": "periodic", "chatter": "chatt
 
 
 def run(args, **kw):
-    p = subprocess.run(args, capture_output=True, text=True, **kw)
-    if p.returncode != 0:
-        sys.exit(f"profile_map: {' '.join(map(str, args))}: exit {p.returncode}: {p.stderr.strip()[-500:]}")
-    return p
+    return run_named("profile_map", args, **kw)
 
 
 def ns_per_evaluation(exe: str) -> float:
@@ -76,20 +73,12 @@ def disk_rate(folder: str) -> float:
 
 def classes_of(f) -> np.ndarray:
     regime = f["regime"][...]
-    meanings = f["regime"].attrs["flag_meanings"]
-    meanings = meanings.decode() if isinstance(meanings, bytes) else str(meanings)
-    values = np.atleast_1d(f["regime"].attrs["flag_values"]).tolist()
-    table = {v: CLASSES.get(m.replace("_", "-"), "other") for v, m in zip(values, meanings.split())}
+    table = {v: CLASSES.get(m.replace("_", "-"), "other") for v, m in regime_names(f).items()}
     return np.vectorize(lambda c: table.get(int(c), "other"), otypes=[object])(regime)
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--exe", default="build/vibromap")
-    parser.add_argument("--ranks", type=int, default=2)
-    parser.add_argument("--scene", default="jobs/demo/e1_e2.toml")
-    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    parser = map_parser(__doc__, "profile_map.py")
     parser.add_argument("--keep", metavar="MAP.h5", help="keep the map here")
     args = parser.parse_args()
     exe = os.path.abspath(args.exe)
@@ -97,7 +86,7 @@ def main() -> int:
     out = os.path.join(work, "map.h5")
     store = ["periods", "rhs_evals"] + [f"{w}_{p}" for p in PHASES for w in ("t", "rhs")]
     sets = ["sweep.refine=0", "sweep.store=[" + ", ".join(f'"{q}"' for q in store) + "]"] + args.set
-    mpi = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", str(args.ranks)] if args.ranks > 1 else []
+    mpi = mpi_prefix(args.ranks)
     command = [*mpi, exe, "sweep", args.scene, "-o", out, "--overwrite", "-q", "--format", "json"]
     for s in sets:
         command += ["--set", s]
