@@ -40,6 +40,29 @@ TEST(Shooting, FloquetMultipliersMatchFiniteDifferenceMonodromy) {
   }
 }
 
+TEST(Shooting, StopsAtAnOrbitAlreadyFound) {
+  // Table 2: Newton for n = 2 from the transient converges to the (1,1) orbit Newton for n = 1
+  // finds (a fixed point of P^2). Told that orbit is known, it stops once an iterate is within
+  // 1e-3 motion scales of it, before the evaluations at the final tolerance.
+  const Model model(test::table2());
+  const State start = test::after_transient(model, 30);
+  IntegrationCounters c1, c2, c3;
+  const ShootingResult one = shoot(model, IntegratorOptions{}, start, ShootingOptions{1, 1e-9, 30, 2.0}, c1);
+  ASSERT_TRUE(one.converged) << one.message;
+  const ShootingResult two = shoot(model, IntegratorOptions{}, start, ShootingOptions{2, 1e-9, 30, 2.0}, c2);
+  ASSERT_TRUE(two.converged) << two.message;
+  const StateScale scale(model);
+  EXPECT_LE(scale.distance(two.y, one.y), 1e-8);  // the same orbit
+  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
+  const ShootingResult stopped = shoot(model, IntegratorOptions{}, start, ShootingOptions{2, 1e-9, 30, 2.0}, c3,
+                                       [&](const State& y) { return ((y - one.y).array() / unit).abs().maxCoeff() <= 1e-3; });
+  EXPECT_TRUE(stopped.known);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_LE(((stopped.y - one.y).array() / unit).abs().maxCoeff(), 1e-3);
+  EXPECT_LT(stopped.iterations, two.iterations);
+  EXPECT_LT(c3.rhs_evals, c2.rhs_evals);
+}
+
 TEST(Shooting, UnstableOrbitIsFlaggedAndBruteForceLeavesIt) {
   // Table 2's system with E1 = 1e9, E2 = 1e10 Pa has an unstable 3T-periodic orbit next to
   // its stable ones; Newton for n = 3 from the transient converges to it.

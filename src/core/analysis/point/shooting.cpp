@@ -121,7 +121,7 @@ void polish(ShootingResult& r, const State& image) {
 }  // namespace
 
 ShootingResult shoot(const Model& model, const IntegratorOptions& integration, const State& y0,
-                     const ShootingOptions& options, IntegrationCounters& counters) {
+                     const ShootingOptions& options, IntegrationCounters& counters, const KnownOrbit& known) {
   const StateScale scale(model);
   const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
   ShootingResult r;
@@ -136,6 +136,11 @@ ShootingResult shoot(const Model& model, const IntegratorOptions& integration, c
   double last_residual = std::numeric_limits<double>::infinity(), rtol_prev = 0.0;
   const long steps_before = counters.steps + counters.rejected;
   for (int evaluations = 0; evaluations <= options.max_iterations; ++evaluations) {
+    if (known && known(r.y)) {
+      r.known = true;
+      r.message = "at an orbit already found";
+      return r;
+    }
     IntegratorOptions evaluation = evaluation_options(integration, last_residual);
     // integration.max_steps budgets all the evaluations together.
     evaluation.max_steps = integration.max_steps - (counters.steps + counters.rejected - steps_before);

@@ -8,6 +8,7 @@
 // jump across the state space; the residual is the steady-state detector's scaled max-norm.
 
 #include <complex>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,12 +33,17 @@ struct ShootingResult {
   std::vector<std::complex<double>> multipliers;  // eigenvalues of the monodromy, largest |mu| first
   double residual = 0.0;          // scaled ||P^n(y) - y|| at the end
   int iterations = 0;
+  bool known = false;             // stopped at an orbit already found (KnownOrbit)
   bool stable() const { return !multipliers.empty() && std::abs(multipliers.front()) < 1.0; }
 };
 
+// True for a state at an orbit already found: Newton stops at such an iterate
+// (ShootingResult::known), which it would only converge to again.
+using KnownOrbit = std::function<bool(const State&)>;
+
 // Newton from y0. counters accumulates the integration work.
 ShootingResult shoot(const Model& model, const IntegratorOptions& integration, const State& y0,
-                     const ShootingOptions& options, IntegrationCounters& counters);
+                     const ShootingOptions& options, IntegrationCounters& counters, const KnownOrbit& known = {});
 
 // P^n(y) into `image` and its Jacobian dP^n/dy (the monodromy at a periodic orbit) into `jac`,
 // integrated with the variational equations. counters accumulates the work.
