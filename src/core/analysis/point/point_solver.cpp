@@ -13,6 +13,8 @@
 #include "vibromap/core/analysis/point/steady_state.hpp"
 #include "vibromap/core/integrate/free_flight.hpp"
 #include "vibromap/core/model/keys.hpp"
+#include "follow_check.hpp"
+#include "found_orbits.hpp"
 #include "trajectory_recorder.hpp"
 
 namespace vibromap {
@@ -55,17 +57,6 @@ constexpr double kTransientRtol = 1e-4;
 constexpr double kMeasureRtolFactor = 0.1;
 constexpr double kMeasureRtolFloor = 1e-13;  // never asks dopri5 for less than this
 constexpr std::size_t kExtrapolationIterates = 7;  // samples used to extrapolate Newton's start
-constexpr double kShorterPeriodFactor = 100;  // P^d(y) = y within this many Newton tolerances
-constexpr int kCheckPeriods = 20;             // periods per round of the check that the transient heads for the orbit
-constexpr int kCheckRounds = 6;               // rounds before an undecided check refuses the orbit
-// Rounds in a row the transient must follow the orbit's linearisation: one round can be a
-// transient passing by (on the demo plane, E1 = 2.55e9, E2 = 2.09e10 Pa: a 4x approach to
-// (1,1) over 20 periods at 0.12 motion scales, then (3,3), as brute force finds).
-constexpr int kFollowingRounds = 2;
-// The check compares with the orbit's linearisation, which says nothing about offsets
-// beyond the motion's scale: a transient passing the orbit from farther off is not taken as
-// following it (with a large basin Newton also finds orbits the transient only passes by).
-constexpr double kLinearOffset = 1.0;
 
 // Everything solve_point needs while it runs.
 struct Run {
@@ -258,36 +249,6 @@ bool measure_cycle(PointSummary& s, Run& r, const State& y, int n) {
   return ok;
 }
 
-// The check that the transient closes in on an orbit (transient_approaches) starts from the
-// state brute force itself reaches (the transient runs at the scene's tolerance) and compares
-// offsets with a 25 % margin: an offset of 1e-3..1 motion scales is integrated at this
-// tolerance (or the scene's, when looser), which moves it by far less than the margin.
-constexpr double kCheckRtol = 1e-6;
-// A smaller offset is integrated at this fraction of it, down to the scene's tolerance: at
-// 1e-6 a 20-period round errs by ~1e-5 motion scales, and an offset of 5e-8 to a stable (3,3)
-// (demo plane, E1 = 2.55e9, E2 = 2.09e10 Pa) seemed to move away, so brute force took 800 periods.
-constexpr double kCheckResolution = 1e-3;
-double check_rtol(const Run& r, double offset) {
-  return std::max(r.options.integrator.rtol, std::min(kCheckRtol, kCheckResolution * offset));
-}
-IntegratorOptions check_options(const Run& r) {
-  IntegratorOptions o = budgeted(r);
-  o.rtol = check_rtol(r, 1.0);
-  return o;
-}
-
-// The n points y, P(y), ..., P^{n-1}(y) of a cycle (fewer when integration fails).
-std::vector<State> cycle_points(Run& r, const Model& model, const State& y, int n) {
-  const auto integ = make_integrator(model, check_options(r));
-  std::vector<State> points{y};
-  State u = y;
-  integ->reset(u);
-  Observer none;
-  for (int i = 1; i < n && integ->advance_period(u, none) == IntegrationStatus::ok; ++i) points.push_back(u);
-  r.shooting += integ->counters();
-  return points;
-}
-
 // The Poincare section shooting works on (section.hpp): the system whose forcing periods
 // start at the section's phase, and the transient's end carried there.
 struct ShootingSection {
@@ -295,58 +256,6 @@ struct ShootingSection {
   double phase = 0.0;  // s in [0, T): the section's phase in the forcing period
   State transient_end;
 };
-
-// Newton may converge to another stable orbit than the one the motion from the initial
-// state is heading for (coexisting attractors). The transient is therefore integrated on in
-// rounds of kCheckPeriods, each compared with the orbit's linearisation: with delta_0 its
-// offset from the orbit at the same phase of the cycle and M the monodromy, the offset J
-// cycles later must be M^J delta_0 to within a quarter of |delta_0| (a spiral approach
-// passes: M^J holds the rotation), in kFollowingRounds rounds in a row. A round that moves
-// away from the orbit refuses it; a round that neither follows nor moves away (still far,
-// nonlinear) defers to the next, up to kCheckRounds; undecided means refused, and brute force
-// takes over.
-// A transient that ends on the orbit (within Newton's tolerance, as close as Newton itself
-// puts it) is on it: nothing to check (every no-contact cell at rest, a settled transient).
-bool transient_approaches(Run& r, const ShootingSection& section, const ShootingResult& sh, int n, double tol) {
-  const StateScale scale(section.model);
-  if (scale.distance(section.transient_end, sh.y) <= tol) return true;
-  const std::vector<State> cycle = cycle_points(r, section.model, sh.y, n);
-  if (static_cast<int>(cycle.size()) != n) return false;
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
-  auto size = [&](const State& d) { return (d.array() / unit).abs().maxCoeff(); };
-  int phase = 0;
-  for (int i = 1; i < n; ++i)
-    if (scale.distance(section.transient_end, cycle[static_cast<std::size_t>(i)]) <
-        scale.distance(section.transient_end, cycle[static_cast<std::size_t>(phase)]))
-      phase = i;
-  const auto integ = make_integrator(section.model, check_options(r));
-  State u = section.transient_end;
-  integ->reset(u);
-  Observer none;
-  bool ok = true;
-  for (int i = 0; i < (n - phase) % n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-  const int cycles = std::max(1, kCheckPeriods / n);
-  Eigen::Matrix4d power = Eigen::Matrix4d::Identity();
-  for (int i = 0; i < cycles; ++i) power = sh.monodromy * power;
-  bool accepted = false, refused = false;
-  int following = 0;  // rounds in a row that followed the linearisation
-  for (int round = 0; round < kCheckRounds && ok && !accepted && !refused; ++round) {
-    const State delta0 = u - sh.y;
-    if (scale.distance(u, sh.y) <= tol) {  // on the orbit, as at the transient's end
-      accepted = true;
-      break;
-    }
-    integ->set_rtol(check_rtol(r, size(delta0)));
-    for (int i = 0; i < cycles * n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-    const bool follows_round = size(delta0) <= kLinearOffset &&
-                               size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
-    following = follows_round ? following + 1 : 0;
-    accepted = following >= kFollowingRounds;
-    refused = size(u - sh.y) > size(delta0);
-  }
-  r.shooting += integ->counters();
-  return ok && accepted;
-}
 
 // Newton's starting point for period n: the fixed point of P^n extrapolated from the
 // transient's samples n periods apart (extrapolate_fixed_point), which sees the centre of
@@ -396,44 +305,13 @@ ShootingResult find_orbit(PointSummary& s, Run& r, const ShootingSection& sectio
     s.newton_iterations += sh.iterations;
   }
   if (!sh.converged || !sh.stable()) return sh;
-  if (const int d = least_period(section.model, budgeted(r), sh.y, so.n, kShorterPeriodFactor * so.tol, r.shooting);
+  if (const int d = least_period(section.model, budgeted(r), sh.y, so.n, detail::kShorterPeriodFactor * so.tol, r.shooting);
       d != so.n) {
     so.n = d;
     sh = shoot(section.model, budgeted(r), sh.y, so, r.shooting, known);
     s.newton_iterations += sh.iterations;
   }
   return sh;
-}
-
-// An orbit Newton found from the current transient (stable or not). Every one of them was not
-// the answer: unstable, or refused by the check (the first accepted is the answer).
-struct FoundOrbit {
-  int n;
-  State y;
-  std::vector<std::complex<double>> multipliers;
-};
-// Two candidate periods often lead Newton to one orbit (n = 2 to the (1,1) orbit found for
-// n = 1): an iterate within this many motion scales of a found orbit of a period d dividing n,
-// a fixed point of P^n that is isolated (no multiplier's (n/d)-th power within
-// kIsolation of 1), would only converge to it again, and the same transient gives it the same
-// verdict. On the demo plane 691 of 2,634 Newton searches did.
-constexpr double kFoundOffset = 1e-3;
-constexpr double kIsolation = 0.1;
-bool at_found_orbit(const std::vector<FoundOrbit>& found, const Model& model, int n, const State& y) {
-  const StateScale scale(model);
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
-  return std::any_of(found.begin(), found.end(), [&](const FoundOrbit& o) {
-    if (n % o.n != 0 || ((y - o.y).array() / unit).abs().maxCoeff() > kFoundOffset) return false;
-    return std::none_of(o.multipliers.begin(), o.multipliers.end(),
-                        [&](std::complex<double> mu) { return std::abs(std::pow(mu, n / o.n) - 1.0) < kIsolation; });
-  });
-}
-// The same orbit, found again (P^n(y) = y within the least-period tolerance).
-bool same_orbit_found(const std::vector<FoundOrbit>& found, const Model& model, int n, const State& y, double tol) {
-  const StateScale scale(model);
-  return std::any_of(found.begin(), found.end(), [&](const FoundOrbit& o) {
-    return o.n == n && scale.distance(o.y, y) <= kShorterPeriodFactor * tol;
-  });
 }
 
 // Shooting from the end of the transient: Newton for the candidate periods, most promising
@@ -444,16 +322,18 @@ bool solve_by_shooting(PointSummary& s, Run& r) {
   if (steps_left(r) <= 0) return false;
   const std::optional<ShootingSection> section = choose_section(r);
   if (!section) return false;
-  std::vector<FoundOrbit> found;
+  detail::FoundOrbits found(section->model);
   for (int n : r.steady.candidate_periods(kShootingCandidates)) {
     if (steps_left(r) <= 0) return false;
     ShootingOptions so = shooting_options(r.options, n);
     const ShootingResult sh =
-        find_orbit(s, r, *section, so, [&](const State& y) { return at_found_orbit(found, section->model, so.n, y); });
-    if (!sh.converged || same_orbit_found(found, section->model, so.n, sh.y, so.tol)) continue;
-    found.push_back({so.n, sh.y, sh.multipliers});
+        find_orbit(s, r, *section, so, [&](const State& y) { return found.near(so.n, y); });
+    if (!sh.converged || found.contains(so.n, sh.y, detail::kShorterPeriodFactor * so.tol)) continue;
+    found.add(so.n, sh.y, sh.multipliers);
     if (!sh.stable()) continue;
-    if (follows(r.options) && !transient_approaches(r, *section, sh, so.n, so.tol)) continue;
+    if (follows(r.options) &&
+        !detail::transient_approaches(section->model, section->transient_end, sh, so.n, so.tol, budgeted(r), r.shooting))
+      continue;
     const std::optional<State> y = from_section(r, *section, sh.y);
     if (!y || !measure_cycle(s, r, *y, so.n)) return false;
     s.status = SolveStatus::ok;
