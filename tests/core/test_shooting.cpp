@@ -53,12 +53,11 @@ TEST(Shooting, StopsAtAnOrbitAlreadyFound) {
   ASSERT_TRUE(two.converged) << two.message;
   const StateScale scale(model);
   EXPECT_LE(scale.distance(two.y, one.y), 1e-8);  // the same orbit
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
   const ShootingResult stopped = shoot(model, IntegratorOptions{}, start, ShootingOptions{2, 1e-9, 30, 2.0}, c3,
-                                       [&](const State& y) { return ((y - one.y).array() / unit).abs().maxCoeff() <= 1e-3; });
+                                       [&](const State& y) { return scale.size(y - one.y) <= 1e-3; });
   EXPECT_TRUE(stopped.known);
   EXPECT_FALSE(stopped.converged);
-  EXPECT_LE(((stopped.y - one.y).array() / unit).abs().maxCoeff(), 1e-3);
+  EXPECT_LE(scale.size(stopped.y - one.y), 1e-3);
   EXPECT_LT(stopped.iterations, two.iterations);
   EXPECT_LT(c3.rhs_evals, c2.rhs_evals);
 }

@@ -61,8 +61,6 @@ bool transient_approaches(const Model& model, const State& transient_end, const 
   IntegratorOptions rest = budget;  // the step budget less what the cycle took
   rest.max_steps = std::max(0L, budget.max_steps - (counters.steps + counters.rejected - spent));
   if (static_cast<int>(cycle.size()) != n) return false;
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
-  auto size = [&](const State& d) { return (d.array() / unit).abs().maxCoeff(); };
   int phase = 0;
   for (int i = 1; i < n; ++i)
     if (scale.distance(transient_end, cycle[static_cast<std::size_t>(i)]) <
@@ -85,17 +83,16 @@ bool transient_approaches(const Model& model, const State& transient_end, const 
       accepted = true;
       break;
     }
-    integ->set_rtol(check_rtol(budget.rtol, size(delta0)));
+    integ->set_rtol(check_rtol(budget.rtol, scale.size(delta0)));
     for (int i = 0; i < cycles * n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
-    const bool follows_round = size(delta0) <= kLinearOffset &&
-                               size(u - sh.y - power * delta0) <= 0.25 * size(delta0) + kShorterPeriodFactor * tol;
+    const bool follows_round = scale.size(delta0) <= kLinearOffset &&
+                               scale.size(u - sh.y - power * delta0) <= 0.25 * scale.size(delta0) + kShorterPeriodFactor * tol;
     following = follows_round ? following + 1 : 0;
     accepted = following >= kFollowingRounds;
-    refused = size(u - sh.y) > size(delta0);
+    refused = scale.size(u - sh.y) > scale.size(delta0);
   }
   counters += integ->counters();
   return ok && accepted;
 }
-
 
 }  // namespace vibromap::detail

@@ -5,8 +5,6 @@
 #include <complex>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "vibromap/core/analysis/point/shooting.hpp"
 #include "vibromap/core/model/system.hpp"
 
@@ -16,8 +14,7 @@ namespace vibromap::detail {
 // answer: each was unstable, or refused by the follow check (the first accepted is the answer).
 class FoundOrbits {
  public:
-  explicit FoundOrbits(const Model& model)
-      : scale_(model), unit_(scale_.length(), scale_.length(), scale_.speed(), scale_.speed()) {}
+  explicit FoundOrbits(const Model& model) : scale_(model) {}
 
   void add(int n, const State& y, const std::vector<std::complex<double>>& multipliers) {
     orbits_.push_back({n, y, multipliers});
@@ -30,7 +27,7 @@ class FoundOrbits {
   // the demo plane 691 of 2,634 Newton searches did.
   bool near(int n, const State& y) const {
     return std::any_of(orbits_.begin(), orbits_.end(), [&](const Orbit& o) {
-      if (n % o.n != 0 || ((y - o.y).array() / unit_).abs().maxCoeff() > kOffset) return false;
+      if (n % o.n != 0 || scale_.size(y - o.y) > kOffset) return false;
       return std::none_of(o.multipliers.begin(), o.multipliers.end(), [&](std::complex<double> mu) {
         return std::abs(std::pow(mu, n / o.n) - 1.0) < kIsolation;
       });
@@ -52,7 +49,6 @@ class FoundOrbits {
     std::vector<std::complex<double>> multipliers;
   };
   StateScale scale_;
-  Eigen::Array4d unit_;
   std::vector<Orbit> orbits_;
 };
 

@@ -96,7 +96,7 @@ Fragility assess_fragility(const Parameters& p, const PointOptions& options, con
   if (f.size <= 0.0 || own.status == SolveStatus::invalid_input) return f;
   const Model model(p);
   const StateScale scale(model);
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
+  const Eigen::Array4d unit = scale.unit();
   // Each perturbed state is followed as the point's own is, and only that: no trajectory, no
   // fragility of its own.
   PointOptions follow = options;

@@ -42,7 +42,7 @@ double StateScale::distance(const State& a, const State& b) const {
 State extrapolate_fixed_point(const std::vector<State>& iterates, const StateScale& scale) {
   const std::size_t k = iterates.size();
   if (k < 3) return iterates.empty() ? State::Zero() : iterates.back();
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
+  const Eigen::Array4d unit = scale.unit();
   Eigen::MatrixXd U(4, static_cast<Eigen::Index>(k - 1));  // scaled differences
   for (std::size_t j = 0; j + 1 < k; ++j)
     U.col(static_cast<Eigen::Index>(j)) = ((iterates[j + 1] - iterates[j]).array() / unit).matrix();
@@ -123,7 +123,6 @@ void polish(ShootingResult& r, const State& image) {
 ShootingResult shoot(const Model& model, const IntegratorOptions& integration, const State& y0,
                      const ShootingOptions& options, IntegrationCounters& counters, const KnownOrbit& known) {
   const StateScale scale(model);
-  const Eigen::Array4d unit(scale.length(), scale.length(), scale.speed(), scale.speed());
   ShootingResult r;
   r.y = y0;
   State image;
@@ -185,7 +184,7 @@ ShootingResult shoot(const Model& model, const IntegratorOptions& integration, c
     }
     State dy = lu.solve(r.y - image);
     // Limit the step: a Newton step longer than the motion's scale leaves the basin.
-    const double length = (dy.array() / unit).abs().maxCoeff();
+    const double length = scale.size(dy);
     if (length > options.max_step) dy *= options.max_step / length;
     y_prev = r.y;
     res_prev = r.residual;

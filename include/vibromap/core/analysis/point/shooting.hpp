@@ -65,6 +65,10 @@ class StateScale {
   double distance(const State& a, const State& b) const;
   double length() const { return length_; }
   double speed() const { return speed_; }
+  // The motion's unit of each coordinate: (L, L, omega L, omega L) as in distance().
+  Eigen::Array4d unit() const { return {length_, length_, speed_, speed_}; }
+  // The size of an offset d in those units: max |d_i| / unit_i.
+  double size(const State& d) const { return (d.array() / unit()).abs().maxCoeff(); }
 
  private:
   double length_, speed_;
