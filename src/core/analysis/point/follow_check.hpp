@@ -11,14 +11,15 @@ namespace vibromap::detail {
 inline constexpr double kShorterPeriodFactor = 100;  // P^d(y) = y within this many Newton tolerances
 
 // Newton may converge to another stable orbit than the one the motion from the initial
-// state is heading for (coexisting attractors). The transient is therefore integrated on in
-// rounds of 20 periods, each compared with the orbit's linearisation: with delta_0 its
-// offset from the orbit at the same phase of the cycle and M the monodromy, the offset J
-// cycles later must be M^J delta_0 to within a quarter of |delta_0| (a spiral approach
-// passes: M^J holds the rotation), in 2 rounds in a row. A round that moves
-// away from the orbit refuses it; a round that neither follows nor moves away (still far,
-// nonlinear) defers to the next, up to 6 rounds; undecided means refused, and brute force
-// takes over.
+// state is heading for (coexisting attractors). The transient is therefore integrated on,
+// cycle by cycle, and compared with the orbit's linearisation over windows of 20 periods:
+// with delta_0 its offset from the orbit at the same phase of the cycle and M the monodromy,
+// the offset J cycles later is compared with M^J delta_0 (a spiral approach passes: M^J holds
+// the rotation). One window that ends at any cycle, closing in and within 1 % of |delta_0| of
+// the prediction, accepts the orbit; so do 2 rounds in a row (the windows that end at 20, 40,
+// ... periods) within a quarter of |delta_0|. A round that moves away from the orbit refuses
+// it; a round that neither follows nor moves away (still far, nonlinear) defers to the next,
+// up to 6 rounds; undecided means refused, and brute force takes over.
 // A transient that ends on the orbit (within Newton's tolerance, as close as Newton itself
 // puts it) is on it: nothing to check (every no-contact cell at rest, a settled transient).
 // model: the section's system; transient_end: the transient's end on it; sh: Newton's orbit of
