@@ -95,13 +95,14 @@ bool transient_approaches(const Model& model, const State& transient_end, const 
     for (int i = 0; i < n && ok; ++i) ok = integ->advance_period(u, none) == IntegrationStatus::ok;
     if (!ok) break;
     at(c) = u - sh.y;
-    if (scale.size(at(c)) <= tol) {  // on the orbit
+    const double size1 = scale.size(at(c));
+    if (size1 <= tol) {  // on the orbit
       accepted = true;
       break;
     }
     if (c < cycles) continue;
     const State& delta0 = at(c - cycles);
-    const double size0 = scale.size(delta0), size1 = scale.size(at(c));
+    const double size0 = scale.size(delta0);
     const double deviation = scale.size(at(c) - power * delta0);
     // A window the linearisation predicts closely (to Newton's tolerance on the orbit beyond
     // the 1 %), closing in: one is enough.
