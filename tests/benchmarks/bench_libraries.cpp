@@ -1,7 +1,8 @@
 // bench_libraries: vibromap against the libraries a user would pick instead, on the same
 // parameter point solved to steady state.
 //
-//   build/tests/benchmarks/bench_libraries [SCENE.toml ...] [--repeat N] [--rtols 1e-6,1e-8,...]
+//   build/tests/benchmarks/bench_libraries [SCENE.toml ...] [--repeat N] [--stat min|median]
+//                                          [--rtols 1e-6,1e-8,...]
 //
 // For every scene (default: jobs/paper/table1.toml and table2.toml) and every rtol (default
 // 1e-6 .. 1e-12) it runs
@@ -11,7 +12,7 @@
 //   - SUNDIALS CVODE Adams and BDF with root finding and CVodeReInit (cvode_solver.hpp),
 // each integrating from the rest state until the stroboscopic samples repeat to 100 * rtol
 // (scaled max-norm, vibromap's SteadyStateDetector), and prints status, periods, RHS
-// evaluations, the minimum wall time over N repeats, the steady T_con and its relative error
+// evaluations, the minimum (or with --stat median the median) wall time over N repeats, the steady T_con and its relative error
 // against the reference. Then, per library, the fastest run with relative error <= 1e-6
 // against vibromap's fastest such run.
 
@@ -44,6 +45,7 @@ constexpr double kTargetError = 1e-6;
 struct Args {
   std::vector<std::string> scenes;
   int repeat = 3;
+  bool median = false;  // --stat median: the median wall time of the repeats, else the least
   std::vector<double> rtols{1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
 };
 
@@ -52,7 +54,7 @@ struct Row {
   std::string method;
   double rtol = 0.0;
   RunResult result;
-  double wall_s = 0.0;  // minimum over the repeats
+  double wall_s = 0.0;  // least or median of the repeats (Args::median)
   double rel_err = 0.0;
 };
 
@@ -81,8 +83,9 @@ std::vector<double> parse_list(const std::string& text) {
 }
 
 void usage(std::ostream& os) {
-  os << "usage: bench_libraries [SCENE.toml ...] [--repeat N] [--rtols 1e-6,1e-8,...]\n"
-        "  default scenes: jobs/paper/table1.toml jobs/paper/table2.toml; N = 3 (minimum wall time kept)\n";
+  os << "usage: bench_libraries [SCENE.toml ...] [--repeat N] [--stat min|median] [--rtols 1e-6,1e-8,...]\n"
+        "  default scenes: jobs/paper/table1.toml jobs/paper/table2.toml; N = 3 repeats of each run, of which\n"
+        "  the least wall time is kept (--stat median: the median)\n";
 }
 
 // Returns nullopt after printing usage; rc is then the exit code (0 for --help, 2 for misuse).
@@ -99,6 +102,10 @@ std::optional<Args> parse_args(int argc, char** argv, int& rc) {
     }
     if (arg == "--repeat" && has_value) {
       a.repeat = std::max(1, std::atoi(argv[++i]));
+    } else if (arg == "--stat" && has_value) {
+      const std::string stat = argv[++i];
+      if (stat != "min" && stat != "median") throw std::invalid_argument("--stat " + stat + ": expected min or median");
+      a.median = stat == "median";
     } else if (arg == "--rtols" && has_value) {
       a.rtols = parse_list(argv[++i]);
     } else if (!arg.empty() && arg[0] == '-') {
@@ -123,17 +130,20 @@ std::string sci(double v) {
   return buf;
 }
 
-// Runs f `repeat` times; keeps the first result and the smallest wall time.
-std::pair<RunResult, double> timed(int repeat, const std::function<RunResult()>& f) {
+// Runs f `repeat` times; keeps the first result and the least wall time, or the median (of an
+// even count, the mean of the middle two).
+std::pair<RunResult, double> timed(int repeat, bool median, const std::function<RunResult()>& f) {
   RunResult first;
-  double best = INFINITY;
+  std::vector<double> walls;
   for (int i = 0; i < repeat; ++i) {
     const auto start = std::chrono::steady_clock::now();
     RunResult r = f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (i == 0) first = std::move(r);
   }
-  return {first, best};
+  std::sort(walls.begin(), walls.end());
+  const std::size_t n = walls.size();
+  return {first, !median ? walls.front() : n % 2 ? walls[n / 2] : 0.5 * (walls[n / 2 - 1] + walls[n / 2])};
 }
 
 // ---- vibromap's own solver --------------------------------------------------------------
@@ -214,7 +224,7 @@ std::vector<Row> run_scene(const Scene& scene, const Reference& ref, const Args&
   for (const Contender& c : contenders(scene)) {
     for (double rtol : args.rtols) {
       Row row{c.library, c.method, rtol, {}, 0.0, 0.0};
-      std::tie(row.result, row.wall_s) = timed(args.repeat, [&] { return c.run(rtol); });
+      std::tie(row.result, row.wall_s) = timed(args.repeat, args.median, [&] { return c.run(rtol); });
       // Only a steady result has a T_con to compare; NaN prints as "-".
       row.rel_err = row.result.status == "ok" ? std::abs(row.result.T_con - ref.T_con) / ref.T_con : NAN;
       std::fprintf(stderr, "%s: %s %s rtol %.0e: %s, %.4f s\n", name.c_str(), c.library.c_str(), c.method.c_str(),
@@ -268,7 +278,7 @@ const Row* most_accurate(const std::vector<Row>& rows, const std::string& librar
   return best;
 }
 
-void print_ratios(const std::string& name, const Reference& ref, const std::vector<Row>& rows) {
+void print_ratios(const std::string& name, const Reference& ref, const std::vector<Row>& rows, bool median) {
   const std::string base_method = rows.front().method;  // vibromap with the scene's options
   const Row* base = fastest_accurate(rows, "vibromap", base_method);
   std::printf("\n");
@@ -280,8 +290,9 @@ void print_ratios(const std::string& name, const Reference& ref, const std::vect
     std::printf("%s: vibromap %s never reached rel err <= %.0e: no ratios\n", name.c_str(), base_method.c_str(), kTargetError);
     return;
   }
-  std::printf("%s: time ratio = library's fastest / vibromap's fastest run with rel err <= %.0e (> 1: vibromap faster)\n",
-              name.c_str(), kTargetError);
+  std::printf("%s: time ratio = library's fastest / vibromap's fastest run with rel err <= %.0e (> 1: vibromap faster; "
+              "each run's %s wall time of its repeats)\n",
+              name.c_str(), kTargetError, median ? "median" : "least");
   std::vector<std::pair<std::string, std::string>> seen;
   for (const Row& r : rows) {
     const std::pair<std::string, std::string> key{r.library, r.method};
@@ -308,7 +319,7 @@ int run(const Args& args) {
     const Reference ref = reference_for(scene);
     const std::vector<Row> rows = run_scene(scene, ref, args, name);
     print_table(name, scene, ref, rows);
-    print_ratios(name, ref, rows);
+    print_ratios(name, ref, rows, args.median);
     std::fflush(stdout);
   }
   return 0;
@@ -325,7 +336,7 @@ int main(int argc, char** argv) {
   } catch (const vibromap::SceneError& e) {
     std::cerr << "bench_libraries: error: " << e.what() << "\n";
     return 2;
-  } catch (const std::invalid_argument& e) {  // a malformed --rtols value
+  } catch (const std::invalid_argument& e) {  // a malformed --rtols or --stat value
     std::cerr << "bench_libraries: error: " << e.what() << "\n";
     return 2;
   }
