@@ -12,9 +12,9 @@
 //   - SUNDIALS CVODE Adams and BDF with root finding and CVodeReInit (cvode_solver.hpp),
 // each integrating from the rest state until the stroboscopic samples repeat to 100 * rtol
 // (scaled max-norm, vibromap's SteadyStateDetector), and prints status, periods, RHS
-// evaluations, the minimum (or with --stat median the median) wall time over N repeats, the steady T_con and its relative error
-// against the reference. Then, per library, the fastest run with relative error <= 1e-6
-// against vibromap's fastest such run.
+// evaluations, the least (--stat median: the median) wall time of N repeats, the steady T_con
+// and its relative error against the reference. Then, per library, the fastest run with
+// relative error <= 1e-6 against vibromap's fastest such run.
 
 #include <algorithm>
 #include <chrono>
